@@ -1,0 +1,110 @@
+// dtmfctl encode: a command (or a raw word) through the sender's path, printed and optionally
+// rendered to a WAV with the profile's timing.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "command/word_codec.h"
+#include "frame_output.h"
+#include "link/sender_path.h"
+#include "offline_commands.h"
+#include "physical/wav_file.h"
+
+namespace dtmf::cli {
+
+namespace {
+
+struct EncodeOptions {
+  bool json = false;
+  std::string wav;
+  std::string profile = "seed";
+  std::optional<int> word;
+  std::optional<double> speed;
+  std::optional<double> rotation;
+  std::optional<double> duration;
+  std::string kind;  // drive, turn, stop, reset
+};
+
+command::Command build_command(const EncodeOptions& o) {
+  if (o.kind == "drive") {
+    if (o.duration) return command::DriveForDuration{*o.speed, *o.duration};
+    return command::DriveForward{*o.speed};
+  }
+  if (o.kind == "turn") {
+    if (o.duration) return command::TurnForDuration{*o.rotation, *o.duration};
+    return command::Turn{*o.rotation};
+  }
+  if (o.kind == "stop") return command::Stop{};
+  return command::Reset{};
+}
+
+int run_encode(const EncodeOptions& o) {
+  const LinkProfile& profile = profile_by_name(o.profile);
+  std::vector<link::PlannedFrame> frames;
+  std::string what;
+  if (o.word) {
+    frames.push_back(link::plan_word(profile, static_cast<command::Word>(*o.word)));
+    what = "word " + std::to_string(*o.word);
+  } else {
+    const command::Command command = build_command(o);
+    frames = link::plan_command(profile, command);
+    what = command::describe(command::quantised(command));
+  }
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (o.json) {
+      nlohmann::json json = frame_json(frames[i]);
+      json["index"] = i;
+      if (!o.wav.empty()) json["t_ms"] = link::frame_start_ms(profile, i);
+      std::cout << json.dump() << '\n';
+    } else {
+      std::cout << "frame " << i + 1 << '/' << frames.size() << "  " << frame_line(frames[i]) << '\n';
+    }
+  }
+  if (!o.json) std::cout << "encodes: " << what << " (profile " << profile.name << ")\n";
+  if (!o.wav.empty()) {
+    const std::vector<float> audio = link::render_frames(profile, frames);
+    physical::write_wav_file(o.wav, audio, profile.sample_rate_hz);
+    if (!o.json) {
+      std::printf("wrote %s: %.2f s at %d Hz\n", o.wav.c_str(),
+                  static_cast<double>(audio.size()) / profile.sample_rate_hz, profile.sample_rate_hz);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_encode_command(CLI::App& app, Action& run) {
+  auto o = std::make_shared<EncodeOptions>();
+  CLI::App* encode = app.add_subcommand(
+      "encode", "Print the frames of a command (word, frame bits, CRC, tones); --wav renders them");
+  encode->fallthrough();
+  encode->add_flag("--json", o->json, "one JSON object per frame: word, frame, crc, tones_hz, index");
+  encode->add_option("--wav", o->wav, "also write the chords to this WAV file (profile timing)");
+  encode->add_option("--profile", o->profile, "link profile: " + profile_names())->capture_default_str();
+  encode->add_option("--word", o->word, "encode one raw 12-bit word instead of a command")
+      ->check(CLI::Range(0, 4095));
+
+  CLI::App* drive = encode->add_subcommand("drive", "drive forward: DRIVE_FOR_DURATION, or DRIVE_FORWARD without --duration");
+  drive->add_option("--speed", o->speed, "speed, percent of the robot's maximum (0..100)")->required();
+  drive->add_option("--duration", o->duration, "seconds (0..8); omit to drive until the next command");
+  CLI::App* turn = encode->add_subcommand("turn", "turn on the spot: TURN_FOR_DURATION, or TURN without --duration");
+  turn->add_option("--rotation", o->rotation, "rotation, percent of the maximum; positive turns left (-100..100)")->required();
+  turn->add_option("--duration", o->duration, "seconds (0..8); omit to turn until the next command");
+  CLI::App* stop = encode->add_subcommand("stop", "stop the robot (RESET, STOP)");
+  CLI::App* reset = encode->add_subcommand("reset", "return the robot to MODE_SELECT (RESET)");
+  for (CLI::App* sub : {drive, turn, stop, reset}) sub->fallthrough();
+  encode->require_subcommand(0, 1);
+  encode->callback([o, encode, &run] {
+    const auto chosen = encode->get_subcommands();
+    if (!chosen.empty()) o->kind = chosen.front()->get_name();
+    if (chosen.empty() == !o->word.has_value()) {
+      throw CLI::ValidationError("encode", "give either a command (drive, turn, stop, reset) or --word N");
+    }
+    run = [o] { return run_encode(*o); };
+  });
+}
+
+}  // namespace dtmf::cli

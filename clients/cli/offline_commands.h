@@ -1,0 +1,22 @@
+// dtmfctl's offline subcommands: they run the link's layers on files, no server needed.
+//
+//   encode    command or word -> frames (word, frame bits, CRC, tones), optionally a WAV
+//   decode    WAV -> the robot's receive path -> frames found, CRC verdicts, commands
+//   simulate  WAV -> the simulated acoustic channel (distance, noise, room, clock) -> WAV
+//
+// Each add_* function registers its subcommand on `app` and sets `run` to the action that
+// executes it after parsing.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace dtmf::cli {
+
+using Action = std::function<int()>;
+
+void add_encode_command(CLI::App& app, Action& run);
+void add_decode_command(CLI::App& app, Action& run);
+void add_simulate_command(CLI::App& app, Action& run);
+
+}  // namespace dtmf::cli

@@ -1,0 +1,59 @@
+// Command abstraction layer, part 1: the robot commands and the 12-bit words that name them.
+//
+// A command travels as words: the RESET word, then a mode word, then (for modes that take
+// parameters) one parameter word. The numbering of the modes is the table "Mode words" in
+// docs/protocol.md; the field layouts are in word_codec.h.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+
+namespace dtmf::command {
+
+// 12 data bits; the upper four bits of the type are always zero.
+using Word = std::uint16_t;
+inline constexpr Word kWordMask = 0x0FFF;
+
+// The RESET word: always returns the receiver to MODE_SELECT, whatever its state.
+inline constexpr Word kResetWord = 0x000;
+
+enum class Mode : Word {
+  ModeSelect = 1,
+  DriveForDuration = 2,
+  TurnForDuration = 3,
+  DriveForward = 4,
+  Turn = 5,
+  Stop = 6,
+};
+
+struct Reset {};
+struct DriveForDuration {
+  double speed_percent = 0;  // 0..100
+  double duration_s = 0;     // 0..8
+};
+struct TurnForDuration {
+  double rotation_percent = 0;  // -100..100, positive turns left (counter-clockwise)
+  double duration_s = 0;        // 0..8
+};
+struct DriveForward {
+  double speed_percent = 0;  // 0..100, until the next command
+};
+struct Turn {
+  double rotation_percent = 0;  // -100..100, until the next command
+};
+struct Stop {};
+
+using Command = std::variant<Reset, DriveForDuration, TurnForDuration, DriveForward, Turn, Stop>;
+
+// "drive_for_duration" etc.; the names used in logs, JSON and docs.
+std::string mode_name(Mode mode);
+// The mode a word names, if it names one.
+std::optional<Mode> mode_from_word(Word word);
+// "drive_for_duration speed=50.0% duration=3.00s"
+std::string describe(const Command& command);
+// "reset", "drive_for_duration", ...
+std::string kind_name(const Command& command);
+
+}  // namespace dtmf::command

@@ -1,0 +1,38 @@
+#include "link/sender_path.h"
+
+#include <span>
+
+#include "command/word_codec.h"
+#include "signal/synthesizer.h"
+
+namespace dtmf::link {
+
+PlannedFrame plan_word(const LinkProfile& profile, command::Word word) {
+  const reliability::Frame frame = reliability::make_frame(word & command::kWordMask);
+  return PlannedFrame{static_cast<command::Word>(word & command::kWordMask), frame,
+                      signal::chord_for(profile.tones, frame)};
+}
+
+std::vector<PlannedFrame> plan_command(const LinkProfile& profile, const command::Command& command) {
+  std::vector<PlannedFrame> frames;
+  for (command::Word word : command::encode(command)) frames.push_back(plan_word(profile, word));
+  return frames;
+}
+
+double frame_start_ms(const LinkProfile& profile, std::size_t index) {
+  return static_cast<double>(index) * (profile.timing.chord_ms + profile.timing.gap_ms);
+}
+
+std::vector<float> render_frames(const LinkProfile& profile, const std::vector<PlannedFrame>& frames) {
+  const auto chord = static_cast<std::size_t>(profile.samples_for_ms(profile.timing.chord_ms));
+  const auto slot = static_cast<std::size_t>(
+      profile.samples_for_ms(profile.timing.chord_ms + profile.timing.gap_ms));
+  std::vector<float> audio(slot * frames.size(), 0.0f);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    signal::add_chord(std::span<float>(audio).subspan(i * slot, chord), frames[i].tones_hz,
+                      profile.tones.tone_amplitude, profile.tones.edge_ms, profile.sample_rate_hz);
+  }
+  return audio;
+}
+
+}  // namespace dtmf::link

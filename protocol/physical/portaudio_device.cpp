@@ -1,0 +1,204 @@
+#include "physical/portaudio_device.h"
+
+#include <portaudio.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <mutex>
+
+namespace dtmf::physical {
+
+namespace {
+
+// Pa_Initialize / Pa_Terminate are reference counted by PortAudio itself; this keeps the
+// calls paired and the error text clear.
+class PortAudioSession {
+ public:
+  PortAudioSession() {
+    const PaError error = Pa_Initialize();
+    if (error != paNoError) {
+      throw AudioError(std::string("cannot start PortAudio: ") + Pa_GetErrorText(error));
+    }
+  }
+  ~PortAudioSession() { Pa_Terminate(); }
+  PortAudioSession(const PortAudioSession&) = delete;
+  PortAudioSession& operator=(const PortAudioSession&) = delete;
+};
+
+const char* kNoDevice =
+    "no audio device found: start a sound server (e.g. scripts/air start) or use --audio wav:FILE";
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+std::vector<AudioDeviceInfo> devices_now() {
+  std::vector<AudioDeviceInfo> devices;
+  const int count = Pa_GetDeviceCount();
+  for (int i = 0; i < count; ++i) {
+    const PaDeviceInfo* info = Pa_GetDeviceInfo(i);
+    if (!info) continue;
+    const PaHostApiInfo* api = Pa_GetHostApiInfo(info->hostApi);
+    devices.push_back(AudioDeviceInfo{i, info->name ? info->name : "", api ? api->name : "",
+                                      info->maxInputChannels, info->maxOutputChannels,
+                                      info->defaultSampleRate});
+  }
+  return devices;
+}
+
+bool usable(const AudioDeviceInfo& device, Direction direction) {
+  return direction == Direction::Input ? device.max_input_channels > 0
+                                       : device.max_output_channels > 0;
+}
+
+AudioDeviceInfo find_in(const std::vector<AudioDeviceInfo>& all, const std::string& spec,
+                        Direction direction) {
+  const char* what = direction == Direction::Input ? "input" : "output";
+  std::vector<AudioDeviceInfo> devices;
+  std::copy_if(all.begin(), all.end(), std::back_inserter(devices),
+               [&](const AudioDeviceInfo& d) { return usable(d, direction); });
+  if (devices.empty()) throw AudioError(std::string(kNoDevice) + " (no " + what + " device)");
+
+  if (spec.empty() || spec == "default") {
+    const int index = direction == Direction::Input ? Pa_GetDefaultInputDevice()
+                                                    : Pa_GetDefaultOutputDevice();
+    for (const auto& d : devices) if (d.index == index) return d;
+    return devices.front();
+  }
+  const bool numeric = std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c); });
+  if (numeric) {
+    const int index = std::stoi(spec);
+    for (const auto& d : devices) if (d.index == index) return d;
+  }
+  for (const auto& d : devices) if (d.name == spec) return d;
+  std::vector<AudioDeviceInfo> partial;
+  for (const auto& d : devices) {
+    if (lower(d.name).find(lower(spec)) != std::string::npos) partial.push_back(d);
+  }
+  if (partial.size() == 1) return partial.front();
+  const std::string problem = partial.empty() ? "matches no " : "matches several ";
+  throw AudioError("audio device '" + spec + "' " + problem + what +
+                   " device; choose one of:\n" + format_device_list(partial.empty() ? devices : partial));
+}
+
+class PortAudioStream {
+ public:
+  PortAudioStream(const std::string& spec, Direction direction, int sample_rate_hz)
+      : device_(find_in(devices_now(), spec, direction)), sample_rate_hz_(sample_rate_hz) {
+    PaStreamParameters params{};
+    params.device = device_.index;
+    params.channelCount = 1;
+    params.sampleFormat = paFloat32;
+    const PaDeviceInfo* info = Pa_GetDeviceInfo(device_.index);
+    params.suggestedLatency = direction == Direction::Input ? info->defaultLowInputLatency
+                                                            : info->defaultLowOutputLatency;
+    const PaError error =
+        Pa_OpenStream(&stream_, direction == Direction::Input ? &params : nullptr,
+                      direction == Direction::Output ? &params : nullptr, sample_rate_hz,
+                      paFramesPerBufferUnspecified, paClipOff, nullptr, nullptr);
+    if (error != paNoError) {
+      throw AudioError("cannot open audio device " + std::to_string(device_.index) + " '" +
+                       device_.name + "' at " + std::to_string(sample_rate_hz) +
+                       " Hz mono: " + Pa_GetErrorText(error) +
+                       " (see --list-audio-devices for the choices)");
+    }
+    const PaError started = Pa_StartStream(stream_);
+    if (started != paNoError) {
+      Pa_CloseStream(stream_);
+      throw AudioError("cannot start audio device '" + device_.name + "': " + Pa_GetErrorText(started));
+    }
+  }
+  ~PortAudioStream() {
+    Pa_StopStream(stream_);
+    Pa_CloseStream(stream_);
+  }
+  PortAudioStream(const PortAudioStream&) = delete;
+  PortAudioStream& operator=(const PortAudioStream&) = delete;
+
+  std::string describe() const {
+    return "device " + std::to_string(device_.index) + " '" + device_.name + "' (" + device_.host_api + ")";
+  }
+
+  PortAudioSession session_;  // declared first: outlives the stream
+  AudioDeviceInfo device_;
+  int sample_rate_hz_;
+  PaStream* stream_ = nullptr;
+};
+
+class PortAudioSource : public AudioSource {
+ public:
+  PortAudioSource(const std::string& spec, int rate) : stream_(spec, Direction::Input, rate) {}
+  std::size_t read(std::span<float> out) override {
+    const PaError error = Pa_ReadStream(stream_.stream_, out.data(), static_cast<unsigned long>(out.size()));
+    // An overflow lost a few samples to a busy machine; the stream itself goes on.
+    if (error != paNoError && error != paInputOverflowed) {
+      throw AudioError("recording from " + stream_.describe() + " failed: " + Pa_GetErrorText(error) +
+                       " (is the device still connected?)");
+    }
+    return out.size();
+  }
+  int sample_rate_hz() const override { return stream_.sample_rate_hz_; }
+  std::string describe() const override { return stream_.describe(); }
+
+ private:
+  PortAudioStream stream_;
+};
+
+class PortAudioSink : public AudioSink {
+ public:
+  PortAudioSink(const std::string& spec, int rate) : stream_(spec, Direction::Output, rate) {}
+  void write(std::span<const float> samples) override {
+    const PaError error = Pa_WriteStream(stream_.stream_, samples.data(), static_cast<unsigned long>(samples.size()));
+    if (error != paNoError && error != paOutputUnderflowed) {
+      throw AudioError("playing to " + stream_.describe() + " failed: " + Pa_GetErrorText(error) +
+                       " (is the device still connected?)");
+    }
+  }
+  void drain() override {
+    // Blocking streams have no drain call: wait out the device's output latency.
+    Pa_Sleep(static_cast<long>(1000.0 * Pa_GetStreamInfo(stream_.stream_)->outputLatency) + 10);
+  }
+  int sample_rate_hz() const override { return stream_.sample_rate_hz_; }
+  std::string describe() const override { return stream_.describe(); }
+
+ private:
+  PortAudioStream stream_;
+};
+
+}  // namespace
+
+std::vector<AudioDeviceInfo> list_audio_devices() {
+  PortAudioSession session;
+  return devices_now();
+}
+
+std::string format_device_list(const std::vector<AudioDeviceInfo>& devices) {
+  if (devices.empty()) return std::string(kNoDevice) + "\n";
+  std::string text;
+  for (const auto& d : devices) {
+    char line[320];
+    std::snprintf(line, sizeof line, "  %2d  %-40s %-6s in:%d out:%d  %.0f Hz\n", d.index,
+                  ("'" + d.name + "'").c_str(), d.host_api.c_str(), d.max_input_channels,
+                  d.max_output_channels, d.default_sample_rate_hz);
+    text += line;
+  }
+  return text;
+}
+
+AudioDeviceInfo find_audio_device(const std::string& spec, Direction direction) {
+  PortAudioSession session;
+  return find_in(devices_now(), spec, direction);
+}
+
+std::unique_ptr<AudioSource> open_input_device(const std::string& spec, int sample_rate_hz) {
+  return std::make_unique<PortAudioSource>(spec, sample_rate_hz);
+}
+
+std::unique_ptr<AudioSink> open_output_device(const std::string& spec, int sample_rate_hz) {
+  return std::make_unique<PortAudioSink>(spec, sample_rate_hz);
+}
+
+}  // namespace dtmf::physical

@@ -1,0 +1,34 @@
+#include "reliability/crc4.h"
+
+namespace dtmf::reliability {
+
+std::uint8_t crc_remainder(std::uint32_t bits, int width) {
+  for (int top = width - 1; top >= kCrcBits; --top) {
+    if (bits & (1u << top)) bits ^= kGenerator << (top - kCrcBits);
+  }
+  return static_cast<std::uint8_t>(bits & 0xF);
+}
+
+std::uint8_t crc4(Word word) {
+  return crc_remainder(static_cast<std::uint32_t>(word & 0x0FFF) << kCrcBits, kFrameBits);
+}
+
+Frame make_frame(Word word) {
+  return static_cast<Frame>(((word & 0x0FFF) << kCrcBits) | crc4(word));
+}
+
+bool frame_ok(Frame frame) { return crc_remainder(frame, kFrameBits) == 0; }
+
+Word frame_word(Frame frame) { return static_cast<Word>(frame >> kCrcBits); }
+
+std::uint8_t frame_crc(Frame frame) { return static_cast<std::uint8_t>(frame & 0xF); }
+
+std::string bit_string(std::uint32_t bits, int width) {
+  std::string text(static_cast<std::size_t>(width), '0');
+  for (int i = 0; i < width; ++i) {
+    if (bits & (1u << (width - 1 - i))) text[static_cast<std::size_t>(i)] = '1';
+  }
+  return text;
+}
+
+}  // namespace dtmf::reliability

@@ -1,0 +1,27 @@
+// Signal layer, part 5: from the peaks of one window to a chord, or to nothing.
+//
+// Robot side: a command chord is accepted only when the peaks that match plan tones give
+// exactly one tone in each of the four bands — a missing band or two tones in one band (two
+// chords at once, or a strong interferer on a plan tone) mean no chord. Peaks that match no
+// plan tone are ignored, as the seed does.
+// Sender side: an ACK (NACK) is accepted when both of its tones are among the peaks and
+// neither tone of the other reply is.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "profile/link_profile.h"
+#include "signal/peak_detector.h"
+#include "signal/tone_plan.h"
+
+namespace dtmf::signal {
+
+std::optional<std::uint16_t> decode_chord(const TonePlan& plan, std::span<const Peak> peaks,
+                                          double tolerance_hz);
+
+std::optional<Reply> decode_reply(const TonePlan& plan, std::span<const Peak> peaks,
+                                  double tolerance_hz);
+
+}  // namespace dtmf::signal

@@ -1,0 +1,76 @@
+#include "signal/tone_listener.h"
+
+#include <algorithm>
+
+namespace dtmf::signal {
+
+ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& detector,
+                           Decode decode)
+    : sample_rate_hz_(profile.sample_rate_hz),
+      fft_size_(profile.analysis.fft_size),
+      hop_(profile.hop_samples()),
+      analyzer_(profile.analysis.fft_size, profile.sample_rate_hz),
+      peaks_(detector, analyzer_.bin_hz(), static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1)),
+      decode_(std::move(decode)),
+      debouncer_(profile.debounce),
+      window_(static_cast<std::size_t>(profile.analysis.fft_size), 0.0f) {
+  // Room for the passes of any usual block; a huge block may grow it once.
+  heard_.reserve(64);
+}
+
+void ToneListener::reset() {
+  std::fill(window_.begin(), window_.end(), 0.0f);
+  since_analysis_ = 0;
+  samples_fed_ = 0;
+  debouncer_.reset();
+  last_peaks_ = {};
+}
+
+std::span<const Heard> ToneListener::feed(std::span<const float> samples) {
+  heard_.clear();
+  while (!samples.empty()) {
+    const auto take = std::min<std::size_t>(samples.size(), static_cast<std::size_t>(hop_ - since_analysis_));
+    // Slide the window left by `take` and append the new samples.
+    std::copy(window_.begin() + static_cast<std::ptrdiff_t>(take), window_.end(), window_.begin());
+    std::copy(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(take),
+              window_.end() - static_cast<std::ptrdiff_t>(take));
+    samples = samples.subspan(take);
+    samples_fed_ += static_cast<long long>(take);
+    since_analysis_ += static_cast<int>(take);
+    if (since_analysis_ == hop_) {
+      since_analysis_ = 0;
+      analyze_window();
+    }
+  }
+  return heard_;
+}
+
+void ToneListener::analyze_window() {
+  last_peaks_ = peaks_.detect(analyzer_.analyze(window_));
+  const auto symbol = decode_(last_peaks_);
+  if (!symbol) return;
+  const double end_ms = static_cast<double>(samples_fed_) * 1000.0 / sample_rate_hz_;
+  if (const auto pass = debouncer_.on_detection(*symbol, end_ms)) {
+    const double half_window_ms = 500.0 * fft_size_ / sample_rate_hz_;
+    heard_.push_back(Heard{pass->symbol, std::max(0.0, pass->first_detection_ms - half_window_ms),
+                           pass->pass_ms});
+  }
+}
+
+ChordListener::ChordListener(const LinkProfile& profile)
+    : listener_(profile, profile.robot_detector,
+                [plan = profile.tones, tolerance = profile.robot_detector.tone_tolerance_hz](
+                    std::span<const Peak> peaks) -> std::optional<std::uint32_t> {
+                  return decode_chord(plan, peaks, tolerance);
+                }) {}
+
+ReplyListener::ReplyListener(const LinkProfile& profile)
+    : listener_(profile, profile.sender_detector,
+                [plan = profile.tones, tolerance = profile.sender_detector.tone_tolerance_hz](
+                    std::span<const Peak> peaks) -> std::optional<std::uint32_t> {
+                  const auto reply = decode_reply(plan, peaks, tolerance);
+                  if (!reply) return std::nullopt;
+                  return static_cast<std::uint32_t>(*reply);
+                }) {}
+
+}  // namespace dtmf::signal

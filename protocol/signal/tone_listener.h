@@ -1,0 +1,88 @@
+// Signal layer, part 7: the listening side put together — audio in, debounced symbols out.
+//
+//   samples -> sliding window (fft_size, hop = rate / analyses_per_s) -> spectrum
+//           -> band-pass, gate, N loudest peaks -> chord or reply -> debouncer
+//
+// ChordListener is the robot's (command chords, robot detector); ReplyListener is the
+// sender's (ACK / NACK, sender detector). Times are milliseconds since the first sample
+// fed. The stream is taken to be preceded by silence, so a chord at time 0 is heard.
+// Once constructed, feeding allocates nothing.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "profile/link_profile.h"
+#include "signal/chord_decoder.h"
+#include "signal/debouncer.h"
+#include "signal/peak_detector.h"
+#include "signal/spectrum.h"
+#include "signal/tone_plan.h"
+
+namespace dtmf::signal {
+
+// One debounced symbol: when it started sounding (centre of the first window that heard
+// it) and when it passed the debouncer (end of the window that completed it).
+struct Heard {
+  std::uint32_t symbol;
+  double start_ms;
+  double heard_ms;
+};
+
+class ToneListener {
+ public:
+  using Decode = std::function<std::optional<std::uint32_t>(std::span<const Peak>)>;
+
+  ToneListener(const LinkProfile& profile, const DetectorParams& detector, Decode decode);
+
+  // Symbols that passed within `samples`; the span is valid until the next call.
+  std::span<const Heard> feed(std::span<const float> samples);
+
+  // Peaks of the latest analysis window, loudest first (for diagnostics).
+  std::span<const Peak> last_peaks() const { return last_peaks_; }
+  long long samples_fed() const { return samples_fed_; }
+  void reset();
+
+ private:
+  void analyze_window();
+
+  int sample_rate_hz_;
+  int fft_size_;
+  int hop_;
+  SpectrumAnalyzer analyzer_;
+  PeakDetector peaks_;
+  Decode decode_;
+  Debouncer debouncer_;
+  std::vector<float> window_;  // the latest fft_size samples, oldest first
+  int since_analysis_ = 0;
+  long long samples_fed_ = 0;
+  std::span<const Peak> last_peaks_;
+  std::vector<Heard> heard_;
+};
+
+// The robot's listener: symbols are 16-bit frames (not yet CRC-checked).
+class ChordListener {
+ public:
+  explicit ChordListener(const LinkProfile& profile);
+  std::span<const Heard> feed(std::span<const float> samples) { return listener_.feed(samples); }
+  const ToneListener& tone_listener() const { return listener_; }
+
+ private:
+  ToneListener listener_;
+};
+
+// The sender's listener: symbols are Reply values (static_cast<Reply>(symbol)).
+class ReplyListener {
+ public:
+  explicit ReplyListener(const LinkProfile& profile);
+  std::span<const Heard> feed(std::span<const float> samples) { return listener_.feed(samples); }
+  const ToneListener& tone_listener() const { return listener_; }
+
+ private:
+  ToneListener listener_;
+};
+
+}  // namespace dtmf::signal
