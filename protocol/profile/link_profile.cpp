@@ -48,6 +48,7 @@ LinkProfile make_seed_profile() {
   p.debounce.min_detections = 2;   // seed section 8
   p.debounce.window_ms = 300;
   p.debounce.lockout_ms = 800;
+  p.debounce.rearm_drop_db = 10;  // a reverberant tail must not pass a chord twice
   return p;
 }
 

@@ -54,7 +54,8 @@ struct DetectorParams {
 struct DebounceParams {
   int min_detections = 0;   // detections of the same chord needed ...
   double window_ms = 0;     // ... within this time
-  double lockout_ms = 0;    // after a pass, the same chord is ignored this long
+  double lockout_ms = 0;    // after a pass, the same chord is ignored this long ...
+  double rearm_drop_db = 0; // ... and until it has faded this far (or gone) in some window
 };
 
 struct LinkProfile {

@@ -6,6 +6,7 @@
 // plan tone are ignored, as the seed does.
 // Sender side: an ACK (NACK) is accepted when both of its tones are among the peaks and
 // neither tone of the other reply is.
+// Either way the match carries its level: the amplitude of its weakest tone.
 #pragma once
 
 #include <cstdint>
@@ -18,10 +19,20 @@
 
 namespace dtmf::signal {
 
-std::optional<std::uint16_t> decode_chord(const TonePlan& plan, std::span<const Peak> peaks,
-                                          double tolerance_hz);
+struct ChordMatch {
+  std::uint16_t frame;
+  double level;
+};
 
-std::optional<Reply> decode_reply(const TonePlan& plan, std::span<const Peak> peaks,
-                                  double tolerance_hz);
+struct ReplyMatch {
+  Reply reply;
+  double level;
+};
+
+std::optional<ChordMatch> decode_chord(const TonePlan& plan, std::span<const Peak> peaks,
+                                       double tolerance_hz);
+
+std::optional<ReplyMatch> decode_reply(const TonePlan& plan, std::span<const Peak> peaks,
+                                       double tolerance_hz);
 
 }  // namespace dtmf::signal

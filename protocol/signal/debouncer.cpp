@@ -1,32 +1,59 @@
 #include "signal/debouncer.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace dtmf::signal {
 
-Debouncer::Debouncer(const DebounceParams& params) : params_(params) {}
+Debouncer::Debouncer(const DebounceParams& params)
+    : params_(params), rearm_ratio_(std::pow(10.0, -params.rearm_drop_db / 20.0)) {}
 
 void Debouncer::reset() {
   size_ = 0;
   head_ = 0;
   locked_symbol_.reset();
+  rearmed_ = true;
 }
 
-std::optional<Debouncer::Pass> Debouncer::on_detection(std::uint32_t symbol, double t_ms) {
-  if (locked_symbol_ && *locked_symbol_ == symbol && t_ms < locked_until_ms_) return std::nullopt;
+bool Debouncer::locked_out(const Detection& detection, double t_ms) {
+  if (!locked_symbol_ || *locked_symbol_ != detection.symbol) return false;
+  if (!rearmed_) {
+    // A new occurrence shows as a dip of rearm_drop_db below the peak, then a rise of as
+    // much again; a fading tail only dips, and a chord's own onset only rises.
+    const bool dipped = locked_dip_level_ <= locked_peak_level_ * rearm_ratio_;
+    if (dipped && detection.level * rearm_ratio_ >= locked_dip_level_) {
+      rearmed_ = true;
+    } else if (detection.level > locked_peak_level_) {
+      locked_peak_level_ = locked_dip_level_ = detection.level;
+    } else {
+      locked_dip_level_ = std::min(locked_dip_level_, detection.level);
+    }
+  }
+  return t_ms < locked_until_ms_ || !rearmed_;
+}
+
+std::optional<Debouncer::Pass> Debouncer::on_window(double t_ms, std::optional<Detection> detection) {
+  if (!detection) {
+    rearmed_ = true;
+    return std::nullopt;
+  }
+  if (locked_symbol_ && *locked_symbol_ != detection->symbol) rearmed_ = true;
+  if (locked_out(*detection, t_ms)) return std::nullopt;
 
   // Forget detections that fell out of the window (or would overflow the ring).
   while (size_ > 0 && (t_ms - recent_[head_].t_ms > params_.window_ms || size_ == kCapacity)) {
     head_ = (head_ + 1) % kCapacity;
     --size_;
   }
-  recent_[(head_ + size_) % kCapacity] = Detection{symbol, t_ms};
+  recent_[(head_ + size_) % kCapacity] = Counted{detection->symbol, t_ms};
   ++size_;
 
   int count = 0;
   double first_ms = t_ms;
   for (std::size_t i = 0; i < size_; ++i) {
-    const Detection& d = recent_[(head_ + i) % kCapacity];
-    if (d.symbol != symbol) continue;
-    if (count == 0) first_ms = d.t_ms;
+    const Counted& c = recent_[(head_ + i) % kCapacity];
+    if (c.symbol != detection->symbol) continue;
+    if (count == 0) first_ms = c.t_ms;
     ++count;
   }
   if (count < params_.min_detections) return std::nullopt;
@@ -34,13 +61,15 @@ std::optional<Debouncer::Pass> Debouncer::on_detection(std::uint32_t symbol, dou
   // Drop this symbol's detections so that they cannot count again after the lockout.
   std::size_t kept = 0;
   for (std::size_t i = 0; i < size_; ++i) {
-    const Detection d = recent_[(head_ + i) % kCapacity];
-    if (d.symbol != symbol) recent_[(head_ + kept++) % kCapacity] = d;
+    const Counted c = recent_[(head_ + i) % kCapacity];
+    if (c.symbol != detection->symbol) recent_[(head_ + kept++) % kCapacity] = c;
   }
   size_ = kept;
-  locked_symbol_ = symbol;
+  locked_symbol_ = detection->symbol;
   locked_until_ms_ = t_ms + params_.lockout_ms;
-  return Pass{symbol, first_ms, t_ms};
+  locked_peak_level_ = locked_dip_level_ = detection->level;
+  rearmed_ = false;
+  return Pass{detection->symbol, first_ms, t_ms};
 }
 
 }  // namespace dtmf::signal

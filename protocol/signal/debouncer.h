@@ -2,9 +2,15 @@
 //
 // Seed section 8: a symbol (a chord's 16 bits, or ACK/NACK) passes after `min_detections`
 // detections of it within `window_ms`; the symbol that passed is then ignored for
-// `lockout_ms` (its detections in that time are dropped, so the tail of a long chord cannot
-// pass it twice); any other symbol passes as soon as it has its own detections.
-// Pure logic: times are the caller's (milliseconds of audio); nothing is allocated.
+// `lockout_ms`; any other symbol passes as soon as it has its own detections.
+// Ours on top: the symbol that passed also stays ignored until it is re-armed — by a window
+// without it, or by a dip of `rearm_drop_db` below its peak followed by a rise of as much
+// again (a new onset). A chord stretched past the lockout by a room's reverberation thus
+// passes once, while the same chord sent again after a gap passes again, even when the
+// reverberation fills the gap.
+//
+// The caller reports every analysis window, with or without a detection. Pure logic:
+// times are the caller's (milliseconds of audio); nothing is allocated.
 #pragma once
 
 #include <array>
@@ -17,6 +23,10 @@ namespace dtmf::signal {
 
 class Debouncer {
  public:
+  struct Detection {
+    std::uint32_t symbol;
+    double level;  // linear amplitude; only ratios matter
+  };
   struct Pass {
     std::uint32_t symbol;
     double first_detection_ms;  // the earliest detection that counted
@@ -25,22 +35,29 @@ class Debouncer {
 
   explicit Debouncer(const DebounceParams& params);
 
-  std::optional<Pass> on_detection(std::uint32_t symbol, double t_ms);
+  // One analysis window ending at t_ms, and what it detected (if anything).
+  std::optional<Pass> on_window(double t_ms, std::optional<Detection> detection);
   void reset();
 
  private:
-  struct Detection {
+  struct Counted {
     std::uint32_t symbol;
     double t_ms;
   };
   static constexpr std::size_t kCapacity = 64;
 
+  bool locked_out(const Detection& detection, double t_ms);
+
   DebounceParams params_;
-  std::array<Detection, kCapacity> recent_{};  // ring buffer, oldest at head_
+  double rearm_ratio_;
+  std::array<Counted, kCapacity> recent_{};  // ring buffer, oldest at head_
   std::size_t head_ = 0;
   std::size_t size_ = 0;
   std::optional<std::uint32_t> locked_symbol_;
   double locked_until_ms_ = 0;
+  double locked_peak_level_ = 0;  // loudest since the pass
+  double locked_dip_level_ = 0;   // quietest since that peak
+  bool rearmed_ = true;
 };
 
 }  // namespace dtmf::signal

@@ -47,10 +47,8 @@ std::span<const Heard> ToneListener::feed(std::span<const float> samples) {
 
 void ToneListener::analyze_window() {
   last_peaks_ = peaks_.detect(analyzer_.analyze(window_));
-  const auto symbol = decode_(last_peaks_);
-  if (!symbol) return;
   const double end_ms = static_cast<double>(samples_fed_) * 1000.0 / sample_rate_hz_;
-  if (const auto pass = debouncer_.on_detection(*symbol, end_ms)) {
+  if (const auto pass = debouncer_.on_window(end_ms, decode_(last_peaks_))) {
     const double half_window_ms = 500.0 * fft_size_ / sample_rate_hz_;
     heard_.push_back(Heard{pass->symbol, std::max(0.0, pass->first_detection_ms - half_window_ms),
                            pass->pass_ms});
@@ -60,17 +58,19 @@ void ToneListener::analyze_window() {
 ChordListener::ChordListener(const LinkProfile& profile)
     : listener_(profile, profile.robot_detector,
                 [plan = profile.tones, tolerance = profile.robot_detector.tone_tolerance_hz](
-                    std::span<const Peak> peaks) -> std::optional<std::uint32_t> {
-                  return decode_chord(plan, peaks, tolerance);
+                    std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
+                  const auto chord = decode_chord(plan, peaks, tolerance);
+                  if (!chord) return std::nullopt;
+                  return Debouncer::Detection{chord->frame, chord->level};
                 }) {}
 
 ReplyListener::ReplyListener(const LinkProfile& profile)
     : listener_(profile, profile.sender_detector,
                 [plan = profile.tones, tolerance = profile.sender_detector.tone_tolerance_hz](
-                    std::span<const Peak> peaks) -> std::optional<std::uint32_t> {
+                    std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
                   const auto reply = decode_reply(plan, peaks, tolerance);
                   if (!reply) return std::nullopt;
-                  return static_cast<std::uint32_t>(*reply);
+                  return Debouncer::Detection{static_cast<std::uint32_t>(reply->reply), reply->level};
                 }) {}
 
 }  // namespace dtmf::signal

@@ -34,7 +34,7 @@ struct Heard {
 
 class ToneListener {
  public:
-  using Decode = std::function<std::optional<std::uint32_t>(std::span<const Peak>)>;
+  using Decode = std::function<std::optional<Debouncer::Detection>(std::span<const Peak>)>;
 
   ToneListener(const LinkProfile& profile, const DetectorParams& detector, Decode decode);
 

@@ -1,0 +1,138 @@
+// dtmfctl's offline subcommands, run as a user runs them: the real binary, its output and
+// exit codes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int exit_code;
+  std::string out;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+  const std::string command = std::string(DTMFCTL_PATH) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::vector<nlohmann::json> json_lines(const std::string& out) {
+  std::vector<nlohmann::json> lines;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
+  return lines;
+}
+
+class Dtmfctl : public ::testing::Test {
+ protected:
+  fs::path dir_ = fs::path(::testing::TempDir()) / ("dtmfctl-" + std::to_string(::getpid()));
+  void SetUp() override { fs::create_directories(dir_); }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+};
+
+}  // namespace
+
+TEST_F(Dtmfctl, EncodeWordPrintsTheSeedsExampleFrame) {
+  const Result r = run("encode --json --word 2861");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto lines = json_lines(r.out);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0]["word"], 2861);
+  EXPECT_EQ(lines[0]["frame"], "1011001011011101");
+  EXPECT_EQ(lines[0]["crc"], "1101");
+  ASSERT_EQ(lines[0]["tones_hz"].size(), 4u);
+  EXPECT_NEAR(lines[0]["tones_hz"][0].get<double>(), 4500 + 11 * 2500.0 / 15, 1e-6);
+}
+
+TEST_F(Dtmfctl, EncodeThenDecodeGivesBackTheSameFramesInOrder) {
+  const Result enc = run("encode --json --wav " + path("x.wav") + " drive --speed 50 --duration 3");
+  ASSERT_EQ(enc.exit_code, 0) << enc.out;
+  const Result dec = run("decode --json " + path("x.wav"));
+  ASSERT_EQ(dec.exit_code, 0) << dec.out;
+  const auto sent = json_lines(enc.out), heard = json_lines(dec.out);
+  ASSERT_EQ(sent.size(), 3u);
+  ASSERT_EQ(heard.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(heard[i]["frame"], sent[i]["frame"]);
+    EXPECT_EQ(heard[i]["word"], sent[i]["word"]);
+    EXPECT_EQ(heard[i]["tones_hz"], sent[i]["tones_hz"]);
+    EXPECT_TRUE(heard[i]["crc_ok"].get<bool>());
+    EXPECT_NEAR(heard[i]["t_ms"].get<double>(), sent[i]["t_ms"].get<double>(), 50);
+  }
+  EXPECT_EQ(heard[2]["event"]["kind"], "command");
+  EXPECT_EQ(heard[2]["event"]["command"], "drive_for_duration speed=50.0% duration=2.97s");
+}
+
+TEST_F(Dtmfctl, SimulatedDistanceAndNoiseStillDecode) {
+  ASSERT_EQ(run("encode --wav " + path("t.wav") + " turn --rotation -30").exit_code, 0);
+  const Result sim = run("simulate " + path("t.wav") + " " + path("h.wav") +
+                         " --distance 7 --noise pink --noise-dbfs -45 --reverb-rt60 0.4 --clock-ppm 80");
+  ASSERT_EQ(sim.exit_code, 0) << sim.out;
+  const Result dec = run("decode " + path("h.wav"));
+  ASSERT_EQ(dec.exit_code, 0) << dec.out;
+  EXPECT_NE(dec.out.find("command turn rotation=-30."), std::string::npos) << dec.out;
+  EXPECT_NE(dec.out.find("3 frames heard, 3 intact"), std::string::npos) << dec.out;
+}
+
+TEST_F(Dtmfctl, HumanOutputNamesEveryFrameAndWhatItEncodes) {
+  const Result r = run("encode stop");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("frame 1/2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("frame 2/2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("encodes: stop"), std::string::npos) << r.out;
+}
+
+TEST_F(Dtmfctl, OutOfRangeValuesAreUsageErrorsNamingTheField) {
+  Result r = run("encode drive --speed 120");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find("speed_percent 120 is out of range: allowed 0..100"), std::string::npos) << r.out;
+  r = run("encode turn --rotation 10 --duration 9");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find("duration_s"), std::string::npos) << r.out;
+  r = run("encode --word 4096");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  r = run("encode drive");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("--speed"), std::string::npos) << r.out;
+  r = run("encode");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  r = run("encode --word 5 stop");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  r = run("encode --profile nosuch reset");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("seed"), std::string::npos) << r.out;
+}
+
+TEST_F(Dtmfctl, UnreadableRecordingsFailWithTheFileNamed) {
+  std::FILE* f = std::fopen(path("notes.txt").c_str(), "w");
+  std::fputs("not audio\n", f);
+  std::fclose(f);
+  Result r = run("decode " + path("notes.txt"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find(path("notes.txt")), std::string::npos) << r.out;
+  r = run("decode " + path("absent.wav"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("absent.wav"), std::string::npos) << r.out;
+}
+
+TEST_F(Dtmfctl, HelpListsSubcommandsAndExitCodes) {
+  const Result r = run("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* word : {"encode", "decode", "simulate", "Exit codes"}) {
+    EXPECT_NE(r.out.find(word), std::string::npos) << word;
+  }
+}

@@ -1,0 +1,60 @@
+// Signal layer: which sets of peaks make a chord or a reply, and which do not.
+#include <gtest/gtest.h>
+
+#include "profile/link_profile.h"
+#include "signal/chord_decoder.h"
+
+using namespace dtmf;
+using namespace dtmf::signal;
+
+namespace {
+std::vector<Peak> peaks_of(const std::vector<double>& hz) {
+  std::vector<Peak> peaks;
+  for (double f : hz) peaks.push_back(Peak{f, 0.1});
+  return peaks;
+}
+const TonePlan& plan() { return seed_profile().tones; }
+}  // namespace
+
+TEST(ChordDecoder, FourPlanTonesMakeTheirFrame) {
+  const Chord chord = chord_for(plan(), 0xB2DD);
+  const auto match = decode_chord(plan(), peaks_of({chord[2], chord[0], chord[3], chord[1]}), 25);
+  ASSERT_TRUE(match);
+  EXPECT_EQ(match->frame, 0xB2DD);
+  EXPECT_DOUBLE_EQ(match->level, 0.1);
+}
+
+TEST(ChordDecoder, PeaksOffThePlanAndSidelobesOfTheSameToneAreIgnored) {
+  const Chord chord = chord_for(plan(), 0x1234);
+  const auto frame = decode_chord(
+      plan(), peaks_of({chord[0], chord[0] + 12, chord[1], chord[2], chord[3], 7250, 3000, 16800}), 25);
+  ASSERT_TRUE(frame);
+  EXPECT_EQ(frame->frame, 0x1234);
+}
+
+TEST(ChordDecoder, TheLevelIsThatOfTheWeakestTone) {
+  const Chord chord = chord_for(plan(), 0x4321);
+  std::vector<Peak> peaks = {{chord[0], 0.3}, {chord[1], 0.05}, {chord[2], 0.2}, {chord[3], 0.1}};
+  EXPECT_DOUBLE_EQ(decode_chord(plan(), peaks, 25)->level, 0.05);
+}
+
+TEST(ChordDecoder, AMissingBandMeansNoChord) {
+  const Chord chord = chord_for(plan(), 0x1234);
+  EXPECT_FALSE(decode_chord(plan(), peaks_of({chord[0], chord[1], chord[2]}), 25));
+  EXPECT_FALSE(decode_chord(plan(), peaks_of({chord[1], chord[2], chord[3]}), 25));
+}
+
+TEST(ChordDecoder, TwoTonesInOneBandMeanNoChord) {
+  const Chord a = chord_for(plan(), 0x1234);
+  const Chord b = chord_for(plan(), 0x1334);  // differs in band 2 only
+  EXPECT_FALSE(decode_chord(plan(), peaks_of({a[0], a[1], a[2], a[3], b[1]}), 25));
+}
+
+TEST(ReplyDecoder, AckAndNackNeedBothTonesAndNoneOfTheOther) {
+  EXPECT_EQ(decode_reply(plan(), peaks_of({2500, 3500}), 25)->reply, Reply::Ack);
+  EXPECT_EQ(decode_reply(plan(), peaks_of({3000, 2000, 1800}), 25)->reply, Reply::Nack);
+  EXPECT_FALSE(decode_reply(plan(), peaks_of({2500}), 25));
+  EXPECT_FALSE(decode_reply(plan(), peaks_of({2500, 3500, 3000}), 25));
+  EXPECT_FALSE(decode_reply(plan(), peaks_of({2500, 3000}), 25));
+  EXPECT_FALSE(decode_reply(plan(), peaks_of({2540, 3500}), 25));
+}
