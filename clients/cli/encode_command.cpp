@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "command/test_sequence.h"
 #include "command/word_codec.h"
 #include "frame_output.h"
 #include "link/sender_path.h"
@@ -24,7 +25,7 @@ struct EncodeOptions {
   std::optional<double> speed;
   std::optional<double> rotation;
   std::optional<double> duration;
-  std::string kind;  // drive, turn, stop, reset
+  std::string kind;  // drive, turn, stop, reset, sequence
 };
 
 command::Command build_command(const EncodeOptions& o) {
@@ -47,6 +48,13 @@ int run_encode(const EncodeOptions& o) {
   if (o.word) {
     frames.push_back(link::plan_word(profile, static_cast<command::Word>(*o.word)));
     what = "word " + std::to_string(*o.word);
+  } else if (o.kind == "sequence") {
+    const auto commands = command::seed_test_sequence();
+    for (const auto& c : commands) {
+      const auto planned = link::plan_command(profile, c);
+      frames.insert(frames.end(), planned.begin(), planned.end());
+    }
+    what = "the seed's test sequence, " + std::to_string(commands.size()) + " commands";
   } else {
     const command::Command command = build_command(o);
     frames = link::plan_command(profile, command);
@@ -95,13 +103,14 @@ void add_encode_command(CLI::App& app, Action& run) {
   turn->add_option("--duration", o->duration, "seconds (0..8); omit to turn until the next command");
   CLI::App* stop = encode->add_subcommand("stop", "stop the robot (RESET, STOP)");
   CLI::App* reset = encode->add_subcommand("reset", "return the robot to MODE_SELECT (RESET)");
-  for (CLI::App* sub : {drive, turn, stop, reset}) sub->fallthrough();
+  CLI::App* sequence = encode->add_subcommand("sequence", "the seed's 65-frame system test sequence (its section 10)");
+  for (CLI::App* sub : {drive, turn, stop, reset, sequence}) sub->fallthrough();
   encode->require_subcommand(0, 1);
   encode->callback([o, encode, &run] {
     const auto chosen = encode->get_subcommands();
     if (!chosen.empty()) o->kind = chosen.front()->get_name();
     if (chosen.empty() == !o->word.has_value()) {
-      throw CLI::ValidationError("encode", "give either a command (drive, turn, stop, reset) or --word N");
+      throw CLI::ValidationError("encode", "give either a command (drive, turn, stop, reset, sequence) or --word N");
     }
     run = [o] { return run_encode(*o); };
   });

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <future>
 #include <thread>
 #include <vector>
@@ -34,7 +35,7 @@ class PortAudioAir : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!std::getenv("PULSE_SERVER")) {
-      GTEST_SKIP() << "no air: run eval \"$(scripts/air start)\" first";
+      FAIL() << "no air: run eval \"$(scripts/air start)\" first (ctest does this itself)";
     }
   }
 };
@@ -74,27 +75,40 @@ TEST_F(PortAudioAir, AChordPlayedIntoTheAirIsHeardOnceWithItsBits) {
   const double hop_ms = 1000.0 * profile.hop_samples() / rate;
   Clock::time_point first_read, play_start, play_end;
   std::promise<void> live;
+  std::exception_ptr record_error, play_error;
   std::thread recorder([&] {
-    const std::size_t hop = static_cast<std::size_t>(profile.hop_samples());
-    for (std::size_t at = 0; at < recording.size(); at += hop) {
-      const std::size_t n = std::min(hop, recording.size() - at);
-      input->read(std::span<float>(recording).subspan(at, n));
-      if (at == 0) {
-        first_read = Clock::now();
-        live.set_value();
+    try {
+      const std::size_t hop = static_cast<std::size_t>(profile.hop_samples());
+      for (std::size_t at = 0; at < recording.size(); at += hop) {
+        const std::size_t n = std::min(hop, recording.size() - at);
+        input->read(std::span<float>(recording).subspan(at, n));
+        if (at == 0) {
+          first_read = Clock::now();
+          live.set_value();
+        }
       }
+    } catch (...) {
+      record_error = std::current_exception();
+      if (first_read == Clock::time_point{}) live.set_value();
     }
   });
   std::thread player([&] {
-    live.get_future().wait();
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
-    play_start = Clock::now();
-    output->write(sound);
-    output->drain();
-    play_end = Clock::now();
+    try {
+      live.get_future().wait();
+      if (record_error) return;
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      play_start = Clock::now();
+      output->write(sound);
+      output->drain();
+      play_end = Clock::now();
+    } catch (...) {
+      play_error = std::current_exception();
+    }
   });
   player.join();
   recorder.join();
+  if (record_error) std::rethrow_exception(record_error);
+  if (play_error) std::rethrow_exception(play_error);
 
   signal::ChordListener listener(profile);
   std::vector<signal::Heard> heard;

@@ -1,0 +1,39 @@
+# Shared by scripts/test and scripts/quickstart: the Debian packages this project needs,
+# installing the missing ones, and configuring + building into build/.
+# Source it; it defines functions only.
+
+# Everything the build, the tests and the demo use (Debian 12 names).
+DTMF_PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libfftw3-dev libsndfile1-dev libsamplerate0-dev portaudio19-dev
+  libspdlog-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
+  pulseaudio pulseaudio-utils libasound2-plugins alsa-utils
+  espeak-ng sox
+)
+
+# Installs what is missing (as root), or says exactly what to run and fails.
+ensure_packages() {
+  local missing=() p
+  for p in "${DTMF_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "missing Debian packages: ${missing[*]}" >&2
+    echo "install them with:" >&2
+    echo "  sudo apt-get install -y ${missing[*]}" >&2
+    return 1
+  fi
+  echo "installing ${#missing[@]} Debian packages: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+# Configures (once) and builds everything into build/.
+build_all() {
+  if [ ! -f build/build.ninja ]; then
+    cmake -G Ninja -B build -S . -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  fi
+  cmake --build build
+}
