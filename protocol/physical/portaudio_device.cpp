@@ -1,21 +1,39 @@
 #include "physical/portaudio_device.h"
 
+#include <alsa/asoundlib.h>
+#include <jack/jack.h>
 #include <portaudio.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <mutex>
 
 namespace dtmf::physical {
 
 namespace {
 
+// PortAudio probes every ALSA and JACK device it can think of, and both libraries print
+// each failed probe to stderr (hundreds of lines on a machine without a sound card). What
+// matters reaches the user through PortAudio's error codes and the messages below.
+void ignore_alsa_error(const char*, int, const char*, int, const char*, ...) {}
+
+void silence_alsa_and_jack_probes() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    snd_lib_error_set_handler(ignore_alsa_error);
+    jack_set_error_function([](const char*) {});
+    jack_set_info_function([](const char*) {});
+  });
+}
+
 // Pa_Initialize / Pa_Terminate are reference counted by PortAudio itself; this keeps the
 // calls paired and the error text clear.
 class PortAudioSession {
  public:
   PortAudioSession() {
+    silence_alsa_and_jack_probes();
     const PaError error = Pa_Initialize();
     if (error != paNoError) {
       throw AudioError(std::string("cannot start PortAudio: ") + Pa_GetErrorText(error));
@@ -28,6 +46,15 @@ class PortAudioSession {
 
 const char* kNoDevice =
     "no audio device found: start a sound server (e.g. scripts/air start) or use --audio wav:FILE";
+
+// kNoDevice, naming the sound server the environment points at when there is one.
+std::string no_device_message(const char* what) {
+  std::string message = std::string(kNoDevice) + " (no " + what + " device";
+  if (const char* server = std::getenv("PULSE_SERVER")) {
+    message += "; PulseAudio server " + std::string(server) + " did not answer";
+  }
+  return message + ")";
+}
 
 std::string lower(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
@@ -60,7 +87,7 @@ AudioDeviceInfo find_in(const std::vector<AudioDeviceInfo>& all, const std::stri
   std::vector<AudioDeviceInfo> devices;
   std::copy_if(all.begin(), all.end(), std::back_inserter(devices),
                [&](const AudioDeviceInfo& d) { return usable(d, direction); });
-  if (devices.empty()) throw AudioError(std::string(kNoDevice) + " (no " + what + " device)");
+  if (devices.empty()) throw AudioError(no_device_message(what));
 
   if (spec.empty() || spec == "default") {
     const int index = direction == Direction::Input ? Pa_GetDefaultInputDevice()

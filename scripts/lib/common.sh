@@ -5,7 +5,7 @@
 # Everything the build, the tests and the demo use (Debian 12 names).
 DTMF_PACKAGES=(
   build-essential cmake ninja-build pkg-config
-  libfftw3-dev libsndfile1-dev libsamplerate0-dev portaudio19-dev
+  libfftw3-dev libsndfile1-dev libsamplerate0-dev portaudio19-dev libasound2-dev libjack-jackd2-dev
   libspdlog-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   pulseaudio pulseaudio-utils libasound2-plugins alsa-utils
   espeak-ng sox

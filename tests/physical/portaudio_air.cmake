@@ -28,4 +28,5 @@ gtest_add_tests(TARGET portaudio_air_test TEST_PREFIX air. TEST_LIST air_tests)
 set_tests_properties(${air_tests} PROPERTIES
   FIXTURES_REQUIRED air RESOURCE_LOCK air TIMEOUT 60 ENVIRONMENT "${DTMF_AIR_ENV}")
 gtest_add_tests(TARGET portaudio_no_device_test TEST_PREFIX no_air. TEST_LIST no_air_tests)
-set_tests_properties(${no_air_tests} PROPERTIES TIMEOUT 60 ENVIRONMENT PULSE_SERVER=unix:/nonexistent)
+set_tests_properties(${no_air_tests} PROPERTIES
+  TIMEOUT 60 ENVIRONMENT PULSE_SERVER=unix:/nonexistent)
