@@ -2,7 +2,7 @@
 
 namespace dtmf::link {
 
-ReceiverPath::ReceiverPath(const LinkProfile& profile) : listener_(profile) {}
+ReceiverPath::ReceiverPath(const LinkProfile& profile) : listener_(signal::chord_listener(profile)) {}
 
 std::span<const ReceivedFrame> ReceiverPath::feed(std::span<const float> samples) {
   received_.clear();

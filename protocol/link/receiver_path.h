@@ -1,6 +1,6 @@
 // The robot's path through the layers: audio -> spectrum -> chord -> frame -> word -> command.
 //
-// Audio goes to the signal layer's ChordListener (debounced chords), each chord is checked
+// Audio goes to the signal layer's chord listener (debounced chords), each chord is checked
 // by the reliability layer (CRC-4), and the words of intact frames drive the command layer's
 // state machine. Every heard frame is reported, intact or not, so the caller can answer it
 // with ACK or NACK and log it; what the word did to the command state rides along.
@@ -33,10 +33,10 @@ class ReceiverPath {
   std::span<const ReceivedFrame> feed(std::span<const float> samples);
 
   const command::CommandReceiver& commands() const { return commands_; }
-  const signal::ChordListener& listener() const { return listener_; }
+  const signal::ToneListener& listener() const { return listener_; }
 
  private:
-  signal::ChordListener listener_;
+  signal::ToneListener listener_;
   command::CommandReceiver commands_;
   std::vector<ReceivedFrame> received_;
 };

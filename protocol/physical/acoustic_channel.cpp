@@ -150,8 +150,6 @@ std::size_t AcousticChannel::add_transmitter(double distance_m) {
   return transmitters_.size() - 1;
 }
 
-std::size_t AcousticChannel::transmitter_count() const { return transmitters_.size(); }
-
 void AcousticChannel::process(std::span<const float> block, std::vector<float>& out) {
   const std::span<const float> blocks[1] = {block};
   process(blocks, out);

@@ -49,7 +49,6 @@ class AcousticChannel {
   // Adds a loudspeaker `distance_m` from the microphone; returns its index for process().
   // Throws std::invalid_argument for a distance that is not positive and finite.
   std::size_t add_transmitter(double distance_m);
-  std::size_t transmitter_count() const;
 
   // Advances the room by blocks[i].size() samples (all equal; one block per transmitter,
   // in add order) and appends the microphone's samples to `out`.

@@ -62,10 +62,6 @@ int LinkProfile::samples_for_ms(double ms) const {
   return static_cast<int>(std::lround(ms * sample_rate_hz / 1000.0));
 }
 
-double LinkProfile::ms_for_samples(long long samples) const {
-  return static_cast<double>(samples) * 1000.0 / sample_rate_hz;
-}
-
 const LinkProfile& seed_profile() {
   static const LinkProfile profile = make_seed_profile();
   return profile;

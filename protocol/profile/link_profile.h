@@ -71,7 +71,6 @@ struct LinkProfile {
 
   int hop_samples() const;
   int samples_for_ms(double ms) const;
-  double ms_for_samples(long long samples) const;
 };
 
 // The seed report's link.

@@ -55,22 +55,24 @@ void ToneListener::analyze_window() {
   }
 }
 
-ChordListener::ChordListener(const LinkProfile& profile)
-    : listener_(profile, profile.robot_detector,
+ToneListener chord_listener(const LinkProfile& profile) {
+  return ToneListener(profile, profile.robot_detector,
                 [plan = profile.tones, tolerance = profile.robot_detector.tone_tolerance_hz](
                     std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
                   const auto chord = decode_chord(plan, peaks, tolerance);
                   if (!chord) return std::nullopt;
                   return Debouncer::Detection{chord->frame, chord->level};
-                }) {}
+                });
+}
 
-ReplyListener::ReplyListener(const LinkProfile& profile)
-    : listener_(profile, profile.sender_detector,
+ToneListener reply_listener(const LinkProfile& profile) {
+  return ToneListener(profile, profile.sender_detector,
                 [plan = profile.tones, tolerance = profile.sender_detector.tone_tolerance_hz](
                     std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
                   const auto reply = decode_reply(plan, peaks, tolerance);
                   if (!reply) return std::nullopt;
                   return Debouncer::Detection{static_cast<std::uint32_t>(reply->reply), reply->level};
-                }) {}
+                });
+}
 
 }  // namespace dtmf::signal

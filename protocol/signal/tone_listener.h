@@ -3,8 +3,8 @@
 //   samples -> sliding window (fft_size, hop = rate / analyses_per_s) -> spectrum
 //           -> band-pass, gate, N loudest peaks -> chord or reply -> debouncer
 //
-// ChordListener is the robot's (command chords, robot detector); ReplyListener is the
-// sender's (ACK / NACK, sender detector). Times are milliseconds since the first sample
+// chord_listener() makes the robot's (command chords, robot detector), reply_listener()
+// the sender's (ACK / NACK, sender detector). Times are milliseconds since the first sample
 // fed. The stream is taken to be preceded by silence, so a chord at time 0 is heard.
 // Once constructed, feeding allocates nothing.
 #pragma once
@@ -43,7 +43,6 @@ class ToneListener {
 
   // Peaks of the latest analysis window, loudest first (for diagnostics).
   std::span<const Peak> last_peaks() const { return last_peaks_; }
-  long long samples_fed() const { return samples_fed_; }
   void reset();
 
  private:
@@ -64,25 +63,9 @@ class ToneListener {
 };
 
 // The robot's listener: symbols are 16-bit frames (not yet CRC-checked).
-class ChordListener {
- public:
-  explicit ChordListener(const LinkProfile& profile);
-  std::span<const Heard> feed(std::span<const float> samples) { return listener_.feed(samples); }
-  const ToneListener& tone_listener() const { return listener_; }
-
- private:
-  ToneListener listener_;
-};
+ToneListener chord_listener(const LinkProfile& profile);
 
 // The sender's listener: symbols are Reply values (static_cast<Reply>(symbol)).
-class ReplyListener {
- public:
-  explicit ReplyListener(const LinkProfile& profile);
-  std::span<const Heard> feed(std::span<const float> samples) { return listener_.feed(samples); }
-  const ToneListener& tone_listener() const { return listener_; }
-
- private:
-  ToneListener listener_;
-};
+ToneListener reply_listener(const LinkProfile& profile);
 
 }  // namespace dtmf::signal

@@ -27,7 +27,7 @@ TEST_P(AllWords, EveryWordIsRecoveredOnceAndNothingElseIsHeard) {
   quiet.seed = static_cast<std::uint64_t>(GetParam()) + 1;
   physical::AcousticChannel channel(p.sample_rate_hz, quiet);
   channel.add_transmitter(1.0);
-  signal::ChordListener listener(p);
+  auto listener = signal::chord_listener(p);
 
   const auto slot = static_cast<std::size_t>(p.samples_for_ms(p.timing.chord_ms + p.timing.gap_ms));
   const auto chord = static_cast<std::size_t>(p.samples_for_ms(p.timing.chord_ms));

@@ -114,7 +114,7 @@ TEST_F(PortAudioAir, AChordPlayedIntoTheAirIsHeardOnceWithItsBits) {
   // stream's first samples back for up to 2 s.
   EXPECT_LT(ms_between(opened, first_read), 500) << "the recording took long to start";
 
-  signal::ChordListener listener(profile);
+  auto listener = signal::chord_listener(profile);
   std::vector<signal::Heard> heard;
   for (const auto& h : listener.feed(recording)) heard.push_back(h);
 

@@ -50,7 +50,7 @@ std::vector<float> chord_at(int rate, std::uint16_t frame) {
 }
 
 std::vector<signal::Heard> hear(const std::vector<float>& audio) {
-  signal::ChordListener listener(seed_profile());
+  auto listener = signal::chord_listener(seed_profile());
   return test_support::listen(listener, audio);
 }
 

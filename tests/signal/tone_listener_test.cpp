@@ -22,7 +22,7 @@ TEST(ChordListener, HearsOneChordOnceWithItsStartTime) {
   const LinkProfile& p = seed_profile();
   const int before = p.samples_for_ms(1234);
   const auto audio = with_silence(synthesize_frame(p, 0xB2DD), before, p.samples_for_ms(1000));
-  ChordListener listener(p);
+  auto listener = chord_listener(p);
   const auto heard = test_support::listen(listener, audio);
   ASSERT_EQ(heard.size(), 1u);
   EXPECT_EQ(heard[0].symbol, 0xB2DDu);
@@ -36,7 +36,7 @@ TEST(ChordListener, BlockSizeDoesNotChangeWhatIsHeard) {
   const LinkProfile& p = seed_profile();
   const auto audio = with_silence(synthesize_frame(p, 0x0F0F), 1000, 20000);
   for (std::size_t block : {1ul, 100ul, 2400ul, 4096ul, audio.size()}) {
-    ChordListener listener(p);
+    auto listener = chord_listener(p);
     const auto heard = test_support::listen(listener, audio, block);
     ASSERT_EQ(heard.size(), 1u) << block;
     EXPECT_EQ(heard[0].symbol, 0x0F0Fu);
@@ -45,7 +45,7 @@ TEST(ChordListener, BlockSizeDoesNotChangeWhatIsHeard) {
 
 TEST(ChordListener, AChordAtTheVeryStartIsHeard) {
   const LinkProfile& p = seed_profile();
-  ChordListener listener(p);
+  auto listener = chord_listener(p);
   const auto heard = test_support::listen(listener, with_silence(synthesize_frame(p, 0x1111), 0, 1000));
   ASSERT_EQ(heard.size(), 1u);
   EXPECT_LT(heard[0].start_ms, 50);
@@ -59,7 +59,7 @@ TEST(ReplyListener, HearsAckAndNackButNotCommandChords) {
   const auto command = synthesize_frame(p, 0x0000);
   audio.insert(audio.end(), command.begin(), command.end());
   audio.resize(audio.size() + 24000, 0.0f);
-  ReplyListener listener(p);
+  auto listener = reply_listener(p);
   const auto heard = test_support::listen(listener, audio);
   ASSERT_EQ(heard.size(), 2u);
   EXPECT_EQ(static_cast<Reply>(heard[0].symbol), Reply::Ack);
@@ -68,6 +68,6 @@ TEST(ReplyListener, HearsAckAndNackButNotCommandChords) {
 
 TEST(ChordListener, DoesNotHearReplies) {
   const LinkProfile& p = seed_profile();
-  ChordListener listener(p);
+  auto listener = chord_listener(p);
   EXPECT_TRUE(test_support::listen(listener, with_silence(synthesize_reply(p, Reply::Ack), 1000, 1000)).empty());
 }
