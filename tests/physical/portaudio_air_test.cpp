@@ -54,6 +54,9 @@ TEST_F(PortAudioAir, SeesThePulseDevicesBothWays) {
       }) << spec;
     }
   }
+  // The same device by its index.
+  const auto pulse = physical::find_audio_device("pulse", Direction::Input);
+  EXPECT_EQ(physical::find_audio_device(std::to_string(pulse.index), Direction::Input).name, pulse.name);
 }
 
 TEST_F(PortAudioAir, AChordPlayedIntoTheAirIsHeardOnceWithItsBits) {
