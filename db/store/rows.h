@@ -1,0 +1,91 @@
+// Store library, part 1: the rows both programs log, as the database's tables hold them.
+//
+// Each row carries a client-made uuid, so that the same row can be written again (an
+// update, or a replay after an outage) without becoming two. Rows become JSON objects
+// whose keys are the column names of db/migrations/001_schema.sql; absent optionals become
+// SQL NULL. Times are wall-clock (system_clock): the report matches the two hosts' rows by
+// time, so both hosts' clocks must be synchronised (docs/database.md).
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace dtmf::store {
+
+using WallClock = std::chrono::system_clock;
+using WallTime = WallClock::time_point;
+
+enum class Table { TestRuns, Commands, FrameAttempts, Receptions };
+std::string_view table_name(Table table);
+
+// A random (version 4) uuid, "xxxxxxxx-xxxx-4xxx-yxxx-xxxxxxxxxxxx".
+std::string new_id();
+// "2026-11-22T15:30:00.123456Z"
+std::string iso_time(WallTime time);
+
+struct TestRunRow {
+  std::string id = new_id();
+  std::string label;
+  std::string profile;
+  WallTime started_at{};
+  std::optional<WallTime> ended_at;
+  std::string notes;
+  std::string host;
+};
+
+struct CommandRow {
+  std::string id = new_id();
+  std::optional<std::string> run_id;
+  std::string kind;  // reset, drive_for_duration, ..., word
+  nlohmann::json parameters = nlohmann::json::object();
+  std::string profile;
+  int frame_count = 1;
+  WallTime requested_at{};
+  std::optional<WallTime> finished_at;
+  std::string outcome = "queued";  // queued, transmitting, confirmed, continued, failed, cancelled
+  std::string detail;
+  std::string host;
+};
+
+struct FrameAttemptRow {
+  std::string id = new_id();
+  std::optional<std::string> run_id;
+  std::string command_id;
+  int position = 0;  // frame within its command, from 0
+  int attempt = 1;   // 1 = first transmission
+  int word = 0;
+  int frame = 0;
+  std::array<double, 4> tones_hz{};
+  WallTime chord_started_at{};
+  std::optional<WallTime> chord_ended_at;
+  std::optional<std::string> answer;  // ack, nack, none
+  std::optional<WallTime> answered_at;
+};
+
+struct ReceptionRow {
+  std::string id = new_id();
+  std::string host;
+  std::string profile;
+  std::optional<WallTime> started_at;
+  WallTime heard_at{};
+  int frame = 0;
+  bool crc_ok = false;
+  std::optional<std::string> reply;  // ack, nack
+  std::optional<int> word;
+  std::string event;
+  std::string command_state;
+  std::string command;
+  std::optional<double> linear_mps;
+  std::optional<double> angular_rps;
+};
+
+nlohmann::json to_json(const TestRunRow& row);
+nlohmann::json to_json(const CommandRow& row);
+nlohmann::json to_json(const FrameAttemptRow& row);
+nlohmann::json to_json(const ReceptionRow& row);
+
+}  // namespace dtmf::store
