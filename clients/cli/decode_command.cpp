@@ -19,15 +19,9 @@ struct DecodeOptions {
   std::string file;
 };
 
-// The slowest sample rate that still carries the plan's highest tone.
-int min_file_rate_hz(const LinkProfile& profile) {
-  const double top_hz = profile.tones.band_low_hz[3] + (profile.tones.tones_per_band - 1) * profile.tones.step_hz;
-  return static_cast<int>(2 * top_hz) + 1;
-}
-
 int run_decode(const DecodeOptions& o) {
   const LinkProfile& profile = profile_by_name(o.profile);
-  physical::WavFileSource source(o.file, profile.sample_rate_hz, min_file_rate_hz(profile));
+  physical::WavFileSource source(o.file, profile.sample_rate_hz, profile.min_recording_rate_hz());
   link::ReceiverPath receiver(profile);
   std::vector<float> block(static_cast<std::size_t>(profile.hop_samples()) * 8);
   int frames = 0, intact = 0;

@@ -52,8 +52,9 @@ std::unique_ptr<pqxx::connection> connect(const DatabaseUrl& url) {
   try {
     return std::make_unique<pqxx::connection>(with_timeout(url));
   } catch (const std::exception& e) {
-    std::string why = e.what();
-    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+    // libpq's messages span lines ("...failed: ...\n\tIs the server running..."): keep one.
+    std::string why = std::regex_replace(std::string(e.what()), std::regex(R"(\s*\n\s*)"), " ");
+    while (!why.empty() && why.back() == ' ') why.pop_back();
     throw DatabaseError("cannot reach the database (" + describe_database(url) + "): " + why +
                         " — start PostgreSQL (e.g. scripts/pg start), fix --db, or run with --db none");
   }

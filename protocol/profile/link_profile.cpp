@@ -62,6 +62,11 @@ int LinkProfile::samples_for_ms(double ms) const {
   return static_cast<int>(std::lround(ms * sample_rate_hz / 1000.0));
 }
 
+int LinkProfile::min_recording_rate_hz() const {
+  const double top_hz = tones.band_low_hz[3] + (tones.tones_per_band - 1) * tones.step_hz;
+  return static_cast<int>(2 * top_hz) + 1;
+}
+
 const LinkProfile& seed_profile() {
   static const LinkProfile profile = make_seed_profile();
   return profile;

@@ -71,6 +71,8 @@ struct LinkProfile {
 
   int hop_samples() const;
   int samples_for_ms(double ms) const;
+  // The slowest sample rate a recording may have and still carry the highest plan tone.
+  int min_recording_rate_hz() const;
 };
 
 // The seed report's link.

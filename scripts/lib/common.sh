@@ -8,7 +8,7 @@ DTMF_PACKAGES=(
   libfftw3-dev libsndfile1-dev libsamplerate0-dev portaudio19-dev libasound2-dev libjack-jackd2-dev
   libspdlog-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   pulseaudio pulseaudio-utils libasound2-plugins alsa-utils
-  postgresql libpqxx-dev
+  postgresql libpqxx-dev cyclonedds-dev cyclonedds-tools
   espeak-ng sox
 )
 

@@ -1,40 +1,22 @@
 // dtmfctl's offline subcommands, run as a user runs them: the real binary, its output and
 // exit codes.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
-#include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
+
+#include "support/run_command.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int exit_code;
-  std::string out;  // stdout and stderr together
-};
+using Result = dtmf::test_support::CommandResult;
+using dtmf::test_support::json_lines;
 
-Result run(const std::string& args) {
-  const std::string command = std::string(DTMFCTL_PATH) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-std::vector<nlohmann::json> json_lines(const std::string& out) {
-  std::vector<nlohmann::json> lines;
-  std::istringstream in(out);
-  for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
-  return lines;
-}
+Result run(const std::string& args) { return dtmf::test_support::run_command(std::string(DTMFCTL_PATH) + " " + args); }
 
 class Dtmfctl : public ::testing::Test {
  protected:

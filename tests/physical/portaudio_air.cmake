@@ -24,9 +24,12 @@ endforeach()
 # gtest_add_tests (not gtest_discover_tests) because CMake 3.25's discovery splits every
 # PROPERTIES list, so an ENVIRONMENT of several variables cannot get through it.
 set(DTMF_AIR_ENV PULSE_SERVER=unix:${DTMF_AIR_DIR}/native PULSE_SINK=air PULSE_SOURCE=air.monitor)
-gtest_add_tests(TARGET portaudio_air_test TEST_PREFIX air. TEST_LIST air_tests)
-set_tests_properties(${air_tests} PROPERTIES
-  FIXTURES_REQUIRED air RESOURCE_LOCK air TIMEOUT 60 ENVIRONMENT "${DTMF_AIR_ENV}")
+function(dtmf_air_test target)
+  gtest_add_tests(TARGET ${target} TEST_PREFIX air. TEST_LIST air_tests)
+  set_tests_properties(${air_tests} PROPERTIES
+    FIXTURES_REQUIRED air RESOURCE_LOCK air TIMEOUT 120 ENVIRONMENT "${DTMF_AIR_ENV}")
+endfunction()
+dtmf_air_test(portaudio_air_test)
 gtest_add_tests(TARGET portaudio_no_device_test TEST_PREFIX no_air. TEST_LIST no_air_tests)
 set_tests_properties(${no_air_tests} PROPERTIES
   TIMEOUT 60 ENVIRONMENT PULSE_SERVER=unix:/nonexistent)

@@ -1,0 +1,96 @@
+// The robot agent's core: the receive path wired to its answers, its logs and the wheels.
+//
+//   audio block -> ReceiverPath (spectrum, chord, debouncer, CRC, word state machine)
+//      each heard frame -> ACK if intact, NACK if not (ReplyPlayer)
+//                       -> a receptions row (store)
+//                       -> a complete command -> VelocityProvider
+//   every publish period -> VelocityProvider::update -> every cmd_vel output
+//
+// The agent's clock is the audio itself: milliseconds of samples heard since start. A live
+// device delivers them in real time; a file as fast as it can be read, so an offline run
+// behaves exactly as a live one would, only faster. Wall times (DDS stamps, database rows)
+// come from a Timeline that maps audio time to the wall clock.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "cmd_vel/velocity.h"
+#include "link/receiver_path.h"
+#include "profile/link_profile.h"
+#include "reply_player.h"
+#include "store.h"
+#include "velocity_provider.h"
+
+namespace dtmf::agent {
+
+// Audio time -> wall time. Live: anchored at the last block read (the block just captured
+// ends now). Offline: the start of the run plus the audio time.
+class Timeline {
+ public:
+  explicit Timeline(bool live) : live_(live), start_(std::chrono::system_clock::now()) {}
+  void block_read(double block_end_ms) {
+    block_end_ms_ = block_end_ms;
+    if (live_) block_end_wall_ = std::chrono::system_clock::now();
+  }
+  std::chrono::system_clock::time_point wall(double audio_ms) const {
+    const auto offset = [](double ms) {
+      return std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double, std::milli>(ms));
+    };
+    return live_ ? block_end_wall_ - offset(block_end_ms_ - audio_ms) : start_ + offset(audio_ms);
+  }
+
+ private:
+  bool live_;
+  std::chrono::system_clock::time_point start_;
+  std::chrono::system_clock::time_point block_end_wall_;
+  double block_end_ms_ = 0;
+};
+
+struct AgentOptions {
+  const LinkProfile* profile = &seed_profile();
+  RobotModel model = burger();
+  double publish_rate_hz = 20;
+  double continuous_limit_s = 30;
+  std::string host;  // for the receptions rows
+};
+
+class Agent {
+ public:
+  Agent(AgentOptions options, ReplyPlayer& replies, std::vector<CmdVelOutput*> outputs, store::Store& store,
+        Timeline& timeline);
+
+  // One block of audio, as captured.
+  void process(std::span<const float> samples);
+  // The input has ended: let a timed motion run out (as silence), then stop the wheels.
+  // `after_block` runs after each block of that silence (to pace it in real time).
+  void finish(const std::function<void()>& after_block = {});
+  // Stop the wheels now and say so on every output (shutdown).
+  void stop_now(const std::string& why);
+
+  double audio_ms() const;
+  const VelocityProvider& provider() const { return provider_; }
+  std::size_t frames_heard() const { return frames_heard_; }
+
+ private:
+  void on_frame(const link::ReceivedFrame& frame);
+  // Publishes every tick up to audio_ms (including a tick at exactly audio_ms if inclusive).
+  void publish_until(double audio_ms, bool inclusive = true);
+  void publish(const Velocity& velocity, double audio_ms);
+
+  AgentOptions options_;
+  ReplyPlayer& replies_;
+  std::vector<CmdVelOutput*> outputs_;
+  store::Store& store_;
+  Timeline& timeline_;
+  link::ReceiverPath receiver_;
+  VelocityProvider provider_;
+  long long samples_ = 0;
+  double next_publish_ms_ = 0;
+  std::size_t frames_heard_ = 0;
+};
+
+}  // namespace dtmf::agent

@@ -1,0 +1,205 @@
+// dtmf-agent: the program on the robot. It listens for command chords, answers each with
+// an ACK or NACK chord, drives the robot through cmd_vel and logs every frame it heard.
+//
+//   dtmf-agent                                   # default microphone and speaker, DDS cmd_vel
+//   dtmf-agent --audio wav:x.wav --ack-out wav:y.wav --cmd-vel log --db none   # offline
+// Exit codes: 0 stopped cleanly, 1 a device, the database or DDS could not be had, 2 bad usage.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <thread>
+#include <cstdio>
+#include <memory>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "agent.h"
+#include "cmd_vel/dds_cmd_vel.h"
+#include "cmd_vel/log_cmd_vel.h"
+#include "cmd_vel/sim_turtlebot.h"
+#include "physical/audio_spec.h"
+#include "physical/portaudio_device.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop = true; }
+
+struct Flags {
+  std::string audio = "default";
+  std::string ack_out;  // default: "none" for a file input, else the default device
+  std::vector<std::string> cmd_vel{"dds"};
+  std::string profile = "seed";
+  std::string robot = "burger";
+  double publish_rate_hz = 20;
+  double continuous_limit_s = 30;
+  std::string topic = "cmd_vel";
+  std::string message = "twist_stamped";
+  std::optional<int> domain_id;
+  std::string frame_id;
+  std::optional<std::string> db;
+  std::string spill_file;
+  std::string host;
+  std::string log_level = "info";
+  bool list_devices = false;
+  bool realtime = false;
+};
+
+std::string hostname() {
+  char name[256] = {};
+  ::gethostname(name, sizeof name - 1);
+  return name;
+}
+
+int run(const Flags& f) {
+  using namespace dtmf;
+  const LinkProfile& profile = profile_by_name(f.profile);
+  const agent::RobotModel& model = agent::robot_model_by_name(f.robot);
+  const bool offline = physical::is_file_spec(f.audio);
+
+  // Everything that can be missing is checked before the robot could move.
+  const store::DatabaseUrl db = store::parse_database_flag(f.db);
+  if (!store::database_disabled(db)) {
+    auto connection = store::connect(db);
+    const auto migrated = store::migrate(*connection);
+    spdlog::info("database {}: schema version {}", store::describe_database(db), migrated.version_after);
+  }
+  auto source = physical::open_audio_source(f.audio, profile.sample_rate_hz, profile.min_recording_rate_hz());
+  spdlog::info("listening to {}", source->describe());
+  const std::string ack_out = f.ack_out.empty() ? (offline ? "none" : "default") : f.ack_out;
+
+  std::unique_ptr<agent::ReplyPlayer> replies;
+  struct Silent : agent::ReplyPlayer {
+    void play(signal::Reply, double) override {}
+    void finish(double) override {}
+  };
+  if (ack_out == "none") replies = std::make_unique<Silent>();
+  else if (physical::is_file_spec(ack_out) || offline)
+    replies = std::make_unique<agent::ReplyTimeline>(profile, physical::open_audio_sink(ack_out, profile.sample_rate_hz));
+  else
+    replies = std::make_unique<agent::LiveReplyPlayer>(profile, physical::open_audio_sink(ack_out, profile.sample_rate_hz));
+  spdlog::info("answering through {}", ack_out);
+
+  std::vector<std::unique_ptr<agent::CmdVelOutput>> owned;
+  for (const std::string& name : f.cmd_vel) {
+    if (name == "dds") {
+      agent::DdsOptions options;
+      options.topic = f.topic;
+      options.stamped = f.message == "twist_stamped";
+      options.domain_id = f.domain_id;
+      options.frame_id = f.frame_id;
+      owned.push_back(std::make_unique<agent::DdsCmdVel>(options));
+      spdlog::info("cmd_vel: DDS topic {} ({})", f.topic, f.message);
+    } else if (name == "sim") {
+      owned.push_back(std::make_unique<agent::SimTurtlebot>(model, [](const std::string& line) { spdlog::info("{}", line); }));
+    } else if (name == "log") {
+      owned.push_back(std::make_unique<agent::LogCmdVel>(stdout));
+    }
+  }
+  std::vector<agent::CmdVelOutput*> outputs;
+  for (const auto& o : owned) outputs.push_back(o.get());
+
+  store::StoreOptions store_options;
+  store_options.database = db;
+  store_options.spill_path = f.spill_file.empty() ? store::default_spill_path("dtmf-agent") : f.spill_file;
+  store::Store store(store_options);
+
+  agent::Timeline timeline(!offline);
+  agent::AgentOptions options;
+  options.profile = &profile;
+  options.model = model;
+  options.publish_rate_hz = f.publish_rate_hz;
+  options.continuous_limit_s = f.continuous_limit_s;
+  options.host = f.host.empty() ? hostname() : f.host;
+  agent::Agent agent(options, *replies, outputs, store, timeline);
+
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  spdlog::info("robot {} ({:.2f} m/s, {:.2f} rad/s), profile {}, publishing at {:.0f} Hz", model.name,
+               model.max_linear_mps, model.max_angular_rps, profile.name, f.publish_rate_hz);
+  std::vector<float> block(static_cast<std::size_t>(profile.hop_samples()));
+  int exit_code = 0;
+  const auto started = std::chrono::steady_clock::now();
+  // A recording played back as if it were being heard now.
+  const auto pace = [&] {
+    if (f.realtime && offline) std::this_thread::sleep_until(started + std::chrono::duration<double, std::milli>(agent.audio_ms()));
+  };
+  try {
+    while (!g_stop) {
+      const std::size_t got = source->read(block);
+      if (got == 0) break;
+      agent.process(std::span<const float>(block.data(), got));
+      pace();
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    exit_code = 1;
+  }
+  if (g_stop) agent.stop_now("shutdown signal");
+  else if (exit_code == 0) agent.finish(pace);
+  else agent.stop_now("audio input failed");
+  replies->finish(agent.audio_ms());
+  spdlog::info("{} frames heard in {:.1f} s of audio", agent.frames_heard(), agent.audio_ms() / 1000.0);
+  return exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  spdlog::set_default_logger(spdlog::stderr_color_mt("dtmf-agent"));
+  Flags f;
+  CLI::App app{"dtmf-agent: hears command chords, answers ACK/NACK, drives a TurtleBot3 through cmd_vel"};
+  app.add_option("--audio", f.audio, "where to listen: wav:FILE, a device name or index, or default")
+      ->envname("DTMF_AGENT_AUDIO")->capture_default_str();
+  app.add_option("--ack-out", f.ack_out, "where to answer: wav:FILE, a device, default, or none (default: none for wav: input, else default)")
+      ->envname("DTMF_AGENT_ACK_OUT");
+  app.add_option("--cmd-vel", f.cmd_vel, "outputs, one or more of: dds (ROS 2), sim (simulated robot), log (JSON lines on stdout)")
+      ->delimiter(',')->check(CLI::IsMember({"dds", "sim", "log"}))->capture_default_str();
+  app.add_option("--profile", f.profile, "link profile: " + dtmf::profile_names())->capture_default_str();
+  app.add_option("--robot", f.robot, "TurtleBot3 model: burger or waffle")->envname("TURTLEBOT3_MODEL")
+      ->check(CLI::IsMember({"burger", "waffle", "waffle_pi"}))->capture_default_str();
+  app.add_option("--publish-rate-hz", f.publish_rate_hz, "cmd_vel publish rate")->check(CLI::Range(1.0, 200.0))->capture_default_str();
+  app.add_option("--continuous-limit-s", f.continuous_limit_s,
+                 "stop a DRIVE_FORWARD / TURN after this long, 0 = never")->check(CLI::Range(0.0, 3600.0))->capture_default_str();
+  app.add_option("--topic", f.topic, "ROS 2 topic")->capture_default_str();
+  app.add_option("--message", f.message, "twist_stamped (ROS 2 Jazzy) or twist (Humble)")
+      ->check(CLI::IsMember({"twist_stamped", "twist"}))->capture_default_str();
+  app.add_option("--ros-domain-id", f.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0)")->check(CLI::Range(0, 232));
+  app.add_option("--frame-id", f.frame_id, "header.frame_id of TwistStamped");
+  app.add_option("--db", f.db, "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
+      ->envname("DTMF_DB_URL");
+  app.add_option("--spill-file", f.spill_file, "where log rows wait while the database is away");
+  app.add_option("--host", f.host, "name of this robot in the log (default: hostname)");
+  app.add_option("--log-level", f.log_level, "trace, debug, info, warn, error")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))->capture_default_str();
+  app.add_flag("--list-audio-devices", f.list_devices, "list the audio devices and exit");
+  app.add_flag("--realtime", f.realtime, "with wav: input, take as long as the recording lasts (as if heard live)");
+  app.footer("Exit codes: 0 stopped cleanly, 1 a device, the database or DDS could not be had, 2 bad usage.\n"
+             "Safety: zero velocity is published when a duration ends, on STOP, on SIGINT/SIGTERM, at the\n"
+             "end of a recording, and when continuous motion exceeds --continuous-limit-s.");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+  spdlog::set_level(spdlog::level::from_str(f.log_level));
+  try {
+    if (f.list_devices) {
+      std::printf("%s", dtmf::physical::format_device_list(dtmf::physical::list_audio_devices()).c_str());
+      return 0;
+    }
+    return run(f);
+  } catch (const std::invalid_argument& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+}

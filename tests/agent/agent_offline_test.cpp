@@ -1,0 +1,159 @@
+// dtmf-agent run as a user runs it, offline: a recording in, velocities and answers out,
+// and bad recordings that must give a clear result without a crash.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "physical/wav_file.h"
+#include "profile/link_profile.h"
+#include "signal/synthesizer.h"
+#include "signal/tone_listener.h"
+#include "support/run_command.h"
+
+using namespace dtmf;
+using test_support::json_lines;
+using test_support::run_command;
+namespace fs = std::filesystem;
+
+namespace {
+
+class AgentOffline : public ::testing::Test {
+ protected:
+  fs::path dir_ = fs::path(::testing::TempDir()) / ("agent-" + std::to_string(::getpid()));
+  void SetUp() override { fs::create_directories(dir_); }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  // dtmf-agent offline on `wav`; stdout only (the JSON lines) unless with_logs.
+  test_support::CommandResult agent(const std::string& wav, const std::string& extra = "", bool with_logs = false) {
+    return run_command(std::string(DTMF_AGENT_PATH) + " --audio wav:" + wav + " --cmd-vel log --db none " + extra,
+                       with_logs);
+  }
+  void encode(const std::string& args, const std::string& wav) {
+    ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + wav + " " + args).exit_code, 0);
+  }
+};
+
+}  // namespace
+
+// The acceptance run: drive at 50 % for 2 s.
+TEST_F(AgentOffline, DrivesAbout011MpsForAbout2SecondsThenZeroAndAcksEveryFrame) {
+  encode("drive --speed 50 --duration 2", path("x.wav"));
+  const auto r = agent(path("x.wav"), "--ack-out wav:" + path("y.wav"));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto lines = json_lines(r.out);
+  ASSERT_GT(lines.size(), 40u);
+  double first_move = -1, last_move = -1;
+  for (const auto& line : lines) {
+    const double v = line["linear_mps"];
+    if (v != 0) {
+      EXPECT_NEAR(v, 0.11, 0.22 * 100.0 / 62 / 100);  // within one 6-bit speed step
+      if (first_move < 0) first_move = line["t_ms"];
+      last_move = line["t_ms"];
+    }
+    EXPECT_EQ(line["angular_rps"], 0.0);
+  }
+  ASSERT_GE(first_move, 0) << r.out;
+  const double moved_s = (last_move - first_move) / 1000.0 + 0.05;  // plus the last period
+  EXPECT_NEAR(moved_s, 2.0, 8.0 / 62);                              // within one duration step
+  EXPECT_EQ(lines.back()["linear_mps"], 0.0);
+
+  const auto acks = physical::read_audio_file(path("y.wav"), seed_profile().sample_rate_hz);
+  auto listener = signal::reply_listener(seed_profile());
+  std::vector<signal::Heard> heard;
+  for (const auto& h : listener.feed(acks)) heard.push_back(h);
+  ASSERT_EQ(heard.size(), 3u);
+  for (const auto& h : heard) EXPECT_EQ(static_cast<signal::Reply>(h.symbol), signal::Reply::Ack);
+}
+
+TEST_F(AgentOffline, ACorruptedChordIsNackedAndNothingMoves) {
+  // A real command whose parameter chord gets one tone moved: the CRC no longer fits.
+  const auto sent = run_command(std::string(DTMFCTL_PATH) + " encode --json --wav " + path("good.wav") + " drive --speed 80");
+  const auto frames = json_lines(sent.out);
+  ASSERT_EQ(frames.size(), 3u);
+  auto audio = physical::read_audio_file(path("good.wav"), 48000);
+  std::vector<double> tones = frames[2]["tones_hz"];
+  const double step = seed_profile().tones.step_hz;
+  tones[3] += tones[3] + step < 16001 ? step : -step;  // the CRC nibble one off
+  const LinkProfile& p = seed_profile();
+  const auto start = static_cast<std::size_t>(p.samples_for_ms(2000));
+  std::fill(audio.begin() + static_cast<long>(start), audio.begin() + static_cast<long>(start) + p.samples_for_ms(800), 0.0f);
+  signal::add_chord(std::span(audio).subspan(start, static_cast<std::size_t>(p.samples_for_ms(800))), tones,
+                    p.tones.tone_amplitude, p.tones.edge_ms, p.sample_rate_hz);
+  physical::write_wav_file(path("bad.wav"), audio, 48000);
+
+  const auto r = agent(path("bad.wav"), "--ack-out wav:" + path("acks.wav"));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  for (const auto& line : json_lines(r.out)) EXPECT_EQ(line["linear_mps"], 0.0);
+  auto listener = signal::reply_listener(p);
+  std::vector<signal::Reply> replies;
+  for (const auto& h : listener.feed(physical::read_audio_file(path("acks.wav"), 48000))) {
+    replies.push_back(static_cast<signal::Reply>(h.symbol));
+  }
+  EXPECT_EQ(replies, (std::vector<signal::Reply>{signal::Reply::Ack, signal::Reply::Ack, signal::Reply::Nack}));
+}
+
+TEST_F(AgentOffline, StereoAnd44kRecordingsWork) {
+  encode("turn --rotation 50 --duration 1", path("t.wav"));
+  ASSERT_EQ(run_command("sox " + path("t.wav") + " -r 44100 -c 2 " + path("t44s.wav")).exit_code, 0);
+  const auto r = agent(path("t44s.wav"));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  bool turned = false;
+  for (const auto& line : json_lines(r.out)) turned = turned || std::abs(line["angular_rps"].get<double>() - 1.42) < 0.05;
+  EXPECT_TRUE(turned) << r.out;
+}
+
+TEST_F(AgentOffline, AnEmptyRecordingHearsNothingAndStopsTheRobot) {
+  physical::write_wav_file(path("empty.wav"), {}, 48000);
+  const auto r = agent(path("empty.wav"), "", true);
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("0 frames heard"), std::string::npos) << r.out;
+  const auto lines = json_lines(r.out);
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines.back()["linear_mps"], 0.0);
+}
+
+TEST_F(AgentOffline, NonAudioAndTooSlowRecordingsAreRefusedClearly) {
+  std::ofstream(path("notes.wav")) << "not audio\n";
+  auto r = agent(path("notes.wav"), "", true);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find(path("notes.wav")), std::string::npos) << r.out;
+  physical::write_wav_file(path("8k.wav"), std::vector<float>(8000, 0.0f), 8000);
+  r = agent(path("8k.wav"), "", true);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("8000 Hz"), std::string::npos) << r.out;
+  r = agent(path("missing.wav"), "", true);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("missing.wav"), std::string::npos) << r.out;
+}
+
+TEST_F(AgentOffline, TenMinutesOfNoiseHearNothingInBoundedMemory) {
+  ASSERT_EQ(run_command("sox -n -r 48000 -c 1 " + path("noise.wav") + " synth 600 whitenoise vol 0.3").exit_code, 0);
+  const auto r = agent(path("noise.wav"), "", true);
+  EXPECT_EQ(r.exit_code, 0) << r.out.substr(0, 2000);
+  EXPECT_NE(r.out.find("0 frames heard in 600.0 s"), std::string::npos) << r.out.substr(r.out.size() - 500);
+  // The recording is 110 MiB of samples; the agent streams it.
+  EXPECT_LT(test_support::max_child_rss_mib(), 100.0);
+}
+
+TEST_F(AgentOffline, BadFlagsAreUsageErrors) {
+  EXPECT_EQ(run_command(std::string(DTMF_AGENT_PATH) + " --robot roomba").exit_code, 2);
+  EXPECT_EQ(run_command(std::string(DTMF_AGENT_PATH) + " --cmd-vel teleport").exit_code, 2);
+  EXPECT_EQ(run_command(std::string(DTMF_AGENT_PATH) + " --publish-rate-hz 0").exit_code, 2);
+  const auto help = run_command(std::string(DTMF_AGENT_PATH) + " --help");
+  EXPECT_EQ(help.exit_code, 0);
+  for (const char* word : {"--audio", "--ack-out", "--cmd-vel", "--profile", "--list-audio-devices", "--db",
+                           "--continuous-limit-s", "Exit codes"}) {
+    EXPECT_NE(help.out.find(word), std::string::npos) << word;
+  }
+}
+
+TEST_F(AgentOffline, AnUnreachableDatabaseStopsTheAgentBeforeItListens) {
+  encode("stop", path("s.wav"));
+  const auto r = run_command(std::string(DTMF_AGENT_PATH) + " --audio wav:" + path("s.wav") +
+                             " --cmd-vel log --db postgresql://postgres@127.0.0.1:1/x");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("cannot reach the database"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--db none"), std::string::npos) << r.out;
+}

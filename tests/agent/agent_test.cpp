@@ -1,0 +1,124 @@
+// The agent's core on recordings: frames in, answers, velocities and log rows out.
+#include <gtest/gtest.h>
+
+#include "agent.h"
+#include "command/word_codec.h"
+#include "link/sender_path.h"
+#include "physical/wav_file.h"
+#include "signal/tone_listener.h"
+
+using namespace dtmf;
+using namespace dtmf::agent;
+
+namespace {
+
+struct Published {
+  Velocity velocity;
+  double audio_ms;
+};
+
+class RecordingOutput : public CmdVelOutput {
+ public:
+  void publish(const Velocity& v, double audio_ms, std::chrono::system_clock::time_point) override {
+    published.push_back({v, audio_ms});
+  }
+  std::vector<Published> published;
+};
+
+class RecordingReplies : public ReplyPlayer {
+ public:
+  void play(signal::Reply reply, double audio_ms) override { replies.emplace_back(reply, audio_ms); }
+  void finish(double) override {}
+  std::vector<std::pair<signal::Reply, double>> replies;
+};
+
+struct AgentRun {
+  RecordingOutput output;
+  RecordingReplies replies;
+  std::size_t frames = 0;
+};
+
+void run_agent(const std::vector<float>& audio, AgentRun& run) {
+  store::StoreOptions no_db;
+  no_db.database = std::string();
+  store::Store store(no_db);
+  Timeline timeline(false);
+  Agent agent(AgentOptions{}, run.replies, {&run.output}, store, timeline);
+  const int block = seed_profile().hop_samples();
+  for (std::size_t i = 0; i < audio.size(); i += static_cast<std::size_t>(block)) {
+    agent.process(std::span<const float>(audio).subspan(i, std::min<std::size_t>(block, audio.size() - i)));
+  }
+  agent.finish();
+  run.frames = agent.frames_heard();
+}
+
+}  // namespace
+
+TEST(Agent, DrivesForTheQuantisedDurationThenPublishesZero) {
+  const LinkProfile& p = seed_profile();
+  const command::DriveForDuration drive{50, 2};
+  AgentRun run;
+  run_agent(link::render_frames(p, link::plan_command(p, drive)), run);
+  ASSERT_EQ(run.frames, 3u);
+  ASSERT_EQ(run.replies.replies.size(), 3u);
+  for (const auto& [reply, at] : run.replies.replies) EXPECT_EQ(reply, signal::Reply::Ack);
+
+  const double period_ms = 1000.0 / 20;
+  const double started_ms = run.replies.replies[2].second;  // the parameter frame's ACK
+  const double duration_ms = std::get<command::DriveForDuration>(command::quantised(drive)).duration_s * 1000;
+  double first_move = -1, first_stop = -1;
+  for (const Published& pub : run.output.published) {
+    if (pub.velocity.linear_mps > 0 && first_move < 0) first_move = pub.audio_ms;
+    if (first_move >= 0 && pub.velocity == Velocity{} && first_stop < 0) first_stop = pub.audio_ms;
+    if (pub.velocity.linear_mps > 0) {
+      EXPECT_DOUBLE_EQ(pub.velocity.linear_mps, 0.11);
+    }
+  }
+  ASSERT_GE(first_move, 0);
+  ASSERT_GE(first_stop, 0);
+  EXPECT_GE(first_move, started_ms);
+  EXPECT_LT(first_move - started_ms, period_ms);
+  EXPECT_GE(first_stop - started_ms, duration_ms);
+  EXPECT_LT(first_stop - started_ms, duration_ms + period_ms);
+  // Published steadily at 20 Hz, and the last velocity is zero.
+  for (std::size_t i = 1; i < run.output.published.size() - 1; ++i) {
+    EXPECT_NEAR(run.output.published[i].audio_ms - run.output.published[i - 1].audio_ms, period_ms, 1e-9);
+  }
+  EXPECT_EQ(run.output.published.back().velocity, Velocity{});
+}
+
+TEST(Agent, ACorruptedChordGetsANackAndNoMotion) {
+  const LinkProfile& p = seed_profile();
+  std::vector<link::PlannedFrame> frames = link::plan_command(p, command::DriveForward{80});
+  frames[2].frame ^= 0x0001;  // the parameter frame's CRC no longer fits
+  frames[2].tones_hz = signal::chord_for(p.tones, frames[2].frame);
+  AgentRun run;
+  run_agent(link::render_frames(p, frames), run);
+  ASSERT_EQ(run.replies.replies.size(), 3u);
+  EXPECT_EQ(run.replies.replies[0].first, signal::Reply::Ack);
+  EXPECT_EQ(run.replies.replies[1].first, signal::Reply::Ack);
+  EXPECT_EQ(run.replies.replies[2].first, signal::Reply::Nack);
+  for (const Published& pub : run.output.published) EXPECT_EQ(pub.velocity, Velocity{});
+}
+
+TEST(Agent, TheReplyTimelinePutsEachChordWhereItsFrameWasHeard) {
+  const LinkProfile& p = seed_profile();
+  const std::string path = ::testing::TempDir() + "/acks-" + std::to_string(::getpid()) + ".wav";
+  const auto audio = link::render_frames(p, link::plan_command(p, command::Stop{}));
+  {
+    ReplyTimeline timeline(p, std::make_unique<physical::WavFileSink>(path, p.sample_rate_hz));
+    timeline.play(signal::Reply::Ack, 100);
+    timeline.play(signal::Reply::Nack, 1100);
+    timeline.finish(2000);
+  }
+  const auto written = physical::read_audio_file(path, p.sample_rate_hz);
+  EXPECT_EQ(written.size(), static_cast<std::size_t>(p.samples_for_ms(2000)));
+  auto listener = signal::reply_listener(p);
+  std::vector<signal::Heard> heard;
+  for (const auto& h : listener.feed(written)) heard.push_back(h);
+  ASSERT_EQ(heard.size(), 2u);
+  EXPECT_EQ(static_cast<signal::Reply>(heard[0].symbol), signal::Reply::Ack);
+  EXPECT_EQ(static_cast<signal::Reply>(heard[1].symbol), signal::Reply::Nack);
+  EXPECT_NEAR(heard[0].start_ms, 100, 60);
+  EXPECT_NEAR(heard[1].start_ms, 1100, 60);
+}
