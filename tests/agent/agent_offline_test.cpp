@@ -157,3 +157,11 @@ TEST_F(AgentOffline, AnUnreachableDatabaseStopsTheAgentBeforeItListens) {
   EXPECT_NE(r.out.find("cannot reach the database"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--db none"), std::string::npos) << r.out;
 }
+
+TEST_F(AgentOffline, NoAudioDeviceStopsTheAgentWithWhatToDo) {
+  const auto r = run_command("PULSE_SERVER=unix:/nonexistent " + std::string(DTMF_AGENT_PATH) +
+                             " --audio default --cmd-vel log --db none");
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("no audio device found"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("wav:FILE"), std::string::npos) << r.out;
+}
