@@ -45,6 +45,7 @@ void Agent::on_frame(const link::ReceivedFrame& frame) {
   if (!frame.crc_ok) {
     spdlog::warn("t={:.3f}s frame {} failed the CRC: NACK", frame.heard_ms / 1000.0, bits);
     store_.write(row);
+    if (options_.on_frame_heard) options_.on_frame_heard(frame);
     return;
   }
   const command::ReceiverEvent& event = *frame.event;
@@ -65,6 +66,7 @@ void Agent::on_frame(const link::ReceivedFrame& frame) {
   }
   spdlog::info("t={:.3f}s frame {} word {}: ACK, {}", frame.heard_ms / 1000.0, bits, *row.word, what);
   store_.write(row);
+  if (options_.on_frame_heard) options_.on_frame_heard(frame);
 }
 
 void Agent::publish(const Velocity& velocity, double audio_ms) {

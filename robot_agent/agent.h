@@ -56,6 +56,8 @@ struct AgentOptions {
   double publish_rate_hz = 20;
   double continuous_limit_s = 30;
   std::string host;  // for the receptions rows
+  // Told of every frame heard, after it was handled (for monitors and tests).
+  std::function<void(const link::ReceivedFrame&)> on_frame_heard;
 };
 
 class Agent {

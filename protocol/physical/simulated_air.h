@@ -1,0 +1,50 @@
+// Physical layer, part 7: a simulated room that runs in real time, for whole systems.
+//
+// Stations — a loudspeaker and a microphone each, like the sender's computer and the robot
+// — stand at positions on a line. Every `block_ms` of real time a clock thread takes the
+// next block from every loudspeaker (silence if it has nothing), passes it through one
+// AcousticChannel per microphone (each loudspeaker at its distance, its own at 0.1 m) and
+// appends the result to that microphone. Loudspeakers and microphones behave like devices:
+// write() returns once the samples are queued close to playing, drain() once they played,
+// read() blocks until the samples have been "recorded". So a server and an agent in one
+// process talk through it exactly as through a real room, only without a sound card.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "physical/acoustic_channel.h"
+#include "physical/audio_io.h"
+
+namespace dtmf::physical {
+
+class SimulatedAir {
+ public:
+  struct Station {
+    std::unique_ptr<AudioSink> speaker;
+    std::unique_ptr<AudioSource> microphone;
+  };
+
+  SimulatedAir(int sample_rate_hz, ChannelConfig config, double block_ms = 10);
+  ~SimulatedAir();
+  SimulatedAir(const SimulatedAir&) = delete;
+  SimulatedAir& operator=(const SimulatedAir&) = delete;
+
+  // Before start(). The endpoints stay valid while the air lives.
+  Station add_station(const std::string& name, double position_m);
+  void start();
+  // Microphones then report the end of the stream; loudspeakers refuse to play.
+  void stop();
+
+  struct Shared;  // state shared with the endpoints
+
+ private:
+  void run();
+
+  std::shared_ptr<Shared> shared_;
+  std::thread clock_;
+};
+
+}  // namespace dtmf::physical

@@ -1,0 +1,101 @@
+#include "job.h"
+
+#include "command/word_codec.h"
+
+namespace dtmf::server {
+
+std::string outcome_name(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::Pending: return "pending";
+    case Outcome::Confirmed: return "confirmed";
+    case Outcome::Continued: return "continued";
+    case Outcome::Failed: return "failed";
+    case Outcome::Cancelled: return "cancelled";
+    case Outcome::Unavailable: return "failed";
+  }
+  return "failed";
+}
+
+Job::Job(command::Command command, std::vector<link::PlannedFrame> frames, Policy policy,
+         std::chrono::milliseconds decision_timeout, std::optional<std::string> run_id)
+    : command_(std::move(command)), frames_(std::move(frames)), policy_(policy), decision_timeout_(decision_timeout),
+      run_id_(std::move(run_id)) {}
+
+// What the robot will execute: the command as its parameter fields carry it.
+std::string Job::description() const { return command::describe(command::quantised(command_)); }
+
+std::optional<ProgressEvent> Job::next_event(std::chrono::milliseconds timeout) {
+  std::unique_lock lock(mutex_);
+  changed_.wait_for(lock, timeout, [this] { return !events_.empty() || outcome_ != Outcome::Pending; });
+  if (events_.empty()) return std::nullopt;
+  ProgressEvent event = std::move(events_.front());
+  events_.pop_front();
+  return event;
+}
+
+bool Job::finished_and_drained() {
+  std::lock_guard lock(mutex_);
+  return outcome_ != Outcome::Pending && events_.empty();
+}
+
+void Job::cancel() {
+  {
+    std::lock_guard lock(mutex_);
+    cancelled_ = true;
+  }
+  changed_.notify_all();
+}
+
+bool Job::cancelled() {
+  std::lock_guard lock(mutex_);
+  return cancelled_;
+}
+
+bool Job::decide(reliability::Decision decision) {
+  {
+    std::lock_guard lock(mutex_);
+    if (!awaiting_decision_) return false;
+    decision_ = decision;
+    awaiting_decision_ = false;
+  }
+  changed_.notify_all();
+  return true;
+}
+
+std::optional<reliability::Decision> Job::await_decision() {
+  std::unique_lock lock(mutex_);
+  awaiting_decision_ = true;
+  decision_.reset();
+  changed_.wait_for(lock, decision_timeout_, [this] { return decision_.has_value() || cancelled_; });
+  awaiting_decision_ = false;
+  return decision_;
+}
+
+Outcome Job::outcome() {
+  std::lock_guard lock(mutex_);
+  return outcome_;
+}
+
+std::string Job::outcome_detail() {
+  std::lock_guard lock(mutex_);
+  return outcome_detail_;
+}
+
+void Job::emit(ProgressEvent event) {
+  {
+    std::lock_guard lock(mutex_);
+    events_.push_back(std::move(event));
+  }
+  changed_.notify_all();
+}
+
+void Job::finish(Outcome outcome, std::string detail) {
+  {
+    std::lock_guard lock(mutex_);
+    outcome_ = outcome;
+    outcome_detail_ = std::move(detail);
+  }
+  changed_.notify_all();
+}
+
+}  // namespace dtmf::server

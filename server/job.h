@@ -1,0 +1,88 @@
+// One command in the sender's transmitter: its frames, its policy, and the stream of
+// progress events the caller reads. The transmitter's thread writes events and the outcome;
+// the caller's thread reads them, may cancel, and answers a pending decision. Thread-safe.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "command/command.h"
+#include "link/sender_path.h"
+#include "reliability/retry_controller.h"
+#include "rows.h"
+
+namespace dtmf::server {
+
+enum class Policy { Ask, Continue, Fail };
+
+enum class Outcome { Pending, Confirmed, Continued, Failed, Cancelled, Unavailable };
+std::string outcome_name(Outcome outcome);
+
+struct ProgressEvent {
+  enum class Kind { Queued, Transmitting, Ack, Nack, NoAnswer, Retransmitting, AwaitingDecision, Confirmed, Continued, Failed };
+  explicit ProgressEvent(Kind k) : kind(k) {}
+  Kind kind;
+  int frame_index = 0;
+  int attempt = 0;
+  std::optional<link::PlannedFrame> frame;
+  std::optional<double> response_time_ms;
+  std::string detail;
+  int queue_position = 0;
+  store::WallTime time = store::WallClock::now();
+};
+
+class Job {
+ public:
+  Job(command::Command command, std::vector<link::PlannedFrame> frames, Policy policy,
+      std::chrono::milliseconds decision_timeout, std::optional<std::string> run_id);
+
+  const std::string& id() const { return id_; }
+  const command::Command& command() const { return command_; }
+  const std::vector<link::PlannedFrame>& frames() const { return frames_; }
+  Policy policy() const { return policy_; }
+  const std::optional<std::string>& run_id() const { return run_id_; }
+  // The commands row as logged; only the transmitter's threads touch it.
+  store::CommandRow& log_row() { return log_row_; }
+  std::chrono::milliseconds decision_timeout() const { return decision_timeout_; }
+  std::string description() const;
+
+  // Caller side.
+  std::optional<ProgressEvent> next_event(std::chrono::milliseconds timeout);
+  bool finished_and_drained();
+  void cancel();
+  bool decide(reliability::Decision decision);  // false unless a decision is awaited
+  Outcome outcome();
+  std::string outcome_detail();
+
+  // Transmitter side.
+  void emit(ProgressEvent event);
+  void finish(Outcome outcome, std::string detail = {});
+  bool cancelled();
+  // Waits for decide() (or cancel); nullopt on timeout or cancel.
+  std::optional<reliability::Decision> await_decision();
+
+ private:
+  std::string id_ = store::new_id();
+  command::Command command_;
+  std::vector<link::PlannedFrame> frames_;
+  Policy policy_;
+  std::chrono::milliseconds decision_timeout_;
+  std::optional<std::string> run_id_;
+  store::CommandRow log_row_;
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<ProgressEvent> events_;
+  Outcome outcome_ = Outcome::Pending;
+  std::string outcome_detail_;
+  bool cancelled_ = false;
+  bool awaiting_decision_ = false;
+  std::optional<reliability::Decision> decision_;
+};
+
+}  // namespace dtmf::server

@@ -1,0 +1,188 @@
+// dtmf-server: the sender. A gRPC service whose commands become chords on the loudspeaker,
+// answered by the robot's ACK / NACK chords on the microphone.
+//
+//   dtmf-server                              # default speaker and microphone, port 50051
+//   dtmf-server --audio-out wav:sent.wav --audio-in none --db none   # no sound card
+// Exit codes: 0 stopped cleanly, 1 an audio device, the database or the port could not be had,
+// 2 bad usage.
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/grpcpp.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
+#include <fstream>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+#include <thread>
+
+#include "physical/audio_spec.h"
+#include "physical/portaudio_device.h"
+#include "teleop_service.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop = true; }
+
+// --audio-in none: a microphone that hears silence, in real time.
+class Silence : public dtmf::physical::AudioSource {
+ public:
+  explicit Silence(int rate) : rate_(rate) {}
+  std::size_t read(std::span<float> out) override {
+    std::fill(out.begin(), out.end(), 0.0f);
+    next_ += std::chrono::microseconds(static_cast<long long>(1e6 * static_cast<double>(out.size()) / rate_));
+    std::this_thread::sleep_until(next_);
+    return out.size();
+  }
+  int sample_rate_hz() const override { return rate_; }
+  std::string describe() const override { return "none (silence)"; }
+
+ private:
+  int rate_;
+  std::chrono::steady_clock::time_point next_ = std::chrono::steady_clock::now();
+};
+
+std::string read_file(const std::string& path, const char* what) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(std::string("cannot read the ") + what + " file '" + path + "'");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
+struct Flags {
+  std::string address = "0.0.0.0";
+  int port = 50051;
+  std::string audio_out = "default";
+  std::string audio_in = "default";
+  std::string profile = "seed";
+  std::optional<std::string> db;
+  std::string spill_file;
+  std::string on_unconfirmed = "fail";
+  double decision_timeout_s = 60;
+  std::size_t max_queue = 32;
+  std::string tls_cert, tls_key, auth_token_file;
+  std::string log_level = "info";
+  bool list_devices = false;
+};
+
+int run(const Flags& f) {
+  using namespace dtmf;
+  const LinkProfile& profile = profile_by_name(f.profile);
+  const store::DatabaseUrl db = store::parse_database_flag(f.db);
+  if (!store::database_disabled(db)) {
+    auto connection = store::connect(db);
+    spdlog::info("database {}: schema version {}", store::describe_database(db), store::migrate(*connection).version_after);
+  }
+  auto speaker = physical::open_audio_sink(f.audio_out, profile.sample_rate_hz);
+  std::unique_ptr<physical::AudioSource> microphone =
+      f.audio_in == "none" ? std::make_unique<Silence>(profile.sample_rate_hz)
+                           : physical::open_audio_source(f.audio_in, profile.sample_rate_hz, 0);
+  spdlog::info("playing to {}, listening to {}", speaker->describe(), microphone->describe());
+
+  store::StoreOptions store_options;
+  store_options.database = db;
+  store_options.spill_path = f.spill_file.empty() ? store::default_spill_path("dtmf-server") : f.spill_file;
+  store::Store store(store_options);
+  char hostname[256] = {};
+  ::gethostname(hostname, sizeof hostname - 1);
+  server::Transmitter transmitter(profile, std::move(speaker), std::move(microphone), store, {f.max_queue, hostname});
+
+  server::ServiceOptions options;
+  options.database = db;
+  options.defaults.policy = f.on_unconfirmed == "ask" ? server::Policy::Ask
+                            : f.on_unconfirmed == "continue" ? server::Policy::Continue : server::Policy::Fail;
+  options.defaults.decision_timeout = std::chrono::milliseconds(static_cast<long>(f.decision_timeout_s * 1000));
+  options.host = hostname;
+  if (!f.auth_token_file.empty()) options.auth_token = read_file(f.auth_token_file, "auth token");
+  server::TeleopService service(transmitter, store, options);
+
+  std::shared_ptr<grpc::ServerCredentials> credentials = grpc::InsecureServerCredentials();
+  if (!f.tls_cert.empty() || !f.tls_key.empty()) {
+    if (f.tls_cert.empty() || f.tls_key.empty()) throw std::invalid_argument("TLS needs both --tls-cert and --tls-key");
+    grpc::SslServerCredentialsOptions tls;
+    tls.pem_key_cert_pairs.push_back({read_file(f.tls_key, "TLS key"), read_file(f.tls_cert, "TLS certificate")});
+    credentials = grpc::SslServerCredentials(tls);
+  }
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(f.address + ":" + std::to_string(f.port), credentials, &port);
+  builder.RegisterService(&service);
+  std::unique_ptr<grpc::Server> grpc_server = builder.BuildAndStart();
+  if (!grpc_server || port == 0) {
+    throw std::runtime_error("cannot listen on " + f.address + ":" + std::to_string(f.port) +
+                             " (is another server using the port? choose one with --port)");
+  }
+  grpc_server->GetHealthCheckService()->SetServingStatus(true);
+  spdlog::info("serving dtmf.v1.Teleop on {}:{} ({}{}), profile {}", f.address, port,
+               f.tls_cert.empty() ? "plaintext" : "TLS", options.auth_token.empty() ? "" : ", bearer token", profile.name);
+
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  while (!g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+
+  spdlog::info("shutting down: finishing the chord on air");
+  grpc_server->GetHealthCheckService()->SetServingStatus(false);
+  transmitter.shutdown();
+  grpc_server->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  spdlog::set_default_logger(spdlog::stderr_color_mt("dtmf-server"));
+  Flags f;
+  CLI::App app{"dtmf-server: the gRPC control API that drives a TurtleBot3 by sound"};
+  app.add_option("--address", f.address, "address to listen on")->capture_default_str();
+  app.add_option("--port", f.port, "port to listen on (0: any free one)")->check(CLI::Range(0, 65535))->capture_default_str();
+  app.add_option("--audio-out", f.audio_out, "loudspeaker: a device name or index, default, or wav:FILE (write what would be played)")
+      ->envname("DTMF_SERVER_AUDIO_OUT")->capture_default_str();
+  app.add_option("--audio-in", f.audio_in, "microphone for the robot's ACK / NACK: a device, default, wav:FILE, or none")
+      ->envname("DTMF_SERVER_AUDIO_IN")->capture_default_str();
+  app.add_option("--profile", f.profile, "link profile: " + dtmf::profile_names())->capture_default_str();
+  app.add_option("--db", f.db, "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
+      ->envname("DTMF_DB_URL");
+  app.add_option("--spill-file", f.spill_file, "where log rows wait while the database is away");
+  app.add_option("--on-unconfirmed", f.on_unconfirmed, "default policy for a frame unconfirmed after the automatic retry")
+      ->check(CLI::IsMember({"ask", "continue", "fail"}))->capture_default_str();
+  app.add_option("--decision-timeout-s", f.decision_timeout_s, "with ask: how long to wait for Decide")
+      ->check(CLI::Range(1.0, 3600.0))->capture_default_str();
+  app.add_option("--max-queue", f.max_queue, "commands that may wait; more get RESOURCE_EXHAUSTED")
+      ->check(CLI::Range(1, 10000))->capture_default_str();
+  app.add_option("--tls-cert", f.tls_cert, "PEM certificate: serve TLS (with --tls-key)");
+  app.add_option("--tls-key", f.tls_key, "PEM private key");
+  app.add_option("--auth-token-file", f.auth_token_file, "every call must carry 'authorization: Bearer <token in this file>'");
+  app.add_option("--log-level", f.log_level, "trace, debug, info, warn, error")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))->capture_default_str();
+  app.add_flag("--list-audio-devices", f.list_devices, "list the audio devices and exit");
+  app.footer("Exit codes: 0 stopped cleanly, 1 an audio device, the database or the port could not be had, 2 bad usage.\n"
+             "SIGINT / SIGTERM: health goes NOT_SERVING, the chord on air finishes, queued commands end UNAVAILABLE.");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+  spdlog::set_level(spdlog::level::from_str(f.log_level));
+  try {
+    if (f.list_devices) {
+      std::printf("%s", dtmf::physical::format_device_list(dtmf::physical::list_audio_devices()).c_str());
+      return 0;
+    }
+    return run(f);
+  } catch (const std::invalid_argument& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+}

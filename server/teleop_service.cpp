@@ -1,0 +1,199 @@
+#include "teleop_service.h"
+
+#include <spdlog/spdlog.h>
+
+#include "command/test_sequence.h"
+
+namespace dtmf::server {
+
+namespace {
+
+v1::FrameEvent frame_event(ProgressEvent::Kind kind) {
+  using K = ProgressEvent::Kind;
+  switch (kind) {
+    case K::Queued: return v1::FRAME_EVENT_QUEUED;
+    case K::Transmitting: return v1::FRAME_EVENT_TRANSMITTING;
+    case K::Ack: return v1::FRAME_EVENT_ACK;
+    case K::Nack: return v1::FRAME_EVENT_NACK;
+    case K::NoAnswer: return v1::FRAME_EVENT_NO_ANSWER;
+    case K::Retransmitting: return v1::FRAME_EVENT_RETRANSMITTING;
+    case K::AwaitingDecision: return v1::FRAME_EVENT_AWAITING_DECISION;
+    case K::Confirmed: return v1::FRAME_EVENT_CONFIRMED;
+    case K::Continued: return v1::FRAME_EVENT_CONTINUED;
+    case K::Failed: return v1::FRAME_EVENT_FAILED;
+  }
+  return v1::FRAME_EVENT_UNSPECIFIED;
+}
+
+void fill(v1::Progress& out, Job& job, const ProgressEvent& event) {
+  out.set_command_id(job.id());
+  out.set_event(frame_event(event.kind));
+  out.set_command(job.description());
+  out.set_frame_index(static_cast<std::uint32_t>(event.frame_index));
+  out.set_frame_count(static_cast<std::uint32_t>(job.frames().size()));
+  out.set_attempt(static_cast<std::uint32_t>(event.attempt));
+  const link::PlannedFrame& frame = event.frame ? *event.frame : job.frames()[static_cast<std::size_t>(event.frame_index)];
+  out.set_word(frame.word);
+  out.set_frame_bits(reliability::bit_string(frame.frame));
+  for (double hz : frame.tones_hz) out.add_tones_hz(hz);
+  if (event.response_time_ms) out.set_response_time_ms(*event.response_time_ms);
+  out.set_detail(event.detail);
+  out.set_queue_position(static_cast<std::uint32_t>(event.queue_position));
+  out.set_time_unix_ms(std::chrono::duration_cast<std::chrono::milliseconds>(event.time.time_since_epoch()).count());
+}
+
+grpc::Status outcome_status(Job& job) {
+  const std::string detail = job.outcome_detail();
+  switch (job.outcome()) {
+    case Outcome::Confirmed:
+    case Outcome::Continued: return grpc::Status::OK;
+    case Outcome::Cancelled: return {grpc::StatusCode::CANCELLED, detail};
+    case Outcome::Unavailable: return {grpc::StatusCode::UNAVAILABLE, detail};
+    default: return {grpc::StatusCode::ABORTED, job.description() + ": " + detail};
+  }
+}
+
+}  // namespace
+
+TeleopService::TeleopService(Transmitter& transmitter, store::Store& store, ServiceOptions options)
+    : transmitter_(transmitter), store_(store), options_(std::move(options)) {}
+
+grpc::Status TeleopService::authorize(grpc::ServerContext* context) const {
+  if (options_.auth_token.empty()) return grpc::Status::OK;
+  const auto& metadata = context->client_metadata();
+  const auto found = metadata.find("authorization");
+  if (found != metadata.end() && std::string(found->second.data(), found->second.size()) == "Bearer " + options_.auth_token) {
+    return grpc::Status::OK;
+  }
+  return {grpc::StatusCode::UNAUTHENTICATED,
+          "this server needs a bearer token: send metadata 'authorization: Bearer <token>' (dtmfctl --token-file FILE)"};
+}
+
+template <class Write>
+grpc::Status TeleopService::run_command(grpc::ServerContext* context, const command::Command& command,
+                                        const v1::CommandOptions& request_options, bool to_front, Write write) {
+  std::shared_ptr<Job> job;
+  try {
+    const CommandSettings settings = command_settings(request_options, options_.defaults);
+    job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front);
+  } catch (const RequestError& e) {
+    return e.status();
+  } catch (const QueueFull& e) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
+  } catch (const TransmitterUnavailable& e) {
+    return {grpc::StatusCode::UNAVAILABLE, e.what()};
+  }
+  bool client_gone = false;
+  while (!job->finished_and_drained()) {
+    if (!client_gone && context->IsCancelled()) {
+      client_gone = true;  // queued frames are withdrawn; a chord on air completes
+      job->cancel();
+    }
+    const auto event = job->next_event(std::chrono::milliseconds(100));
+    if (!event || client_gone) continue;
+    v1::Progress progress;
+    fill(progress, *job, *event);
+    if (!write(progress)) {
+      client_gone = true;
+      job->cancel();
+    }
+  }
+  return outcome_status(*job);
+}
+
+grpc::Status TeleopService::Drive(grpc::ServerContext* context, const v1::DriveRequest* request,
+                                  grpc::ServerWriter<v1::DriveResponse>* writer) {
+  if (auto denied = authorize(context); !denied.ok()) return denied;
+  try {
+    return run_command(context, drive_command(*request), request->options(), false, [&](const v1::Progress& p) {
+      v1::DriveResponse response;
+      *response.mutable_progress() = p;
+      return writer->Write(response);
+    });
+  } catch (const RequestError& e) {
+    return e.status();
+  }
+}
+
+grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnRequest* request,
+                                 grpc::ServerWriter<v1::TurnResponse>* writer) {
+  if (auto denied = authorize(context); !denied.ok()) return denied;
+  try {
+    return run_command(context, turn_command(*request), request->options(), false, [&](const v1::Progress& p) {
+      v1::TurnResponse response;
+      *response.mutable_progress() = p;
+      return writer->Write(response);
+    });
+  } catch (const RequestError& e) {
+    return e.status();
+  }
+}
+
+grpc::Status TeleopService::Stop(grpc::ServerContext* context, const v1::StopRequest* request,
+                                 grpc::ServerWriter<v1::StopResponse>* writer) {
+  if (auto denied = authorize(context); !denied.ok()) return denied;
+  return run_command(context, command::Stop{}, request->options(), true, [&](const v1::Progress& p) {
+    v1::StopResponse response;
+    *response.mutable_progress() = p;
+    return writer->Write(response);
+  });
+}
+
+grpc::Status TeleopService::Reset(grpc::ServerContext* context, const v1::ResetRequest* request,
+                                  grpc::ServerWriter<v1::ResetResponse>* writer) {
+  if (auto denied = authorize(context); !denied.ok()) return denied;
+  return run_command(context, command::Reset{}, request->options(), false, [&](const v1::Progress& p) {
+    v1::ResetResponse response;
+    *response.mutable_progress() = p;
+    return writer->Write(response);
+  });
+}
+
+grpc::Status TeleopService::Decide(grpc::ServerContext* context, const v1::DecideRequest* request, v1::DecideResponse*) {
+  if (auto denied = authorize(context); !denied.ok()) return denied;
+  try {
+    if (!transmitter_.decide(request->command_id(), decision_of(*request))) {
+      return {grpc::StatusCode::FAILED_PRECONDITION,
+              "command " + request->command_id() + " is not awaiting a decision (it may have ended or timed out)"};
+    }
+    return grpc::Status::OK;
+  } catch (const RequestError& e) {
+    return e.status();
+  }
+}
+
+grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const v1::RunTestSequenceRequest* request,
+                                            grpc::ServerWriter<v1::RunTestSequenceResponse>* writer) {
+  if (auto denied = authorize(context); !denied.ok()) return denied;
+  if (request->label().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "label: name the run, e.g. general, noise or 4 m"};
+  try {
+    command_settings(request->options(), options_.defaults);
+  } catch (const RequestError& e) {
+    return e.status();
+  }
+  std::string run_id;
+  if (auto started = start_run(request->label(), request->notes(), run_id); !started.ok()) return started;
+  const auto commands = command::seed_test_sequence();
+  const auto total = static_cast<std::uint32_t>(command::frame_count(commands));
+  std::uint32_t before = 0, done = 0;  // frames of the commands already through, and in all
+  grpc::Status status = grpc::Status::OK;
+  for (std::size_t k = 0; k < commands.size() && status.ok(); ++k) {
+    status = run_command(context, commands[k], request->options(), false, [&](const v1::Progress& p) {
+      if (p.event() == v1::FRAME_EVENT_ACK) done = before + p.frame_index() + 1;
+      if (p.event() == v1::FRAME_EVENT_CONFIRMED || p.event() == v1::FRAME_EVENT_CONTINUED) done = before + p.frame_count();
+      v1::RunTestSequenceResponse response;
+      response.set_run_id(run_id);
+      response.set_command_index(static_cast<std::uint32_t>(k));
+      response.set_command_count(static_cast<std::uint32_t>(commands.size()));
+      response.set_frames_done(done);
+      response.set_frames_total(total);
+      *response.mutable_progress() = p;
+      return writer->Write(response);
+    });
+    before = done;
+  }
+  end_run(run_id);
+  return status;
+}
+
+}  // namespace dtmf::server

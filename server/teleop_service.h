@@ -1,0 +1,58 @@
+// The gRPC service dtmf.v1.Teleop: validates requests, queues commands on the transmitter
+// and streams their progress; keeps labelled test runs and reads their reports from the
+// database. With an auth token set, every call must carry "authorization: Bearer <token>".
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "dtmf/v1/teleop.grpc.pb.h"
+#include "request_validation.h"
+#include "store.h"
+#include "transmitter.h"
+
+namespace dtmf::server {
+
+struct ServiceOptions {
+  store::DatabaseUrl database;      // for reports
+  CommandSettings defaults{Policy::Fail, std::chrono::seconds(60)};
+  std::string auth_token;           // empty: no authentication
+  std::string host;
+};
+
+class TeleopService final : public v1::Teleop::Service {
+ public:
+  TeleopService(Transmitter& transmitter, store::Store& store, ServiceOptions options);
+
+  grpc::Status Drive(grpc::ServerContext*, const v1::DriveRequest*, grpc::ServerWriter<v1::DriveResponse>*) override;
+  grpc::Status Turn(grpc::ServerContext*, const v1::TurnRequest*, grpc::ServerWriter<v1::TurnResponse>*) override;
+  grpc::Status Stop(grpc::ServerContext*, const v1::StopRequest*, grpc::ServerWriter<v1::StopResponse>*) override;
+  grpc::Status Reset(grpc::ServerContext*, const v1::ResetRequest*, grpc::ServerWriter<v1::ResetResponse>*) override;
+  grpc::Status RunTestSequence(grpc::ServerContext*, const v1::RunTestSequenceRequest*,
+                               grpc::ServerWriter<v1::RunTestSequenceResponse>*) override;
+  grpc::Status Decide(grpc::ServerContext*, const v1::DecideRequest*, v1::DecideResponse*) override;
+  grpc::Status StartRun(grpc::ServerContext*, const v1::StartRunRequest*, v1::StartRunResponse*) override;
+  grpc::Status EndRun(grpc::ServerContext*, const v1::EndRunRequest*, v1::EndRunResponse*) override;
+  grpc::Status ListRuns(grpc::ServerContext*, const v1::ListRunsRequest*, v1::ListRunsResponse*) override;
+  grpc::Status GetReport(grpc::ServerContext*, const v1::GetReportRequest*, v1::GetReportResponse*) override;
+
+ private:
+  grpc::Status authorize(grpc::ServerContext* context) const;
+  // Queues `command` and writes its progress through `write` until it ends.
+  template <class Write>
+  grpc::Status run_command(grpc::ServerContext* context, const command::Command& command,
+                           const v1::CommandOptions& options, bool to_front, Write write);
+  grpc::Status start_run(const std::string& label, const std::string& notes, std::string& run_id);
+  grpc::Status end_run(const std::string& run_id);
+
+  Transmitter& transmitter_;
+  store::Store& store_;
+  ServiceOptions options_;
+  std::mutex runs_mutex_;
+  std::optional<store::TestRunRow> active_run_;
+};
+
+}  // namespace dtmf::server

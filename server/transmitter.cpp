@@ -1,0 +1,177 @@
+#include "transmitter.h"
+
+#include <spdlog/spdlog.h>
+
+#include "signal/tone_listener.h"
+
+namespace dtmf::server {
+
+namespace {
+using Kind = ProgressEvent::Kind;
+
+store::CommandRow command_row(const Job& job, const LinkProfile& profile, const std::string& host) {
+  store::CommandRow row;
+  row.id = job.id();
+  row.run_id = job.run_id();
+  row.kind = command::kind_name(job.command());
+  row.parameters = nlohmann::json::object();
+  std::visit([&](const auto& c) {
+    using T = std::decay_t<decltype(c)>;
+    if constexpr (requires { c.speed_percent; }) row.parameters["speed_percent"] = c.speed_percent;
+    if constexpr (requires { c.rotation_percent; }) row.parameters["rotation_percent"] = c.rotation_percent;
+    if constexpr (requires { c.duration_s; }) row.parameters["duration_s"] = c.duration_s;
+    (void)sizeof(T);
+  }, job.command());
+  row.profile = profile.name;
+  row.frame_count = static_cast<int>(job.frames().size());
+  row.requested_at = store::WallClock::now();
+  row.host = host;
+  return row;
+}
+}  // namespace
+
+Transmitter::Transmitter(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> speaker,
+                         std::unique_ptr<physical::AudioSource> microphone, store::Store& store, TransmitterOptions options)
+    : profile_(profile), speaker_(std::move(speaker)), microphone_(std::move(microphone)), store_(store),
+      options_(std::move(options)) {
+  worker_ = std::thread([this] { run(); });
+  listener_ = std::thread([this] { listen(); });
+}
+
+Transmitter::~Transmitter() { shutdown(); }
+
+double Transmitter::now_ms() const {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - epoch_).count();
+}
+
+std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy policy,
+                                         std::chrono::milliseconds decision_timeout, bool to_front) {
+  std::shared_ptr<Job> job;
+  store::CommandRow first_row;
+  int position = 0;
+  {
+    std::lock_guard lock(mutex_);
+    job = std::make_shared<Job>(command, link::plan_command(profile_, command), policy, decision_timeout, run_id_);
+    job->log_row() = command_row(*job, profile_, options_.host);
+    first_row = job->log_row();  // the worker may update the job's row once it is queued
+    if (stopping_) throw TransmitterUnavailable("the server is shutting down");
+    if (!unavailable_.empty()) throw TransmitterUnavailable(unavailable_);
+    if (queue_.size() >= options_.max_queue) {
+      throw QueueFull("the transmit queue is full (" + std::to_string(options_.max_queue) +
+                      " commands wait); retry later, or send Stop, which goes first");
+    }
+    if (to_front) queue_.push_front(job);
+    else queue_.push_back(job);
+    position = to_front ? 0 : static_cast<int>(queue_.size()) - 1;
+    position += on_air_ ? 1 : 0;
+  }
+  store_.write(first_row);
+  ProgressEvent queued{Kind::Queued};
+  queued.queue_position = position;
+  job->emit(queued);
+  changed_.notify_all();
+  return job;
+}
+
+bool Transmitter::decide(const std::string& command_id, reliability::Decision decision) {
+  std::shared_ptr<Job> job;
+  {
+    std::lock_guard lock(mutex_);
+    if (on_air_ && on_air_->id() == command_id) job = on_air_;
+  }
+  return job && job->decide(decision);
+}
+
+void Transmitter::set_run(std::optional<std::string> run_id) {
+  std::lock_guard lock(mutex_);
+  run_id_ = std::move(run_id);
+}
+
+void Transmitter::shutdown() {
+  {
+    std::lock_guard lock(mutex_);
+    if (stopping_ && !worker_.joinable()) return;
+    stopping_ = true;
+    if (on_air_) on_air_->cancel();
+  }
+  changed_.notify_all();
+  if (worker_.joinable()) worker_.join();
+  if (listener_.joinable()) listener_.join();
+}
+
+void Transmitter::listen() {
+  auto listener = signal::reply_listener(profile_);
+  std::vector<float> block(static_cast<std::size_t>(profile_.hop_samples()));
+  double audio_ms = 0;
+  while (true) {
+    {
+      std::lock_guard lock(mutex_);
+      if (stopping_) return;
+    }
+    std::size_t got = 0;
+    try {
+      got = microphone_->read(block);
+    } catch (const std::exception& e) {
+      std::lock_guard lock(mutex_);
+      unavailable_ = std::string("the microphone failed: ") + e.what();
+      spdlog::error("{}", unavailable_);
+      changed_.notify_all();
+      return;
+    }
+    if (got == 0) return;  // the input ended (a file, or a stopped simulated air)
+    audio_ms += 1000.0 * static_cast<double>(got) / profile_.sample_rate_hz;
+    const double now = now_ms();
+    for (const signal::Heard& heard : listener.feed(std::span<const float>(block.data(), got))) {
+      std::lock_guard lock(mutex_);
+      // The block just read ends now; the reply passed the debouncer a little earlier.
+      replies_.push_back({static_cast<signal::Reply>(heard.symbol), now - (audio_ms - heard.heard_ms)});
+      changed_.notify_all();
+    }
+  }
+}
+
+std::optional<Transmitter::HeardReply> Transmitter::wait_reply(double since_ms, double until_ms) {
+  std::unique_lock lock(mutex_);
+  while (true) {
+    while (!replies_.empty() && replies_.front().steady_ms < since_ms) replies_.pop_front();  // for an earlier chord
+    if (!replies_.empty()) {
+      const HeardReply reply = replies_.front();
+      replies_.pop_front();
+      return reply;
+    }
+    if (stopping_ || now_ms() >= until_ms) return std::nullopt;
+    changed_.wait_for(lock, std::chrono::duration<double, std::milli>(std::min(until_ms - now_ms(), 50.0)));
+  }
+}
+
+void Transmitter::play(const std::vector<float>& chord, double start_ms) {
+  speaker_->write(chord);
+  // A file sink takes the chord at once: keep the pace of a real loudspeaker anyway.
+  const double end_ms = start_ms + profile_.timing.chord_ms;
+  while (now_ms() < end_ms) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(end_ms - now_ms()));
+}
+
+void Transmitter::run() {
+  while (true) {
+    std::shared_ptr<Job> job;
+    {
+      std::unique_lock lock(mutex_);
+      changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (stopping_) {
+        for (auto& waiting : queue_) waiting->finish(Outcome::Unavailable, "the server is shutting down");
+        queue_.clear();
+        return;
+      }
+      job = queue_.front();
+      queue_.pop_front();
+      on_air_ = job;
+    }
+    send(*job);
+    {
+      std::lock_guard lock(mutex_);
+      on_air_.reset();
+    }
+  }
+}
+
+}  // namespace dtmf::server

@@ -1,0 +1,99 @@
+// The sender's transmitter: one acoustic channel, so one chord on air at a time.
+//
+// Commands from any number of callers wait in one bounded queue (Stop goes to its front);
+// a worker thread takes them one by one and sends each frame under a RetryController
+// (seed Fig. 8): it plays the chord, waits for the ACK listener to hear an ACK or NACK
+// heard after the chord started, or for the ACK timeout, retransmits once by itself, and
+// then follows the command's policy (ask the caller, continue, or fail). A second thread
+// listens to the microphone with the sender's detector (ACK / NACK). Frames of a command
+// go out in order with nothing between them but other frames of the same command; a
+// cancelled command's queued frames never play, a chord already on air completes.
+// Every command and every attempt is logged through the store.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+
+#include "job.h"
+#include "physical/audio_io.h"
+#include "profile/link_profile.h"
+#include "signal/tone_plan.h"
+#include "store.h"
+
+namespace dtmf::server {
+
+class QueueFull : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+class TransmitterUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct TransmitterOptions {
+  std::size_t max_queue = 32;
+  std::string host;
+};
+
+class Transmitter {
+ public:
+  Transmitter(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> speaker,
+              std::unique_ptr<physical::AudioSource> microphone, store::Store& store, TransmitterOptions options);
+  ~Transmitter();
+
+  // Queues a command. Throws QueueFull, TransmitterUnavailable, command::ParameterError.
+  std::shared_ptr<Job> submit(const command::Command& command, Policy policy,
+                              std::chrono::milliseconds decision_timeout, bool to_front = false);
+  // Answers the job awaiting a decision; false if no such job waits.
+  bool decide(const std::string& command_id, reliability::Decision decision);
+  // Commands submitted from now on belong to this test run (none: outside runs).
+  void set_run(std::optional<std::string> run_id);
+  // Finishes the chord on air, fails everything else as unavailable, stops the threads.
+  void shutdown();
+
+  const LinkProfile& profile() const { return profile_; }
+
+ private:
+  struct HeardReply {
+    signal::Reply reply;
+    double steady_ms;
+  };
+
+  void run();
+  void listen();
+  void send(Job& job);
+  store::FrameAttemptRow attempt_row(const Job& job, int frame_index, int attempt, double start_ms) const;
+  store::WallTime wall(double steady_ms) const;
+  double now_ms() const;
+  void play(const std::vector<float>& chord, double start_ms);
+  std::optional<HeardReply> wait_reply(double since_ms, double until_ms);
+
+  const LinkProfile& profile_;
+  std::unique_ptr<physical::AudioSink> speaker_;
+  std::unique_ptr<physical::AudioSource> microphone_;
+  store::Store& store_;
+  TransmitterOptions options_;
+  const std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<std::shared_ptr<Job>> queue_;
+  std::shared_ptr<Job> on_air_;
+  std::deque<HeardReply> replies_;
+  std::optional<std::string> run_id_;
+  std::string unavailable_;  // why the audio path failed, once it did
+  bool stopping_ = false;
+  double channel_free_ms_ = 0;
+
+  std::thread worker_;
+  std::thread listener_;
+};
+
+}  // namespace dtmf::server

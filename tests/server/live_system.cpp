@@ -1,0 +1,107 @@
+#include "live_system.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+namespace dtmf::test_support {
+
+namespace {
+class Mute : public agent::ReplyPlayer {
+ public:
+  void play(signal::Reply, double) override {}
+  void finish(double) override {}
+};
+}  // namespace
+
+class LiveSystem::Recorder : public agent::CmdVelOutput {
+ public:
+  void publish(const agent::Velocity& v, double, std::chrono::system_clock::time_point) override {
+    std::lock_guard lock(mutex);
+    last = v;
+  }
+  std::mutex mutex;
+  agent::Velocity last;
+};
+
+LiveSystem::LiveSystem(LiveSystemOptions options)
+    : options_(std::move(options)), air_(seed_profile().sample_rate_hz, [] {
+        physical::ChannelConfig quiet;
+        quiet.noise = physical::parse_noise("white", -70);
+        return quiet;
+      }()) {
+  const LinkProfile& profile = seed_profile();
+  auto sender = air_.add_station("sender", 0.0);
+  auto robot = air_.add_station("robot", options_.distance_m);
+  air_.start();
+
+  store::StoreOptions no_db;
+  no_db.database = std::string();
+  robot_store_ = std::make_unique<store::Store>(no_db);
+  robot_microphone_ = std::move(robot.microphone);
+  if (options_.robot_answers) robot_replies_ = std::make_unique<agent::LiveReplyPlayer>(profile, std::move(robot.speaker));
+  else robot_replies_ = std::make_unique<Mute>();
+  recorder_ = std::make_unique<Recorder>();
+  timeline_ = std::make_unique<agent::Timeline>(true);
+  agent::AgentOptions agent_options;
+  agent_options.on_frame_heard = [this](const link::ReceivedFrame& frame) {
+    if (!frame.crc_ok) return;
+    std::lock_guard lock(heard_.mutex);
+    heard_.words.push_back(reliability::frame_word(frame.frame));
+    if (frame.event && frame.event->command) heard_.commands.push_back(command::describe(*frame.event->command));
+  };
+  agent_ = std::make_unique<agent::Agent>(agent_options, *robot_replies_,
+                                          std::vector<agent::CmdVelOutput*>{recorder_.get()}, *robot_store_, *timeline_);
+  robot_ = std::thread([this, &profile] {
+    std::vector<float> block(static_cast<std::size_t>(profile.hop_samples()));
+    while (!stopping_) {
+      const std::size_t got = robot_microphone_->read(block);
+      if (got == 0) return;
+      agent_->process(std::span<const float>(block.data(), got));
+    }
+  });
+
+  store::StoreOptions server_db;
+  server_db.database = options_.database;
+  server_db.spill_path = ::testing::TempDir() + "/live-system-" + std::to_string(::getpid()) + ".spill";
+  store_ = std::make_unique<store::Store>(server_db);
+  transmitter_ = std::make_unique<server::Transmitter>(profile, std::move(sender.speaker), std::move(sender.microphone),
+                                                       *store_, server::TransmitterOptions{options_.max_queue, "test"});
+  server::ServiceOptions service_options;
+  service_options.database = options_.database;
+  service_options.defaults.policy = options_.default_policy;
+  service_options.auth_token = options_.auth_token;
+  service_ = std::make_unique<server::TeleopService>(*transmitter_, *store_, service_options);
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port_);
+  builder.RegisterService(service_.get());
+  server_ = builder.BuildAndStart();
+  channel_ = grpc::CreateChannel("127.0.0.1:" + std::to_string(port_), grpc::InsecureChannelCredentials());
+}
+
+LiveSystem::~LiveSystem() {
+  transmitter_->shutdown();
+  server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
+  stopping_ = true;
+  air_.stop();
+  robot_.join();
+}
+
+std::unique_ptr<v1::Teleop::Stub> LiveSystem::client() const { return v1::Teleop::NewStub(channel_); }
+
+std::vector<int> LiveSystem::words_heard() {
+  std::lock_guard lock(heard_.mutex);
+  return heard_.words;
+}
+
+std::vector<std::string> LiveSystem::commands_executed() {
+  std::lock_guard lock(heard_.mutex);
+  return heard_.commands;
+}
+
+agent::Velocity LiveSystem::last_velocity() {
+  std::lock_guard lock(recorder_->mutex);
+  return recorder_->last;
+}
+
+}  // namespace dtmf::test_support

@@ -1,0 +1,89 @@
+// Test fixture: the whole system in one process. The server's transmitter and the robot's
+// agent talk through a simulated room running in real time (physical/simulated_air.h); the
+// service listens on a loopback port for real gRPC clients.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "agent.h"
+#include "dtmf/v1/teleop.grpc.pb.h"
+#include "physical/simulated_air.h"
+#include "teleop_service.h"
+
+namespace dtmf::test_support {
+
+struct LiveSystemOptions {
+  double distance_m = 1.0;
+  bool robot_answers = true;  // false: the robot's loudspeaker is dead (every ACK lost)
+  std::string auth_token;
+  std::size_t max_queue = 32;
+  store::DatabaseUrl database = std::string();  // none
+  server::Policy default_policy = server::Policy::Fail;
+};
+
+// What the robot heard, in order: one entry per intact frame.
+struct HeardWords {
+  std::mutex mutex;
+  std::vector<int> words;
+  std::vector<std::string> commands;
+};
+
+class LiveSystem {
+ public:
+  explicit LiveSystem(LiveSystemOptions options = {});
+  ~LiveSystem();
+
+  std::unique_ptr<v1::Teleop::Stub> client() const;
+  std::shared_ptr<grpc::Channel> channel() const { return channel_; }
+  int port() const { return port_; }
+  std::vector<int> words_heard();
+  std::vector<std::string> commands_executed();
+  agent::Velocity last_velocity();
+
+ private:
+  class Recorder;
+  LiveSystemOptions options_;
+  HeardWords heard_;
+  physical::SimulatedAir air_;
+  std::unique_ptr<store::Store> store_;
+  std::unique_ptr<server::Transmitter> transmitter_;
+  std::unique_ptr<server::TeleopService> service_;
+  std::unique_ptr<grpc::Server> server_;
+  std::shared_ptr<grpc::Channel> channel_;
+  int port_ = 0;
+  // The robot.
+  std::unique_ptr<physical::AudioSource> robot_microphone_;
+  std::unique_ptr<agent::ReplyPlayer> robot_replies_;
+  std::unique_ptr<Recorder> recorder_;
+  std::unique_ptr<store::Store> robot_store_;
+  std::unique_ptr<agent::Timeline> timeline_;
+  std::unique_ptr<agent::Agent> agent_;
+  std::atomic<bool> stopping_{false};
+  std::thread robot_;
+};
+
+// Reads a server stream to its end: every response, and the final status.
+template <class Response>
+struct StreamResult {
+  std::vector<Response> responses;
+  grpc::Status status;
+};
+
+template <class Response, class Start>
+StreamResult<Response> read_stream(Start start, const std::string& token = "") {
+  grpc::ClientContext context;
+  if (!token.empty()) context.AddMetadata("authorization", "Bearer " + token);
+  StreamResult<Response> result;
+  auto reader = start(context);
+  Response response;
+  while (reader->Read(&response)) result.responses.push_back(response);
+  result.status = reader->Finish();
+  return result;
+}
+
+}  // namespace dtmf::test_support
