@@ -20,6 +20,7 @@
 
 #include "physical/audio_spec.h"
 #include "physical/portaudio_device.h"
+#include "physical/wav_file.h"
 #include "teleop_service.h"
 
 namespace {
@@ -77,7 +78,11 @@ int run(const Flags& f) {
     auto connection = store::connect(db);
     spdlog::info("database {}: schema version {}", store::describe_database(db), store::migrate(*connection).version_after);
   }
-  auto speaker = physical::open_audio_sink(f.audio_out, profile.sample_rate_hz);
+  // A file stands in for the loudspeaker in real time: gaps and retries keep their length.
+  std::unique_ptr<physical::AudioSink> speaker =
+      physical::is_file_spec(f.audio_out)
+          ? std::make_unique<physical::RealTimeWavSink>(f.audio_out.substr(4), profile.sample_rate_hz)
+          : physical::open_audio_sink(f.audio_out, profile.sample_rate_hz);
   std::unique_ptr<physical::AudioSource> microphone =
       f.audio_in == "none" ? std::make_unique<Silence>(profile.sample_rate_hz)
                            : physical::open_audio_source(f.audio_in, profile.sample_rate_hz, 0);

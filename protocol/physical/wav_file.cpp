@@ -133,6 +133,20 @@ void WavFileSink::write(std::span<const float> samples) {
 
 void WavFileSink::drain() { sf_write_sync(static_cast<SNDFILE*>(file_)); }
 
+RealTimeWavSink::RealTimeWavSink(const std::string& path, int sample_rate_hz) : WavFileSink(path, sample_rate_hz) {}
+
+void RealTimeWavSink::write(std::span<const float> samples) {
+  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const auto due = static_cast<long long>(elapsed_s * sample_rate_hz());
+  if (due > written_) {
+    const std::vector<float> silence(static_cast<std::size_t>(due - written_), 0.0f);
+    WavFileSink::write(silence);
+    written_ = due;
+  }
+  WavFileSink::write(samples);
+  written_ += static_cast<long long>(samples.size());
+}
+
 std::vector<float> read_audio_file(const std::string& path, int sample_rate_hz,
                                    int min_file_rate_hz) {
   WavFileSource source(path, sample_rate_hz, min_file_rate_hz);

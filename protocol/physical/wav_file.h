@@ -6,6 +6,7 @@
 // recording needs only a small buffer. Writing produces 16-bit PCM WAV.
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <span>
 #include <string>
@@ -52,6 +53,18 @@ class WavFileSink : public AudioSink {
   std::string path_;
   int sample_rate_hz_;
   void* file_;
+};
+
+// A file standing in for a loudspeaker: silence fills the wall-clock time between writes,
+// so the file plays back as the sound would have been heard (a server's --audio-out wav:).
+class RealTimeWavSink : public WavFileSink {
+ public:
+  RealTimeWavSink(const std::string& path, int sample_rate_hz);
+  void write(std::span<const float> samples) override;
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  long long written_ = 0;
 };
 
 // Whole-file helpers.

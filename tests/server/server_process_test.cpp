@@ -1,0 +1,172 @@
+// dtmf-server as users run it: a process with health and reflection (what grpcurl and
+// health probes use), writing what it plays to a file when there is no sound card, and
+// shutting down gracefully on SIGTERM.
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <future>
+#include <set>
+#include <thread>
+
+#include <grpcpp/grpcpp.h>
+
+#include "dtmf/v1/teleop.grpc.pb.h"
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
+#include "physical/wav_file.h"
+#include "profile/link_profile.h"
+#include "signal/tone_listener.h"
+#include "support/run_command.h"
+
+using namespace dtmf;
+namespace fs = std::filesystem;
+
+namespace {
+
+int free_port() {
+  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(s, reinterpret_cast<sockaddr*>(&address), sizeof address);
+  socklen_t length = sizeof address;
+  ::getsockname(s, reinterpret_cast<sockaddr*>(&address), &length);
+  ::close(s);
+  return ntohs(address.sin_port);
+}
+
+class ServerProcess : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    fs::create_directories(dir_);
+    port_ = free_port();
+    const std::string command = std::string(DTMF_SERVER_PATH) + " --address 127.0.0.1 --port " + std::to_string(port_) +
+                                " --audio-out wav:" + path("sent.wav") + " --audio-in none --db none > /dev/null 2> " + path("server.log") +
+                                " & echo $!";
+    pid_ = std::stoi(test_support::run_command(command).out);
+    channel_ = grpc::CreateChannel("127.0.0.1:" + std::to_string(port_), grpc::InsecureChannelCredentials());
+    ASSERT_TRUE(channel_->WaitForConnected(std::chrono::system_clock::now() + std::chrono::seconds(10)))
+        << test_support::run_command("cat " + path("server.log")).out;
+  }
+  void TearDown() override {
+    if (pid_ > 0) ::kill(pid_, SIGKILL);
+    fs::remove_all(dir_);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  // Sends SIGTERM and waits for the process to go; its log.
+  std::string terminate() {
+    ::kill(pid_, SIGTERM);
+    for (int i = 0; i < 100 && ::kill(pid_, 0) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    EXPECT_NE(::kill(pid_, 0), 0) << "still running 10 s after SIGTERM";
+    pid_ = -1;
+    return test_support::run_command("cat " + path("server.log")).out;
+  }
+
+  fs::path dir_ = fs::path(::testing::TempDir()) / ("server-process-" + std::to_string(::getpid()));
+  int port_ = 0;
+  int pid_ = -1;
+  std::shared_ptr<grpc::Channel> channel_;
+};
+
+}  // namespace
+
+TEST_F(ServerProcess, HealthAndReflectionAnswer) {
+  auto health = grpc::health::v1::Health::NewStub(channel_);
+  grpc::ClientContext context;
+  grpc::health::v1::HealthCheckRequest request;
+  grpc::health::v1::HealthCheckResponse response;
+  ASSERT_TRUE(health->Check(&context, request, &response).ok());
+  EXPECT_EQ(response.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+
+  auto reflection = grpc::reflection::v1alpha::ServerReflection::NewStub(channel_);
+  grpc::ClientContext reflection_context;
+  auto stream = reflection->ServerReflectionInfo(&reflection_context);
+  grpc::reflection::v1alpha::ServerReflectionRequest list;
+  list.set_list_services("");
+  ASSERT_TRUE(stream->Write(list));
+  grpc::reflection::v1alpha::ServerReflectionResponse listed;
+  ASSERT_TRUE(stream->Read(&listed));
+  std::set<std::string> services;
+  for (const auto& s : listed.list_services_response().service()) services.insert(s.name());
+  EXPECT_TRUE(services.count("dtmf.v1.Teleop"));
+  EXPECT_TRUE(services.count("grpc.health.v1.Health"));
+  // The RPCs, as grpcurl describe shows them.
+  grpc::reflection::v1alpha::ServerReflectionRequest describe;
+  describe.set_file_containing_symbol("dtmf.v1.Teleop");
+  ASSERT_TRUE(stream->Write(describe));
+  grpc::reflection::v1alpha::ServerReflectionResponse described;
+  ASSERT_TRUE(stream->Read(&described));
+  ASSERT_GT(described.file_descriptor_response().file_descriptor_proto_size(), 0);
+  const std::string file = described.file_descriptor_response().file_descriptor_proto(0);
+  for (const char* rpc : {"Drive", "Turn", "Stop", "Reset", "RunTestSequence", "Decide", "StartRun", "GetReport"}) {
+    EXPECT_NE(file.find(rpc), std::string::npos) << rpc;
+  }
+  stream->WritesDone();
+  stream->Finish();
+}
+
+TEST_F(ServerProcess, WithoutARobotFramesGoUnansweredAndTheFileHoldsThem) {
+  auto client = v1::Teleop::NewStub(channel_);
+  grpc::ClientContext context;
+  v1::ResetRequest request;
+  request.mutable_options()->set_on_unconfirmed(v1::UNCONFIRMED_POLICY_CONTINUE);
+  auto reader = client->Reset(&context, request);
+  v1::ResetResponse response;
+  std::vector<v1::FrameEvent> events;
+  while (reader->Read(&response)) events.push_back(response.progress().event());
+  ASSERT_TRUE(reader->Finish().ok());
+  EXPECT_EQ(events, (std::vector<v1::FrameEvent>{v1::FRAME_EVENT_QUEUED, v1::FRAME_EVENT_TRANSMITTING,
+                                                 v1::FRAME_EVENT_NO_ANSWER, v1::FRAME_EVENT_RETRANSMITTING,
+                                                 v1::FRAME_EVENT_NO_ANSWER, v1::FRAME_EVENT_CONTINUED}));
+  const std::string log = terminate();
+  EXPECT_NE(log.find("shutting down"), std::string::npos) << log;
+  auto listener = signal::chord_listener(seed_profile());
+  std::vector<std::uint32_t> heard;
+  for (const auto& h : listener.feed(physical::read_audio_file(path("sent.wav"), 48000))) heard.push_back(h.symbol);
+  EXPECT_EQ(heard, (std::vector<std::uint32_t>{0, 0}));  // the frame and its one retransmission
+}
+
+TEST_F(ServerProcess, SigtermFinishesTheChordOnAirAndEndsQueuedCallsUnavailable) {
+  auto drive = std::async(std::launch::async, [this] {
+    auto client = v1::Teleop::NewStub(channel_);
+    grpc::ClientContext context;
+    v1::DriveRequest request;
+    request.set_speed_percent(10);
+    auto reader = client->Drive(&context, request);
+    v1::DriveResponse response;
+    while (reader->Read(&response)) {
+    }
+    return reader->Finish();
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));  // its first chord is on air
+  const std::string log = terminate();
+  const grpc::Status status = drive.get();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAVAILABLE) << status.error_message();
+  EXPECT_NE(status.error_message().find("shutting down"), std::string::npos) << status.error_message();
+  // The chord on air was played whole: the file holds one complete frame.
+  auto listener = signal::chord_listener(seed_profile());
+  const auto sent = physical::read_audio_file(path("sent.wav"), 48000);
+  EXPECT_GE(sent.size(), static_cast<std::size_t>(seed_profile().samples_for_ms(seed_profile().timing.chord_ms)));
+  std::size_t frames = 0;
+  for (const auto& h : listener.feed(sent)) frames += h.symbol == 0 ? 1 : 0;
+  EXPECT_EQ(frames, 1u) << log;
+}
+
+TEST(ServerFlags, UsageErrorsAndABusyPortAreClear) {
+  EXPECT_EQ(test_support::run_command(std::string(DTMF_SERVER_PATH) + " --port 70000").exit_code, 2);
+  EXPECT_EQ(test_support::run_command(std::string(DTMF_SERVER_PATH) + " --on-unconfirmed maybe").exit_code, 2);
+  const auto help = test_support::run_command(std::string(DTMF_SERVER_PATH) + " --help");
+  EXPECT_EQ(help.exit_code, 0);
+  for (const char* flag : {"--address", "--port", "--audio-out", "--audio-in", "--tls-cert", "--auth-token-file",
+                           "--on-unconfirmed", "--max-queue", "Exit codes"}) {
+    EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
+  }
+  const auto tls = test_support::run_command(std::string(DTMF_SERVER_PATH) +
+                                             " --audio-out wav:/dev/null --audio-in none --db none --tls-cert /nonexistent.pem --tls-key /nonexistent.key");
+  EXPECT_EQ(tls.exit_code, 1);
+  EXPECT_NE(tls.out.find("/nonexistent"), std::string::npos) << tls.out;
+}
