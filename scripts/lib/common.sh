@@ -10,7 +10,7 @@ DTMF_PACKAGES=(
   pulseaudio pulseaudio-utils libasound2-plugins alsa-utils
   postgresql libpqxx-dev cyclonedds-dev cyclonedds-tools
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
-  espeak-ng sox
+  espeak-ng sox openssl
 )
 
 # Installs what is missing (as root), or says exactly what to run and fails.

@@ -44,6 +44,8 @@ class LiveSystem {
   std::vector<int> words_heard();
   std::vector<std::string> commands_executed();
   agent::Velocity last_velocity();
+  // The sound devices go away (a USB sound card unplugged): the room stops.
+  void pull_the_plug() { air_.stop(); }
 
  private:
   class Recorder;

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <future>
 #include <set>
 #include <thread>
@@ -45,10 +46,10 @@ class ServerProcess : public ::testing::Test {
     fs::create_directories(dir_);
     port_ = free_port();
     const std::string command = std::string(DTMF_SERVER_PATH) + " --address 127.0.0.1 --port " + std::to_string(port_) +
-                                " --audio-out wav:" + path("sent.wav") + " --audio-in none --db none > /dev/null 2> " + path("server.log") +
-                                " & echo $!";
+                                " --audio-out wav:" + path("sent.wav") + " --audio-in none --db none " + extra_flags() +
+                                " > /dev/null 2> " + path("server.log") + " & echo $!";
     pid_ = std::stoi(test_support::run_command(command).out);
-    channel_ = grpc::CreateChannel("127.0.0.1:" + std::to_string(port_), grpc::InsecureChannelCredentials());
+    channel_ = grpc::CreateChannel("localhost:" + std::to_string(port_), credentials());
     ASSERT_TRUE(channel_->WaitForConnected(std::chrono::system_clock::now() + std::chrono::seconds(10)))
         << test_support::run_command("cat " + path("server.log")).out;
   }
@@ -57,6 +58,8 @@ class ServerProcess : public ::testing::Test {
     fs::remove_all(dir_);
   }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  virtual std::string extra_flags() { return ""; }
+  virtual std::shared_ptr<grpc::ChannelCredentials> credentials() { return grpc::InsecureChannelCredentials(); }
   // Sends SIGTERM and waits for the process to go; its log.
   std::string terminate() {
     ::kill(pid_, SIGTERM);
@@ -154,6 +157,47 @@ TEST_F(ServerProcess, SigtermFinishesTheChordOnAirAndEndsQueuedCallsUnavailable)
   std::size_t frames = 0;
   for (const auto& h : listener.feed(sent)) frames += h.symbol == 0 ? 1 : 0;
   EXPECT_EQ(frames, 1u) << log;
+}
+
+// TLS and a bearer token, as a server reachable from a network should run.
+class SecuredServerProcess : public ServerProcess {
+ protected:
+  std::string extra_flags() override {
+    const std::string cert = path("cert.pem"), key = path("key.pem");
+    EXPECT_EQ(test_support::run_command("openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=localhost "
+                                        "-addext subjectAltName=DNS:localhost -keyout " + key + " -out " + cert).exit_code, 0);
+    std::ofstream(path("token")) << "tok-123\n";
+    return "--tls-cert " + cert + " --tls-key " + key + " --auth-token-file " + path("token");
+  }
+  std::shared_ptr<grpc::ChannelCredentials> credentials() override {
+    grpc::SslCredentialsOptions tls;
+    tls.pem_root_certs = test_support::run_command("cat " + path("cert.pem")).out;
+    return grpc::SslCredentials(tls);
+  }
+};
+
+TEST_F(SecuredServerProcess, ServesTlsAndDemandsTheToken) {
+  auto client = v1::Teleop::NewStub(channel_);
+  v1::ResetRequest request;
+  request.mutable_options()->set_on_unconfirmed(v1::UNCONFIRMED_POLICY_CONTINUE);
+  {
+    grpc::ClientContext context;
+    auto reader = client->Reset(&context, request);
+    v1::ResetResponse response;
+    while (reader->Read(&response)) {
+    }
+    EXPECT_EQ(reader->Finish().error_code(), grpc::StatusCode::UNAUTHENTICATED);
+  }
+  grpc::ClientContext context;
+  context.AddMetadata("authorization", "Bearer tok-123");
+  auto reader = client->Reset(&context, request);
+  v1::ResetResponse response;
+  while (reader->Read(&response)) {
+  }
+  EXPECT_TRUE(reader->Finish().ok());
+  // A plaintext client gets nowhere.
+  auto plain = grpc::CreateChannel("localhost:" + std::to_string(port_), grpc::InsecureChannelCredentials());
+  EXPECT_FALSE(plain->WaitForConnected(std::chrono::system_clock::now() + std::chrono::seconds(2)));
 }
 
 TEST(ServerFlags, UsageErrorsAndABusyPortAreClear) {

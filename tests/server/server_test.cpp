@@ -285,3 +285,15 @@ TEST(Server, ReportsWithoutADatabaseSaySo) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
   EXPECT_NE(status.error_message().find("--db"), std::string::npos);
 }
+
+TEST(Server, AnAudioDeviceThatGoesAwayMakesCommandsUnavailable) {
+  LiveSystem system;
+  auto client = system.client();
+  system.pull_the_plug();
+  v1::ResetRequest r;
+  const auto first = read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); });
+  EXPECT_EQ(first.status.error_code(), grpc::StatusCode::UNAVAILABLE) << first.status.error_message();
+  EXPECT_NE(first.status.error_message().find("loudspeaker failed"), std::string::npos) << first.status.error_message();
+  const auto next = read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); });
+  EXPECT_EQ(next.status.error_code(), grpc::StatusCode::UNAVAILABLE);
+}
