@@ -21,6 +21,7 @@
 #include "cmd_vel/log_cmd_vel.h"
 #include "cmd_vel/sim_turtlebot.h"
 #include "physical/audio_spec.h"
+#include "program_main.h"
 #include "physical/portaudio_device.h"
 
 namespace {
@@ -180,26 +181,15 @@ int main(int argc, char** argv) {
   app.footer("Exit codes: 0 stopped cleanly, 1 a device, the database or DDS could not be had, 2 bad usage.\n"
              "Safety: zero velocity is published when a duration ends, on STOP, on SIGINT/SIGTERM, at the\n"
              "end of a recording, and when continuous motion exceeds --continuous-limit-s.");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
-  }
+  if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
   spdlog::set_level(spdlog::level::from_str(f.log_level));
-  try {
-    if (f.list_devices) {
-      std::printf("%s", dtmf::physical::format_device_list(dtmf::physical::list_audio_devices()).c_str());
-      return 0;
-    }
-    return run(f);
-  } catch (const std::invalid_argument& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
+  return dtmf::program::run(
+      [&] {
+        if (f.list_devices) {
+          std::printf("%s", dtmf::physical::format_device_list(dtmf::physical::list_audio_devices()).c_str());
+          return 0;
+        }
+        return run(f);
+      },
+      [](const std::string& error) { spdlog::error("{}", error); });
 }

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "physical/audio_spec.h"
+#include "program_main.h"
 #include "physical/portaudio_device.h"
 #include "physical/wav_file.h"
 #include "teleop_service.h"
@@ -168,26 +169,15 @@ int main(int argc, char** argv) {
   app.add_flag("--list-audio-devices", f.list_devices, "list the audio devices and exit");
   app.footer("Exit codes: 0 stopped cleanly, 1 an audio device, the database or the port could not be had, 2 bad usage.\n"
              "SIGINT / SIGTERM: health goes NOT_SERVING, the chord on air finishes, queued commands end UNAVAILABLE.");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
-  }
+  if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
   spdlog::set_level(spdlog::level::from_str(f.log_level));
-  try {
-    if (f.list_devices) {
-      std::printf("%s", dtmf::physical::format_device_list(dtmf::physical::list_audio_devices()).c_str());
-      return 0;
-    }
-    return run(f);
-  } catch (const std::invalid_argument& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
+  return dtmf::program::run(
+      [&] {
+        if (f.list_devices) {
+          std::printf("%s", dtmf::physical::format_device_list(dtmf::physical::list_audio_devices()).c_str());
+          return 0;
+        }
+        return run(f);
+      },
+      [](const std::string& error) { spdlog::error("{}", error); });
 }

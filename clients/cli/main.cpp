@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "offline_commands.h"
+#include "program_main.h"
 #include "profile/link_profile.h"
 
 int main(int argc, char** argv) {
@@ -25,23 +26,6 @@ int main(int argc, char** argv) {
   dtmf::cli::add_decode_command(app, run);
   dtmf::cli::add_simulate_command(app, run);
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
-  }
-  try {
-    return run();
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "dtmfctl: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "dtmfctl: %s\n", e.what());
-    return 1;
-  }
+  if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
+  return dtmf::program::run(run, [](const std::string& error) { std::fprintf(stderr, "dtmfctl: %s\n", error.c_str()); });
 }

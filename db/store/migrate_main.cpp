@@ -8,6 +8,7 @@
 #include <pqxx/pqxx>
 
 #include "database.h"
+#include "program_main.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"dtmf-migrate: apply db/migrations to the dtmf-teleop database"};
@@ -17,21 +18,14 @@ int main(int argc, char** argv) {
       ->envname("DTMF_DB_URL");
   app.add_flag("--status", status_only, "only print the schema version, change nothing");
   app.footer("Exit codes: 0 done, 1 the database refused or could not be reached, 2 bad usage.");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
-  }
+  if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
   using namespace dtmf::store;
   const DatabaseUrl url = parse_database_flag(db);
   if (database_disabled(url)) {
     std::fprintf(stderr, "dtmf-migrate: --db none: there is no database to migrate\n");
-    return 2;
+    return dtmf::program::kExitUsage;
   }
-  try {
+  return dtmf::program::run([&] {
     auto connection = connect(url);
     const int newest = known_migrations().empty() ? 0 : known_migrations().back().version;
     if (status_only) {
@@ -44,8 +38,5 @@ int main(int argc, char** argv) {
     std::printf("%s: schema version %d (was %d)\n", describe_database(url).c_str(), result.version_after,
                 result.version_before);
     return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "dtmf-migrate: %s\n", e.what());
-    return 1;
-  }
+  }, [](const std::string& error) { std::fprintf(stderr, "dtmf-migrate: %s\n", error.c_str()); });
 }
