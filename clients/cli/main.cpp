@@ -1,11 +1,13 @@
 // dtmfctl: the command-line client of dtmf-teleop.
 //
-// Exit codes: 0 success, 1 a runtime error (unreadable file, bad audio), 2 bad usage.
+// Exit codes: 0 success / confirmed, 1 a runtime error (unreadable file, bad audio), 2 bad usage,
+// 3 the robot did not confirm or the command failed, 4 the server cannot be reached.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 
 #include "offline_commands.h"
+#include "server_connection.h"
 #include "program_main.h"
 #include "profile/link_profile.h"
 
@@ -14,18 +16,34 @@ int main(int argc, char** argv) {
                "Link profiles: " + dtmf::profile_names()};
   app.require_subcommand(1);
   app.footer(
-      "Exit codes: 0 success, 1 runtime error (unreadable file, bad audio), 2 bad usage.\n"
+      "Exit codes: 0 success (command confirmed), 1 runtime error (unreadable file, bad audio), 2 bad usage,\n"
+      "            3 the robot did not confirm / the command failed, 4 the server cannot be reached.\n"
       "Examples:\n"
       "  dtmfctl encode --json --word 2861\n"
       "  dtmfctl encode --wav drive.wav drive --speed 50 --duration 3\n"
       "  dtmfctl simulate drive.wav heard.wav --distance 4 --noise white --noise-dbfs -40\n"
-      "  dtmfctl decode --json heard.wav");
+      "  dtmfctl decode --json heard.wav\n"
+      "  dtmfctl drive --speed 50 --duration 2          (through dtmf-server: --server, DTMF_SERVER)\n"
+      "  dtmfctl sequence --label general\n"
+      "  dtmfctl report --json");
 
   dtmf::cli::Action run;
   dtmf::cli::add_encode_command(app, run);
   dtmf::cli::add_decode_command(app, run);
   dtmf::cli::add_simulate_command(app, run);
+  dtmf::cli::add_live_commands(app, run);
+  dtmf::cli::add_run_commands(app, run);
 
   if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
-  return dtmf::program::run(run, [](const std::string& error) { std::fprintf(stderr, "dtmfctl: %s\n", error.c_str()); });
+  const auto report = [](const std::string& error) { std::fprintf(stderr, "dtmfctl: %s\n", error.c_str()); };
+  return dtmf::program::run(
+      [&] {
+        try {
+          return run();
+        } catch (const dtmf::cli::Unreachable& e) {
+          report(e.what());
+          return dtmf::cli::kExitUnreachable;
+        }
+      },
+      report);
 }

@@ -19,4 +19,9 @@ void add_encode_command(CLI::App& app, Action& run);
 void add_decode_command(CLI::App& app, Action& run);
 void add_simulate_command(CLI::App& app, Action& run);
 
+// Live subcommands (through dtmf-server): drive, turn, stop, reset, sequence (live_commands.cpp);
+// runs, report, health (report_view.cpp).
+void add_live_commands(CLI::App& app, Action& run);
+void add_run_commands(CLI::App& app, Action& run);
+
 }  // namespace dtmf::cli

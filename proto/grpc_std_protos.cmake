@@ -1,5 +1,5 @@
 # C++ clients of gRPC's standard health and reflection services, from Debian's grpc-proto,
-# so the tests can check what grpcurl and health probes see.
+# for dtmfctl health and for tests that check what grpcurl and health probes see.
 set(GRPC_PROTO_DIR /usr/share/grpc-proto)
 set(STD_GEN ${CMAKE_CURRENT_BINARY_DIR}/std_gen)
 set(STD_PROTOS grpc/health/v1/health.proto grpc/reflection/v1alpha/reflection.proto)

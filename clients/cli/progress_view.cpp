@@ -1,0 +1,103 @@
+#include "progress_view.h"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace dtmf::cli {
+
+std::string event_name(v1::FrameEvent event) {
+  std::string name = v1::FrameEvent_Name(event);
+  name = name.substr(std::string("FRAME_EVENT_").size());
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return name;
+}
+
+namespace {
+
+std::string bar(const SequencePosition& s) {
+  constexpr int kWidth = 20;
+  const int filled = s.frames_total ? static_cast<int>(kWidth * s.frames_done / s.frames_total) : 0;
+  char text[64];
+  std::snprintf(text, sizeof text, "[%s%s] %2u/%u ", std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), s.frames_done, s.frames_total);
+  return text;
+}
+
+std::string describe(const v1::Progress& p) {
+  char text[256];
+  switch (p.event()) {
+    case v1::FRAME_EVENT_QUEUED:
+      std::snprintf(text, sizeof text, "%s: queued (%u ahead)", p.command().c_str(), p.queue_position());
+      return text;
+    case v1::FRAME_EVENT_CONFIRMED:
+    case v1::FRAME_EVENT_CONTINUED:
+    case v1::FRAME_EVENT_FAILED:
+      return p.command() + ": " + event_name(p.event()) + (p.detail().empty() ? "" : " (" + p.detail() + ")");
+    default:
+      break;
+  }
+  std::string state = event_name(p.event());
+  if (p.event() == v1::FRAME_EVENT_ACK || p.event() == v1::FRAME_EVENT_NACK) {
+    char ms[32];
+    std::snprintf(ms, sizeof ms, " after %.0f ms", p.response_time_ms());
+    state = (p.event() == v1::FRAME_EVENT_ACK ? "ACK" : "NACK") + std::string(ms);
+  }
+  if (p.event() == v1::FRAME_EVENT_TRANSMITTING || p.event() == v1::FRAME_EVENT_RETRANSMITTING) {
+    state += " (attempt " + std::to_string(p.attempt()) + ")";
+  }
+  std::string tones;
+  for (double hz : p.tones_hz()) {
+    char t[16];
+    std::snprintf(t, sizeof t, " %.0f", hz);
+    tones += t;
+  }
+  std::snprintf(text, sizeof text, "frame %u/%u word %4u %s tones%s Hz  %s", p.frame_index() + 1, p.frame_count(),
+                p.word(), p.frame_bits().c_str(), tones.c_str(), state.c_str());
+  return text;
+}
+
+// Events after which the frame's line is complete.
+bool closes_line(v1::FrameEvent e) {
+  return e == v1::FRAME_EVENT_ACK || e == v1::FRAME_EVENT_NACK || e == v1::FRAME_EVENT_NO_ANSWER ||
+         e == v1::FRAME_EVENT_AWAITING_DECISION || e == v1::FRAME_EVENT_QUEUED || e == v1::FRAME_EVENT_CONFIRMED ||
+         e == v1::FRAME_EVENT_CONTINUED || e == v1::FRAME_EVENT_FAILED;
+}
+
+}  // namespace
+
+void ProgressView::finish_line() {
+  if (line_open_) std::printf("\n");
+  line_open_ = false;
+  std::fflush(stdout);
+}
+
+void ProgressView::show(const v1::Progress& p, const std::optional<SequencePosition>& sequence) {
+  if (json_) {
+    nlohmann::json event{{"event", event_name(p.event())}, {"command_id", p.command_id()}, {"command", p.command()},
+                         {"frame_index", p.frame_index()}, {"frame_count", p.frame_count()}, {"attempt", p.attempt()},
+                         {"word", p.word()}, {"frame", p.frame_bits()},
+                         {"tones_hz", std::vector<double>(p.tones_hz().begin(), p.tones_hz().end())},
+                         {"time_unix_ms", p.time_unix_ms()}};
+    if (p.event() == v1::FRAME_EVENT_ACK || p.event() == v1::FRAME_EVENT_NACK) event["response_time_ms"] = p.response_time_ms();
+    if (!p.detail().empty()) event["detail"] = p.detail();
+    if (sequence) {
+      event["run_id"] = sequence->run_id;
+      event["frames_done"] = sequence->frames_done;
+      event["frames_total"] = sequence->frames_total;
+    }
+    std::printf("%s\n", event.dump().c_str());
+    std::fflush(stdout);
+    return;
+  }
+  const std::string line = (sequence ? bar(*sequence) : "") + describe(p);
+  if (terminal_) {
+    std::printf("\r\033[K%s", line.c_str());
+    line_open_ = true;
+    if (closes_line(p.event())) finish_line();
+    std::fflush(stdout);
+  } else {
+    std::printf("%s\n", line.c_str());
+  }
+}
+
+}  // namespace dtmf::cli

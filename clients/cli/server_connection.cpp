@@ -1,0 +1,63 @@
+#include "server_connection.h"
+
+#include <fstream>
+
+#include "program_main.h"
+
+namespace dtmf::cli {
+
+namespace {
+std::string read_text(const std::string& path, const char* what) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(std::string("cannot read the ") + what + " file '" + path + "'");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+}  // namespace
+
+void add_server_options(CLI::App& command, ServerOptions& options) {
+  command.add_option("--server", options.address, "dtmf-server address host:port")
+      ->envname("DTMF_SERVER")->capture_default_str();
+  command.add_option("--tls-ca", options.tls_ca, "connect with TLS, trusting this PEM certificate (the server's or its CA's)");
+  command.add_option("--token-file", options.token_file, "send the bearer token in this file (dtmf-server --auth-token-file)");
+}
+
+ServerConnection::ServerConnection(const ServerOptions& options) {
+  std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
+  if (!options.tls_ca.empty()) {
+    grpc::SslCredentialsOptions tls;
+    tls.pem_root_certs = read_text(options.tls_ca, "TLS certificate");
+    credentials = grpc::SslCredentials(tls);
+  }
+  if (!options.token_file.empty()) token_ = read_text(options.token_file, "token");
+  channel_ = grpc::CreateChannel(options.address, credentials);
+  if (!channel_->WaitForConnected(std::chrono::system_clock::now() + std::chrono::seconds(5))) {
+    throw Unreachable("cannot reach dtmf-server at " + options.address +
+                      ": is it running? (start it, or point --server / DTMF_SERVER at it)");
+  }
+  stub_ = v1::Teleop::NewStub(channel_);
+}
+
+std::unique_ptr<grpc::ClientContext> ServerConnection::context() const {
+  auto context = std::make_unique<grpc::ClientContext>();
+  if (!token_.empty()) context->AddMetadata("authorization", "Bearer " + token_);
+  return context;
+}
+
+int exit_code_for(const grpc::Status& status) {
+  switch (status.error_code()) {
+    case grpc::StatusCode::OK: return program::kExitOk;
+    case grpc::StatusCode::INVALID_ARGUMENT: return program::kExitUsage;
+    case grpc::StatusCode::UNAVAILABLE: return kExitUnreachable;
+    default: return kExitUnconfirmed;
+  }
+}
+
+std::string describe_status(const grpc::Status& status) {
+  if (status.ok()) return "ok";
+  return status.error_message().empty() ? "failed (gRPC code " + std::to_string(status.error_code()) + ")"
+                                        : status.error_message();
+}
+
+}  // namespace dtmf::cli

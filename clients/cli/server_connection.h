@@ -1,0 +1,53 @@
+// dtmfctl's live subcommands talk to dtmf-server: how to reach it (address, TLS, token)
+// and dtmfctl's exit codes for what comes back.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+
+#include "dtmf/v1/teleop.grpc.pb.h"
+
+namespace dtmf::cli {
+
+// 0 confirmed, 2 bad usage (common/program_main.h), and:
+inline constexpr int kExitUnconfirmed = 3;  // the robot did not confirm, or the command failed
+inline constexpr int kExitUnreachable = 4;  // no server answered
+
+struct ServerOptions {
+  std::string address = "localhost:50051";
+  std::string tls_ca;      // PEM of the CA (or the server's own certificate): use TLS
+  std::string token_file;  // bearer token
+};
+
+// Adds --server, --tls-ca and --token-file to a subcommand.
+void add_server_options(CLI::App& command, ServerOptions& options);
+
+// Thrown when the server cannot be reached; main() turns it into exit code 4.
+class Unreachable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class ServerConnection {
+ public:
+  // Connects within a few seconds or throws Unreachable with one clear line.
+  explicit ServerConnection(const ServerOptions& options);
+  v1::Teleop::Stub& teleop() { return *stub_; }
+  std::shared_ptr<grpc::Channel> channel() const { return channel_; }
+  // A context carrying the token, if any.
+  std::unique_ptr<grpc::ClientContext> context() const;
+
+ private:
+  std::shared_ptr<grpc::Channel> channel_;
+  std::unique_ptr<v1::Teleop::Stub> stub_;
+  std::string token_;
+};
+
+// The exit code and the one line to print for a finished call.
+int exit_code_for(const grpc::Status& status);
+std::string describe_status(const grpc::Status& status);
+
+}  // namespace dtmf::cli

@@ -1,0 +1,156 @@
+// dtmfctl against a live system of real processes: dtmf-server and dtmf-agent talking
+// through the PulseAudio air, logging to PostgreSQL (ctest fixtures air and pg).
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <thread>
+
+#include "support/run_command.h"
+
+using dtmf::test_support::json_lines;
+using dtmf::test_support::run_command;
+namespace fs = std::filesystem;
+
+namespace {
+
+int free_port() {
+  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(s, reinterpret_cast<sockaddr*>(&address), sizeof address);
+  socklen_t length = sizeof address;
+  ::getsockname(s, reinterpret_cast<sockaddr*>(&address), &length);
+  ::close(s);
+  return ntohs(address.sin_port);
+}
+
+const fs::path kDir = fs::path(::testing::TempDir()) / ("dtmfctl-live-" + std::to_string(::getpid()));
+
+int start(const std::string& command, const std::string& log) {
+  return std::stoi(run_command(command + " > /dev/null 2> " + (kDir / log).string() + " & echo $!").out);
+}
+
+void wait_healthy(int port) {
+  for (int i = 0; i < 100; ++i) {
+    if (run_command(std::string(DTMFCTL_PATH) + " health --server 127.0.0.1:" + std::to_string(port)).exit_code == 0) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  FAIL() << "server on port " << port << " did not come up";
+}
+
+class DtmfctlLive : public ::testing::Test {
+ protected:
+  // One system for all the tests: the robot, a server that hears it, and a server that
+  // hears nothing (its frames go unanswered).
+  static void SetUpTestSuite() {
+    fs::create_directories(kDir);
+    const std::string db = std::getenv("DTMF_DB_URL") ? std::getenv("DTMF_DB_URL") : "none";
+    agent_ = start(std::string(DTMF_AGENT_PATH) + " --audio default --ack-out default --cmd-vel sim --db " + db +
+                       " --spill-file " + (kDir / "agent.spill").string(), "agent.log");
+    port_ = free_port();
+    server_ = start(std::string(DTMF_SERVER_PATH) + " --address 127.0.0.1 --port " + std::to_string(port_) + " --db " + db +
+                        " --spill-file " + (kDir / "server.spill").string(), "server.log");
+    deaf_port_ = free_port();
+    deaf_ = start(std::string(DTMF_SERVER_PATH) + " --address 127.0.0.1 --port " + std::to_string(deaf_port_) +
+                      " --audio-out wav:" + (kDir / "deaf.wav").string() + " --audio-in none --db none", "deaf.log");
+    wait_healthy(port_);
+    wait_healthy(deaf_port_);
+  }
+  static void TearDownTestSuite() {
+    for (int pid : {agent_, server_, deaf_}) ::kill(pid, SIGTERM);
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    fs::remove_all(kDir);
+  }
+  static std::string ctl(const std::string& args, int port = port_) {
+    return std::string(DTMFCTL_PATH) + " " + args + " --server 127.0.0.1:" + std::to_string(port);
+  }
+  static inline int agent_ = 0, server_ = 0, deaf_ = 0, port_ = 0, deaf_port_ = 0;
+};
+
+}  // namespace
+
+TEST_F(DtmfctlLive, DriveShowsEveryFrameAndExitsZeroWhenConfirmed) {
+  const auto r = run_command(ctl("drive --speed 50 --duration 1") + " < /dev/null");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  for (const char* frame : {"frame 1/3", "frame 2/3", "frame 3/3"}) EXPECT_NE(r.out.find(frame), std::string::npos) << r.out;
+  std::size_t acks = 0;
+  for (std::size_t at = r.out.find("ACK after"); at != std::string::npos; at = r.out.find("ACK after", at + 1)) ++acks;
+  EXPECT_EQ(acks, 3u) << r.out;
+  EXPECT_NE(r.out.find("drive_for_duration speed=50.0% duration=1.03s: confirmed"), std::string::npos) << r.out;
+}
+
+TEST_F(DtmfctlLive, JsonGivesOneObjectPerEvent) {
+  const auto r = run_command(ctl("turn --rotation -40 --duration 1 --json") + " < /dev/null", false);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  std::vector<std::string> events;
+  for (const auto& line : json_lines(r.out)) {
+    events.push_back(line["event"]);
+    EXPECT_EQ(line["frame_count"], 3);
+    EXPECT_EQ(line["frame"].get<std::string>().size(), 16u);
+  }
+  EXPECT_EQ(events, (std::vector<std::string>{"queued", "transmitting", "ack", "transmitting", "ack", "transmitting", "ack",
+                                              "confirmed"}));
+}
+
+TEST_F(DtmfctlLive, WithoutATerminalAnUnconfirmedFrameFailsOrContinuesAsTold) {
+  auto r = run_command(ctl("reset", deaf_port_) + " < /dev/null");
+  EXPECT_EQ(r.exit_code, 3) << r.out;
+  EXPECT_NE(r.out.find("not confirmed"), std::string::npos) << r.out;
+  r = run_command(ctl("reset --on-unconfirmed continue", deaf_port_) + " < /dev/null");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("continued"), std::string::npos) << r.out;
+}
+
+TEST_F(DtmfctlLive, OnATerminalThePersonIsAskedContinueRetransmitAbort) {
+  // script(1) gives dtmfctl a pseudo-terminal; the answers come through it: retransmit, then continue.
+  const auto r = run_command("(sleep 4; echo r; sleep 4; echo c) | script -qfec '" + ctl("reset", deaf_port_) + "' /dev/null");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  std::size_t asked = 0;
+  for (std::size_t at = r.out.find("[c]ontinue / [r]etransmit / [a]bort?"); at != std::string::npos;
+       at = r.out.find("[c]ontinue / [r]etransmit / [a]bort?", at + 1)) ++asked;
+  EXPECT_EQ(asked, 2u) << r.out;
+  EXPECT_NE(r.out.find("attempt 3"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("reset: continued"), std::string::npos) << r.out;
+}
+
+TEST_F(DtmfctlLive, BadValuesAreUsageErrorsAndAMissingServerIsOneLine) {
+  auto r = run_command(ctl("drive --speed 120") + " < /dev/null");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("speed_percent 120 is out of range"), std::string::npos) << r.out;
+  r = run_command(std::string(DTMFCTL_PATH) + " stop --server 127.0.0.1:1 < /dev/null");
+  EXPECT_EQ(r.exit_code, 4) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_NE(r.out.find("cannot reach dtmf-server at 127.0.0.1:1"), std::string::npos) << r.out;
+  EXPECT_EQ(run_command(ctl("health")).exit_code, 0);
+}
+
+TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
+  const auto r = run_command(ctl("sequence --label general") + " < /dev/null");
+  ASSERT_EQ(r.exit_code, 0) << r.out.substr(r.out.size() > 3000 ? r.out.size() - 3000 : 0);
+  EXPECT_NE(r.out.find("65/65"), std::string::npos);
+  EXPECT_NE(r.out.find("Test Results - general"), std::string::npos) << r.out.substr(r.out.size() - 2000);
+  EXPECT_NE(r.out.find("Total transmission sent"), std::string::npos);
+
+  const auto json = run_command(ctl("report --json"), false);
+  ASSERT_EQ(json.exit_code, 0) << json.out;
+  const auto report = json_lines(json.out);
+  ASSERT_EQ(report.size(), 1u);
+  EXPECT_EQ(report[0]["label"], "general");
+  EXPECT_EQ(report[0]["transmissions_sent"], 65);
+  EXPECT_EQ(report[0]["successfully_matched"], 65);  // the robot logged what it heard
+  EXPECT_EQ(report[0]["false_positives"], 0);
+  EXPECT_EQ(report[0]["sender_confirmed"], 65);
+  std::printf("%s\n", run_command(ctl("report")).out.c_str());
+
+  const auto csv = run_command(ctl("report --csv"), false);
+  EXPECT_EQ(csv.exit_code, 0);
+  EXPECT_EQ(std::count(csv.out.begin(), csv.out.end(), '\n'), 2);
+  EXPECT_EQ(csv.out.rfind("run_number,run_id,label", 0), 0u) << csv.out;
+  const auto runs = run_command(ctl("runs --json"), false);
+  EXPECT_EQ(json_lines(runs.out).front()["label"], "general");
+}
