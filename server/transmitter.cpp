@@ -158,7 +158,17 @@ void Transmitter::run() {
       std::unique_lock lock(mutex_);
       changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
       if (stopping_) {
-        for (auto& waiting : queue_) waiting->finish(Outcome::Unavailable, "the server is shutting down");
+        for (auto& waiting : queue_) {
+          const std::string why = "the server is shutting down";
+          ProgressEvent failed{Kind::Failed};
+          failed.detail = why;
+          waiting->emit(failed);
+          waiting->log_row().outcome = outcome_name(Outcome::Unavailable);
+          waiting->log_row().detail = why;
+          waiting->log_row().finished_at = store::WallClock::now();
+          store_.write(waiting->log_row());
+          waiting->finish(Outcome::Unavailable, why);
+        }
         queue_.clear();
         return;
       }
