@@ -120,8 +120,10 @@ class PortAudioStream {
     params.channelCount = 1;
     params.sampleFormat = paFloat32;
     const PaDeviceInfo* info = Pa_GetDeviceInfo(device_.index);
-    params.suggestedLatency = direction == Direction::Input ? info->defaultLowInputLatency
-                                                            : info->defaultLowOutputLatency;
+    // The high (safe) latency: a busy machine then neither drops recorded samples nor
+    // plays gaps into a chord, either of which can make a chord be heard twice.
+    params.suggestedLatency = direction == Direction::Input ? info->defaultHighInputLatency
+                                                            : info->defaultHighOutputLatency;
     const PaError error =
         Pa_OpenStream(&stream_, direction == Direction::Input ? &params : nullptr,
                       direction == Direction::Output ? &params : nullptr, sample_rate_hz,
