@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "support/run_command.h"
@@ -61,10 +62,23 @@ class DtmfctlLive : public ::testing::Test {
     wait_healthy(port_);
     wait_healthy(deaf_port_);
   }
+  // Every process must be gone before the next test starts its own: two agents on one air
+  // would both hear and log every chord.
   static void TearDownTestSuite() {
     for (int pid : {agent_, server_, deaf_}) ::kill(pid, SIGTERM);
-    std::this_thread::sleep_for(std::chrono::seconds(1));
+    for (int pid : {agent_, server_, deaf_}) {
+      for (int i = 0; i < 100 && running(pid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (running(pid)) ::kill(pid, SIGKILL);
+    }
     fs::remove_all(kDir);
+  }
+  // Alive and not a zombie waiting for init to reap it.
+  static bool running(int pid) {
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string line;
+    if (!std::getline(stat, line)) return false;
+    const auto state_at = line.rfind(')') + 2;
+    return state_at < line.size() && line[state_at] != 'Z';
   }
   static std::string ctl(const std::string& args, int port = port_) {
     return std::string(DTMFCTL_PATH) + " " + args + " --server 127.0.0.1:" + std::to_string(port);
