@@ -10,6 +10,7 @@
 #include <fstream>
 #include <thread>
 
+#include "support/free_port.h"
 #include "support/run_command.h"
 
 using dtmf::test_support::json_lines;
@@ -18,17 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-int free_port() {
-  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(s, reinterpret_cast<sockaddr*>(&address), sizeof address);
-  socklen_t length = sizeof address;
-  ::getsockname(s, reinterpret_cast<sockaddr*>(&address), &length);
-  ::close(s);
-  return ntohs(address.sin_port);
-}
+using dtmf::test_support::free_port;
 
 const fs::path kDir = fs::path(::testing::TempDir()) / ("dtmfctl-live-" + std::to_string(::getpid()));
 

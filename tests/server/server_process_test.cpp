@@ -21,6 +21,7 @@
 #include "physical/wav_file.h"
 #include "profile/link_profile.h"
 #include "signal/tone_listener.h"
+#include "support/free_port.h"
 #include "support/run_command.h"
 
 using namespace dtmf;
@@ -28,17 +29,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-int free_port() {
-  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(s, reinterpret_cast<sockaddr*>(&address), sizeof address);
-  socklen_t length = sizeof address;
-  ::getsockname(s, reinterpret_cast<sockaddr*>(&address), &length);
-  ::close(s);
-  return ntohs(address.sin_port);
-}
+using test_support::free_port;
 
 class ServerProcess : public ::testing::Test {
  protected:
