@@ -2,6 +2,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <sstream>
 #include <pqxx/pqxx>
 
 #include "teleop_service.h"
@@ -23,6 +24,26 @@ void fill_run(v1::Run& run, const pqxx::row& row) {
 constexpr const char* kRunColumns =
     "id::text AS id, number, label, profile, extract(epoch FROM started_at) * 1000 AS started_ms, "
     "extract(epoch FROM ended_at) * 1000 AS ended_ms, transmissions_sent";
+
+constexpr const char* kFrameColumns =
+    "command_id::text AS command_id, coalesce(command_kind, '') AS command, position, attempt, word, "
+    "frame_bits, array_to_string(tones_hz, ' ') AS tones, extract(epoch FROM chord_started_at) * 1000 AS started_ms, "
+    "coalesce(answer, '') AS answer, response_time_ms, latency_ms";
+
+void fill_frame(v1::FrameRecord& frame, const pqxx::row& row) {
+  frame.set_command_id(row["command_id"].as<std::string>());
+  frame.set_command(row["command"].as<std::string>());
+  frame.set_position(row["position"].as<std::uint32_t>());
+  frame.set_attempt(row["attempt"].as<std::uint32_t>());
+  frame.set_word(row["word"].as<std::uint32_t>());
+  frame.set_frame_bits(row["frame_bits"].as<std::string>());
+  std::istringstream tones(row["tones"].as<std::string>());
+  for (double hz; tones >> hz;) frame.add_tones_hz(hz);
+  frame.set_chord_started_unix_ms(std::llround(row["started_ms"].as<double>()));
+  frame.set_answer(row["answer"].as<std::string>());
+  if (!row["response_time_ms"].is_null()) frame.set_response_time_ms(row["response_time_ms"].as<double>());
+  if (!row["latency_ms"].is_null()) frame.set_latency_ms(row["latency_ms"].as<double>());
+}
 
 grpc::Status no_database() {
   return {grpc::StatusCode::FAILED_PRECONDITION,
@@ -151,6 +172,11 @@ grpc::Status TeleopService::GetReport(grpc::ServerContext* context, const v1::Ge
     measure("latency_avg_ms", &R::set_latency_avg_ms);
     measure("latency_min_ms", &R::set_latency_min_ms);
     measure("latency_max_ms", &R::set_latency_max_ms);
+    if (request->include_frames()) {
+      const auto frames = tx.exec_params(std::string("SELECT ") + kFrameColumns + " FROM run_frames($1::uuid)",
+                                         response->run().run_id());
+      for (const auto& row : frames) fill_frame(*response->add_frames(), row);
+    }
     return grpc::Status::OK;
   } catch (const std::exception& e) {
     return database_trouble(e);

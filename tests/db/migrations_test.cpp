@@ -38,6 +38,7 @@ TEST(Migrations, BuildTheSchemaFromAnEmptyDatabase) {
   }
   EXPECT_TRUE(db.query<bool>("SELECT to_regprocedure('run_report(uuid,double precision,double precision)') IS NOT NULL"));
   EXPECT_TRUE(db.query<bool>("SELECT to_regprocedure('store_rows(jsonb)') IS NOT NULL"));
+  EXPECT_TRUE(db.query<bool>("SELECT to_regprocedure('run_frames(bigint,double precision,double precision)') IS NOT NULL"));
   EXPECT_EQ(db.query<std::string>("SELECT frame_bits(45789)"), "1011001011011101");
 }
 

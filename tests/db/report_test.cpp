@@ -156,6 +156,20 @@ TEST(RunReport, ReproducesTheSeedsNoisePollutedTable) {
   const auto number = tx.exec("SELECT number FROM test_runs WHERE id = '" + run.id + "'")[0][0].as<long>();
   EXPECT_EQ(tx.exec("SELECT success_rate_pct FROM run_report(" + std::to_string(number) + "::bigint)")[0][0].as<double>(), 98.46);
   EXPECT_EQ(tx.exec("SELECT transmissions_sent FROM runs WHERE number = " + std::to_string(number))[0][0].as<int>(), 65);
+
+  // run_frames: every chord once, in order, with the same matches as the report.
+  const pqxx::result frames = tx.exec("SELECT * FROM run_frames(" + std::to_string(number) + "::bigint)");
+  ASSERT_EQ(frames.size(), 65u + 37u);
+  std::vector<double> frame_latencies, frame_responses;
+  for (const auto& f : frames) {
+    if (!f["latency_ms"].is_null()) frame_latencies.push_back(as_double(f["latency_ms"]));
+    if (!f["response_time_ms"].is_null()) frame_responses.push_back(as_double(f["response_time_ms"]));
+  }
+  EXPECT_EQ(frame_latencies, latencies);  // in the order played; the retransmissions were not heard
+  EXPECT_EQ(frame_responses, responses);
+  EXPECT_EQ(frames[0]["command_kind"].as<std::string>(), "reset");
+  EXPECT_EQ(frames[0]["frame_bits"].as<std::string>().size(), 16u);
+  EXPECT_EQ(frames[0]["attempt"].as<int>(), 1);
 }
 
 TEST(RunReport, ACleanRunIsAllSuccessWithNoErrorCatchRate) {
@@ -232,4 +246,12 @@ TEST(RunReport, ARetransmissionHeardAgainIsADuplicateAndAChordHeardTwiceAFalsePo
   EXPECT_EQ(r["duplicates"].as<int>(), 1);
   EXPECT_EQ(r["false_positives"].as<int>(), 1);
   EXPECT_DOUBLE_EQ(as_double(r["latency_max_ms"]), 150.0);
+
+  // Per frame: the first attempt got the first reception, the retransmission its own.
+  const pqxx::result frames = tx.exec("SELECT attempt, latency_ms FROM run_frames('" + run.id + "'::uuid)");
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(frames[0][0].as<int>(), 1);
+  EXPECT_DOUBLE_EQ(as_double(frames[0][1]), 150.0);
+  EXPECT_EQ(frames[1][0].as<int>(), 2);
+  EXPECT_DOUBLE_EQ(as_double(frames[1][1]), 150.0);
 }

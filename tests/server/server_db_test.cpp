@@ -91,9 +91,27 @@ TEST(ServerWithDatabase, StartAndEndRunFrameManualCommands) {
   grpc::ClientContext report_context;
   v1::GetReportRequest report_request;
   report_request.set_run_id(started.run_id());
+  report_request.set_include_frames(true);
   v1::GetReportResponse report;
   ASSERT_TRUE(client->GetReport(&report_context, report_request, &report).ok());
   EXPECT_EQ(report.run().label(), "manual");
   EXPECT_EQ(report.transmissions_sent(), 2);
   EXPECT_EQ(report.sender_confirmed(), 2);
+  // Each chord, in order: the Stop command's mode word and its parameter, both answered.
+  ASSERT_EQ(report.frames_size(), 2);
+  for (int i = 0; i < 2; ++i) {
+    const auto& frame = report.frames(i);
+    EXPECT_EQ(frame.command(), "stop");
+    EXPECT_EQ(frame.position(), static_cast<unsigned>(i));
+    EXPECT_EQ(frame.attempt(), 1u);
+    EXPECT_EQ(frame.frame_bits().size(), 16u);
+    EXPECT_EQ(frame.tones_hz_size(), 4);
+    EXPECT_EQ(frame.answer(), "ack");
+    ASSERT_TRUE(frame.has_response_time_ms());
+    EXPECT_GT(frame.response_time_ms(), 0);
+    EXPECT_LT(frame.response_time_ms(), 1500);
+    EXPECT_FALSE(frame.has_latency_ms());  // the in-process robot logs nothing here
+    EXPECT_GE(frame.chord_started_unix_ms(), report.run().started_unix_ms());
+  }
+  EXPECT_LT(report.frames(0).chord_started_unix_ms(), report.frames(1).chord_started_unix_ms());
 }
