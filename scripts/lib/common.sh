@@ -11,6 +11,7 @@ DTMF_PACKAGES=(
   postgresql libpqxx-dev cyclonedds-dev cyclonedds-tools
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
   espeak-ng sox openssl
+  python3 python3-pip python3-venv python3-grpcio python3-protobuf python3-pytest python3-matplotlib
 )
 
 # Installs what is missing (as root), or says exactly what to run and fails.

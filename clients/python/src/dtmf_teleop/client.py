@@ -1,0 +1,180 @@
+"""Client: the dtmf-teleop gRPC API (dtmf.v1.Teleop) as plain Python.
+
+    from dtmf_teleop import Client
+    with Client("localhost:50051") as robot:
+        for step in robot.drive(speed=50, duration=2):   # typed Progress events
+            print(step.event.name, step.frame_bits)
+        robot.turn(rotation=-40, duration=1).result()     # or just wait for the end
+        print(robot.report()["success_rate_pct"])
+
+Each command call starts at once and returns a CommandCall: iterate it for progress events,
+or call result() for the final one. A command that ends unconfirmed, a bad value or an
+unreachable server raise TeleopError subclasses (errors.py) carrying the gRPC status.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable, Iterator, Optional
+
+import grpc
+
+from . import errors
+from ._stubs.dtmf.v1 import teleop_pb2 as pb
+from ._stubs.dtmf.v1 import teleop_pb2_grpc
+from ._stubs.grpc.health.v1 import health_pb2, health_pb2_grpc
+from .events import Decision, FrameEvent, Progress, SequenceProgress, Unconfirmed
+from .records import message_to_dict
+
+DEFAULT_TARGET = "localhost:50051"
+
+
+class CommandCall:
+    """A command under way. Iterating yields its events (Progress or SequenceProgress) as
+    they come; result() waits for the last. Failures raise when reached."""
+
+    def __init__(self, client: "Client", call: Any, convert: Callable[[Any], Any]):
+        self._client = client
+        self._call = call
+        self._convert = convert
+        self.last: Optional[Any] = None
+
+    def __iter__(self) -> Iterator[Any]:
+        try:
+            for response in self._call:
+                self.last = self._convert(response)
+                yield self.last
+        except grpc.RpcError as e:
+            raise errors.from_rpc_error(e, self._client.target) from None
+
+    def result(self) -> Any:
+        """The final event (CONFIRMED or CONTINUED); raises if the command failed."""
+        for _ in self:
+            pass
+        return self.last
+
+    def decide(self, decision: Decision) -> None:
+        """Answer an AWAITING_DECISION event of this command."""
+        progress = self.last.progress if isinstance(self.last, SequenceProgress) else self.last
+        if progress is None:
+            raise RuntimeError("nothing to decide yet: wait for FrameEvent.AWAITING_DECISION")
+        self._client.decide(progress.command_id, decision)
+
+    def cancel(self) -> None:
+        """Withdraw the command; frames not yet on air never play."""
+        self._call.cancel()
+
+
+class Client:
+    """A connection to dtmf-server. target: "host:port"; token: the server's bearer token
+    (dtmf-server --auth-token-file); tls_ca: PEM file to trust for a TLS server."""
+
+    def __init__(self, target: str = DEFAULT_TARGET, *, token: Optional[str] = None,
+                 tls_ca: Optional[str] = None, timeout_s: float = 30.0):
+        self.target = target
+        self.timeout_s = timeout_s
+        if tls_ca:
+            with open(tls_ca, "rb") as f:
+                self._channel = grpc.secure_channel(target, grpc.ssl_channel_credentials(f.read()))
+        else:
+            self._channel = grpc.insecure_channel(target)
+        self._metadata = (("authorization", f"Bearer {token}"),) if token else ()
+        self._stub = teleop_pb2_grpc.TeleopStub(self._channel)
+        self._health = health_pb2_grpc.HealthStub(self._channel)
+
+    def close(self) -> None:
+        self._channel.close()
+
+    def __enter__(self) -> "Client":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+    # --- commands: each streams its progress --------------------------------------------
+
+    def drive(self, speed: float, duration: Optional[float] = None, *,
+              on_unconfirmed: Optional[Unconfirmed] = None) -> CommandCall:
+        """Drive forward at speed percent (0..100) for duration seconds (0..8), or until
+        the next command when duration is None."""
+        request = pb.DriveRequest(speed_percent=speed, options=_options(on_unconfirmed))
+        if duration is not None:
+            request.duration_s = duration
+        return self._command(self._stub.Drive, request)
+
+    def turn(self, rotation: float, duration: Optional[float] = None, *,
+             on_unconfirmed: Optional[Unconfirmed] = None) -> CommandCall:
+        """Turn in place at rotation percent (-100..100, positive is left) for duration
+        seconds (0..8), or until the next command when duration is None."""
+        request = pb.TurnRequest(rotation_percent=rotation, options=_options(on_unconfirmed))
+        if duration is not None:
+            request.duration_s = duration
+        return self._command(self._stub.Turn, request)
+
+    def stop(self, *, on_unconfirmed: Optional[Unconfirmed] = None) -> CommandCall:
+        return self._command(self._stub.Stop, pb.StopRequest(options=_options(on_unconfirmed)))
+
+    def reset(self, *, on_unconfirmed: Optional[Unconfirmed] = None) -> CommandCall:
+        return self._command(self._stub.Reset, pb.ResetRequest(options=_options(on_unconfirmed)))
+
+    def run_sequence(self, label: str, notes: str = "", *,
+                     on_unconfirmed: Optional[Unconfirmed] = None) -> CommandCall:
+        """The seed's 65-frame test sequence as a labelled test run; yields SequenceProgress."""
+        request = pb.RunTestSequenceRequest(label=label, notes=notes, options=_options(on_unconfirmed))
+        call = self._stub.RunTestSequence(request, metadata=self._metadata)
+        return CommandCall(self, call, SequenceProgress.from_proto)
+
+    def decide(self, command_id: str, decision: Decision) -> None:
+        self._unary(self._stub.Decide, pb.DecideRequest(command_id=command_id, decision=decision.value))
+
+    # --- test runs and reports -----------------------------------------------------------
+
+    def start_run(self, label: str, notes: str = "") -> str:
+        """Open a test run: the commands sent until end_run() belong to it. Returns its id."""
+        return self._unary(self._stub.StartRun, pb.StartRunRequest(label=label, notes=notes)).run_id
+
+    def end_run(self, run_id: str) -> None:
+        self._unary(self._stub.EndRun, pb.EndRunRequest(run_id=run_id))
+
+    def runs(self, limit: int = 0) -> list[dict[str, Any]]:
+        """Test runs, newest first (limit 0: all)."""
+        return [message_to_dict(r) for r in self._unary(self._stub.ListRuns, pb.ListRunsRequest(limit=limit)).runs]
+
+    def report(self, run: Optional[str | int] = None, *, frames: bool = False) -> dict[str, Any]:
+        """The seed's Appendix A table of a run (id, number, or None for the latest) as a
+        dict; rates absent for want of data are None. frames=True adds every chord played,
+        with its response time and latency, under "frames"."""
+        request = pb.GetReportRequest(include_frames=frames)
+        if isinstance(run, int):
+            request.run_number = run
+        elif run:
+            request.run_id = run
+        report = message_to_dict(self._unary(self._stub.GetReport, request))
+        if not frames:
+            report.pop("frames")
+        return report
+
+    def health(self) -> str:
+        """The server's health: "SERVING" or "NOT_SERVING" (its audio device is gone)."""
+        response = self._unary(self._health.Check, health_pb2.HealthCheckRequest(service=""))
+        return health_pb2.HealthCheckResponse.ServingStatus.Name(response.status)
+
+    # --- plumbing ------------------------------------------------------------------------
+
+    def _command(self, method: Any, request: Any) -> CommandCall:
+        call = method(request, metadata=self._metadata)
+        return CommandCall(self, call, lambda response: Progress.from_proto(response.progress))
+
+    def _unary(self, method: Any, request: Any) -> Any:
+        try:
+            return method(request, metadata=self._metadata, timeout=self.timeout_s)
+        except grpc.RpcError as e:
+            raise errors.from_rpc_error(e, self.target) from None
+
+
+def _options(on_unconfirmed: Optional[Unconfirmed]) -> pb.CommandOptions:
+    options = pb.CommandOptions()
+    if on_unconfirmed is not None:
+        options.on_unconfirmed = on_unconfirmed.value
+    return options
+
+

@@ -1,0 +1,82 @@
+"""Typed views of what the server streams: a command's progress frame by frame, and the
+test sequence's progress, as frozen dataclasses with Python enums (no protobuf needed)."""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, field
+
+from ._stubs.dtmf.v1 import teleop_pb2 as pb
+
+
+class FrameEvent(enum.Enum):
+    QUEUED = pb.FRAME_EVENT_QUEUED
+    TRANSMITTING = pb.FRAME_EVENT_TRANSMITTING
+    ACK = pb.FRAME_EVENT_ACK
+    NACK = pb.FRAME_EVENT_NACK
+    NO_ANSWER = pb.FRAME_EVENT_NO_ANSWER
+    RETRANSMITTING = pb.FRAME_EVENT_RETRANSMITTING
+    AWAITING_DECISION = pb.FRAME_EVENT_AWAITING_DECISION
+    CONFIRMED = pb.FRAME_EVENT_CONFIRMED
+    CONTINUED = pb.FRAME_EVENT_CONTINUED
+    FAILED = pb.FRAME_EVENT_FAILED
+    UNSPECIFIED = pb.FRAME_EVENT_UNSPECIFIED
+
+    @property
+    def is_final(self) -> bool:
+        return self in (FrameEvent.CONFIRMED, FrameEvent.CONTINUED, FrameEvent.FAILED)
+
+
+class Decision(enum.Enum):
+    """The answer to FrameEvent.AWAITING_DECISION (the seed's continue / retransmit / abort)."""
+    CONTINUE = pb.DECISION_CONTINUE
+    RETRANSMIT = pb.DECISION_RETRANSMIT
+    ABORT = pb.DECISION_ABORT
+
+
+class Unconfirmed(enum.Enum):
+    """What the server does with a frame still unconfirmed after its automatic retransmission."""
+    ASK = pb.UNCONFIRMED_POLICY_ASK  # stream AWAITING_DECISION and wait for decide()
+    CONTINUE = pb.UNCONFIRMED_POLICY_CONTINUE
+    FAIL = pb.UNCONFIRMED_POLICY_FAIL
+
+
+@dataclass(frozen=True)
+class Progress:
+    """One step of a command: a frame queued, on air, answered, or the command's end."""
+    event: FrameEvent
+    command_id: str
+    command: str                  # e.g. "drive_for_duration speed=50.0% duration=2.06s"
+    frame_index: int              # from 0
+    frame_count: int
+    attempt: int                  # 1 = first transmission
+    word: int
+    frame_bits: str               # "1011001011011101"
+    tones_hz: tuple[float, ...] = field(default_factory=tuple)
+    response_time_ms: float = 0.0  # with ACK / NACK: chord start to the answer
+    detail: str = ""
+    queue_position: int = 0
+    time_unix_ms: int = 0
+
+    @classmethod
+    def from_proto(cls, p: pb.Progress) -> "Progress":
+        return cls(event=FrameEvent(p.event), command_id=p.command_id, command=p.command,
+                   frame_index=p.frame_index, frame_count=p.frame_count, attempt=p.attempt, word=p.word,
+                   frame_bits=p.frame_bits, tones_hz=tuple(p.tones_hz), response_time_ms=p.response_time_ms,
+                   detail=p.detail, queue_position=p.queue_position, time_unix_ms=p.time_unix_ms)
+
+
+@dataclass(frozen=True)
+class SequenceProgress:
+    """One step of the seed's test sequence: where it is, and the current command's step."""
+    run_id: str
+    command_index: int
+    command_count: int
+    frames_done: int
+    frames_total: int
+    progress: Progress
+
+    @classmethod
+    def from_proto(cls, r: pb.RunTestSequenceResponse) -> "SequenceProgress":
+        return cls(run_id=r.run_id, command_index=r.command_index, command_count=r.command_count,
+                   frames_done=r.frames_done, frames_total=r.frames_total, progress=Progress.from_proto(r.progress))

@@ -1,0 +1,95 @@
+"""Every Client call against the live system (conftest.py)."""
+
+import pytest
+
+from dtmf_teleop import (BadRequest, Client, Decision, FrameEvent, NotConfirmed, NotFound, Progress,
+                         ServerUnreachable, Unconfirmed)
+
+
+def test_health_is_serving(robot):
+    assert robot.health() == "SERVING"
+
+
+def test_drive_yields_typed_events_frame_by_frame(robot):
+    events = list(robot.drive(speed=50, duration=1))
+    assert all(isinstance(e, Progress) for e in events)
+    assert [e.event for e in events] == [FrameEvent.QUEUED] + [FrameEvent.TRANSMITTING, FrameEvent.ACK] * 3 + [
+        FrameEvent.CONFIRMED]
+    acks = [e for e in events if e.event == FrameEvent.ACK]
+    assert [e.frame_index for e in acks] == [0, 1, 2]
+    assert all(e.frame_count == 3 and len(e.frame_bits) == 16 and len(e.tones_hz) == 4 for e in acks)
+    assert all(0 < e.response_time_ms < 1500 for e in acks)
+    assert events[-1].command == "drive_for_duration speed=50.0% duration=1.03s"
+    assert events[-1].event.is_final
+
+
+def test_turn_stop_and_reset_end_confirmed(robot):
+    assert robot.turn(rotation=-40, duration=0.5).result().event == FrameEvent.CONFIRMED
+    assert robot.turn(rotation=30).result().command.startswith("turn ")
+    stop = robot.stop().result()
+    assert (stop.event, stop.frame_count) == (FrameEvent.CONFIRMED, 2)
+    assert robot.reset().result().frame_count == 1
+    drive = robot.drive(speed=20).result()  # until the next command
+    assert drive.command.startswith("drive_forward")
+    robot.stop().result()
+
+
+def test_a_bad_value_raises_bad_request_naming_the_field(robot):
+    with pytest.raises(BadRequest) as raised:
+        robot.drive(speed=150, duration=1).result()
+    assert "speed_percent" in raised.value.details
+    assert raised.value.code.name == "INVALID_ARGUMENT"
+    with pytest.raises(BadRequest, match="duration_s"):
+        robot.turn(rotation=10, duration=9).result()
+
+
+def test_an_unreachable_server_raises_server_unreachable():
+    with Client("127.0.0.1:1", timeout_s=2) as nowhere:
+        with pytest.raises(ServerUnreachable, match="cannot reach dtmf-server at 127.0.0.1:1"):
+            nowhere.health()
+        with pytest.raises(ServerUnreachable):
+            nowhere.stop().result()
+
+
+def test_an_unanswered_frame_fails_continues_or_asks_as_told(deaf):
+    with pytest.raises(NotConfirmed) as raised:
+        deaf.reset().result()
+    assert raised.value.code.name == "ABORTED"
+    assert deaf.reset(on_unconfirmed=Unconfirmed.CONTINUE).result().event == FrameEvent.CONTINUED
+
+    call = deaf.reset(on_unconfirmed=Unconfirmed.ASK)
+    seen = []
+    for step in call:
+        seen.append(step.event)
+        if step.event == FrameEvent.AWAITING_DECISION:
+            call.decide(Decision.CONTINUE)
+    assert seen.count(FrameEvent.TRANSMITTING) == 1 and seen.count(FrameEvent.RETRANSMITTING) == 1
+    assert FrameEvent.AWAITING_DECISION in seen
+    assert call.last.event == FrameEvent.CONTINUED
+
+
+def test_a_run_frames_commands_and_reports_them_as_a_dict(robot):
+    run_id = robot.start_run("python", notes="pytest")
+    robot.stop().result()
+    robot.end_run(run_id)
+
+    runs = robot.runs(limit=1)
+    assert runs[0]["run_id"] == run_id and runs[0]["label"] == "python"
+    assert runs[0]["transmissions_sent"] == 2 and isinstance(runs[0]["number"], int)
+
+    report = robot.report(run_id, frames=True)
+    assert report["run"]["label"] == "python"
+    assert report["transmissions_sent"] == 2
+    assert report["sender_confirmed"] == 2
+    assert report["success_rate_pct"] == 100.0
+    assert report["error_catch_rate_pct"] is None  # nothing damaged to catch: the seed's N/A
+    assert [f["position"] for f in report["frames"]] == [0, 1]
+    for frame in report["frames"]:
+        assert frame["command"] == "stop" and frame["answer"] == "ack"
+        assert 0 < frame["response_time_ms"] < 1500
+        assert frame["latency_ms"] is not None and 0 < frame["latency_ms"] < frame["response_time_ms"]
+
+    by_number = robot.report(runs[0]["number"])
+    assert by_number["run"]["run_id"] == run_id and "frames" not in by_number
+    with pytest.raises(NotFound):
+        robot.report(999999)
