@@ -3,6 +3,7 @@
 #include <alsa/asoundlib.h>
 #include <jack/jack.h>
 #include <portaudio.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cctype>
@@ -13,6 +14,11 @@
 namespace dtmf::physical {
 
 namespace {
+
+// Device buffer depth in seconds. The defaults (8.7 ms low, 35 ms high on PulseAudio)
+// underran or overran whenever a loaded 2-core machine kept a thread off the CPU longer,
+// and a chord with a hole in it was heard twice (tests/e2e).
+constexpr double kMinBufferS = 0.2;
 
 // PortAudio probes every ALSA and JACK device it can think of, and both libraries print
 // each failed probe to stderr (hundreds of lines on a machine without a sound card). What
@@ -120,10 +126,11 @@ class PortAudioStream {
     params.channelCount = 1;
     params.sampleFormat = paFloat32;
     const PaDeviceInfo* info = Pa_GetDeviceInfo(device_.index);
-    // The high (safe) latency: a busy machine then neither drops recorded samples nor
-    // plays gaps into a chord, either of which can make a chord be heard twice.
-    params.suggestedLatency = direction == Direction::Input ? info->defaultHighInputLatency
-                                                            : info->defaultHighOutputLatency;
+    // A deep buffer (kMinBufferS, or the device's high latency if more): a busy machine
+    // then neither drops recorded samples nor plays gaps into a chord, either of which can
+    // make a chord be heard twice. A chord is written at once, so its start is not delayed.
+    params.suggestedLatency = std::max(kMinBufferS, direction == Direction::Input ? info->defaultHighInputLatency
+                                                                                  : info->defaultHighOutputLatency);
     const PaError error =
         Pa_OpenStream(&stream_, direction == Direction::Input ? &params : nullptr,
                       direction == Direction::Output ? &params : nullptr, sample_rate_hz,
@@ -162,7 +169,11 @@ class PortAudioSource : public AudioSource {
   PortAudioSource(const std::string& spec, int rate) : stream_(spec, Direction::Input, rate) {}
   std::size_t read(std::span<float> out) override {
     const PaError error = Pa_ReadStream(stream_.stream_, out.data(), static_cast<unsigned long>(out.size()));
-    // An overflow lost a few samples to a busy machine; the stream itself goes on.
+    // An overflow lost samples to a busy machine; the stream itself goes on.
+    if (error == paInputOverflowed && ++overflows_ % 100 == 1) {
+      spdlog::warn("recording from {} lost samples ({} times so far): the machine is too busy to keep up",
+                   stream_.describe(), overflows_);
+    }
     if (error != paNoError && error != paInputOverflowed) {
       throw AudioError("recording from " + stream_.describe() + " failed: " + Pa_GetErrorText(error) +
                        " (is the device still connected?)");
@@ -174,6 +185,7 @@ class PortAudioSource : public AudioSource {
 
  private:
   PortAudioStream stream_;
+  long overflows_ = 0;
 };
 
 class PortAudioSink : public AudioSink {

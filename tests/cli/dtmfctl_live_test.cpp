@@ -1,9 +1,6 @@
 // dtmfctl against a live system of real processes: dtmf-server and dtmf-agent talking
 // through the PulseAudio air, logging to PostgreSQL (ctest fixtures air and pg).
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <signal.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -11,6 +8,7 @@
 #include <thread>
 
 #include "support/free_port.h"
+#include "support/processes.h"
 #include "support/run_command.h"
 
 using dtmf::test_support::json_lines;
@@ -24,15 +22,11 @@ using dtmf::test_support::free_port;
 const fs::path kDir = fs::path(::testing::TempDir()) / ("dtmfctl-live-" + std::to_string(::getpid()));
 
 int start(const std::string& command, const std::string& log) {
-  return std::stoi(run_command(command + " > /dev/null 2> " + (kDir / log).string() + " & echo $!").out);
+  return dtmf::test_support::start_process(command, (kDir / log).string());
 }
 
 void wait_healthy(int port) {
-  for (int i = 0; i < 100; ++i) {
-    if (run_command(std::string(DTMFCTL_PATH) + " health --server 127.0.0.1:" + std::to_string(port)).exit_code == 0) return;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  FAIL() << "server on port " << port << " did not come up";
+  if (!dtmf::test_support::wait_healthy(DTMFCTL_PATH, port)) FAIL() << "server on port " << port << " did not come up";
 }
 
 class DtmfctlLive : public ::testing::Test {
@@ -53,23 +47,10 @@ class DtmfctlLive : public ::testing::Test {
     wait_healthy(port_);
     wait_healthy(deaf_port_);
   }
-  // Every process must be gone before the next test starts its own: two agents on one air
-  // would both hear and log every chord.
+  // Every process must be gone before the next test starts its own.
   static void TearDownTestSuite() {
-    for (int pid : {agent_, server_, deaf_}) ::kill(pid, SIGTERM);
-    for (int pid : {agent_, server_, deaf_}) {
-      for (int i = 0; i < 100 && running(pid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      if (running(pid)) ::kill(pid, SIGKILL);
-    }
+    for (int pid : {agent_, server_, deaf_}) dtmf::test_support::stop_process(pid);
     fs::remove_all(kDir);
-  }
-  // Alive and not a zombie waiting for init to reap it.
-  static bool running(int pid) {
-    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-    std::string line;
-    if (!std::getline(stat, line)) return false;
-    const auto state_at = line.rfind(')') + 2;
-    return state_at < line.size() && line[state_at] != 'Z';
   }
   static std::string ctl(const std::string& args, int port = port_) {
     return std::string(DTMFCTL_PATH) + " " + args + " --server 127.0.0.1:" + std::to_string(port);
@@ -150,12 +131,10 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   EXPECT_EQ(report[0]["successfully_matched"], 65);  // the robot logged what it heard
   EXPECT_EQ(report[0]["dropped"], 0);
   EXPECT_EQ(report[0]["sender_confirmed"], 65);
-  // Two CI runs (before the tests waited for each other's processes to end) heard one chord
-  // twice and missed one ACK. Until the end-to-end test of issue [6/7] pins the cause down,
-  // at most those two extra receptions are tolerated here, and they are printed.
-  const int extra = report[0]["false_positives"].get<int>() + report[0]["duplicates"].get<int>();
-  std::printf("false positives %d, duplicates %d\n", report[0]["false_positives"].get<int>(), report[0]["duplicates"].get<int>());
-  EXPECT_LE(extra, 2);
+  // Chords heard twice came from audio buffers under- or overrunning on a loaded machine
+  // (a hole in a chord re-arms the debouncer); the deeper device buffers ended them.
+  EXPECT_EQ(report[0]["false_positives"], 0);
+  EXPECT_EQ(report[0]["duplicates"], 0);
   std::printf("%s\n", run_command(ctl("report")).out.c_str());
 
   const auto csv = run_command(ctl("report --csv"), false);

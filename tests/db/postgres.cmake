@@ -10,7 +10,7 @@
 # executable's tests with dtmf_pg_test(<target>).
 
 set(DTMF_PG_DIR ${PROJECT_BINARY_DIR}/pg)
-set(DTMF_PG_PORT 55432)
+set(DTMF_PG_PORT 55432 CACHE STRING "port of the test cluster (another build tree testing at once needs another)")
 set(DTMF_PG_SCRIPT ${PROJECT_SOURCE_DIR}/scripts/pg)
 set(DTMF_PG_URL postgresql://postgres@127.0.0.1:${DTMF_PG_PORT}/postgres)
 set(DTMF_PG_ENV DTMF_DB_URL=${DTMF_PG_URL} DTMF_PG_DIR=${DTMF_PG_DIR}

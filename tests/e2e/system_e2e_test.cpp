@@ -1,0 +1,218 @@
+// The whole system as users run it: real dtmf-agent, dtmf-server and dtmfctl processes
+// talking through the PulseAudio air (ctest fixture air), logging to a real PostgreSQL
+// (fixture pg, a fresh database per test), driving cmd_vel over real DDS to a ROS 2-like
+// subscriber in this test. Each test runs the seed's 65-frame sequence through
+// `dtmfctl sequence --json` and acts on its events as they stream: it stops the database,
+// or kills the robot agent, in the middle of the run.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <pqxx/pqxx>
+#include <set>
+#include <thread>
+
+#include "../agent/dds_test_subscriber.h"
+#include "../db/temp_database.h"
+#include "command/test_sequence.h"
+#include "command/word_codec.h"
+#include "robot_model.h"
+#include "support/free_port.h"
+#include "support/processes.h"
+#include "velocity_provider.h"
+
+using namespace dtmf;
+using namespace std::chrono_literals;
+using test_support::run_command;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The seed sequence's velocities on a Burger: every non-zero (linear, angular) it commands.
+std::set<std::pair<double, double>> expected_motions() {
+  std::set<std::pair<double, double>> motions;
+  for (const auto& command : command::seed_test_sequence()) {
+    agent::VelocityProvider provider(agent::burger(), 0);
+    provider.apply(command::quantised(command), 0);
+    const auto v = provider.update(0);
+    if (v.linear_mps != 0 || v.angular_rps != 0) motions.insert({v.linear_mps, v.angular_rps});
+  }
+  return motions;
+}
+
+bool is_zero(const test_support::ReceivedCmdVel& s) { return s.linear.x == 0 && s.angular.z == 0; }
+
+struct SequenceRun {
+  int exit_code = -1;
+  std::string run_id;
+  int transmitting = 0;  // chords the server played
+  std::string output;
+};
+
+class SystemE2E : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    setenv("CYCLONEDDS_URI", R"(<General><Interfaces><NetworkInterface name="lo"/></Interfaces></General>)", 1);
+    fs::create_directories(dir_);
+    subscriber_ = std::make_unique<test_support::CmdVelSubscriber>(domain_, "rt/" + topic_, true);
+    start_agent();
+    port_ = test_support::free_port();
+    server_ = test_support::start_process(std::string(DTMF_SERVER_PATH) + " --address 127.0.0.1 --port " +
+                                              std::to_string(port_) + " --db " + db_.url() + " --spill-file " +
+                                              path("server.spill"),
+                                          path("server.log"));
+    ASSERT_TRUE(test_support::wait_healthy(DTMFCTL_PATH, port_)) << run_command("cat " + path("server.log")).out;
+  }
+  void TearDown() override {
+    test_support::stop_process(server_);
+    test_support::stop_process(agent_);
+    if (HasFailure()) std::printf("%s\n", run_command("tail -n 30 " + path("agent.log") + " " + path("server.log")).out.c_str());
+    fs::remove_all(dir_);
+  }
+
+  void start_agent() {
+    agent_ = test_support::start_process("ROS_DOMAIN_ID=" + std::to_string(domain_) + " " + DTMF_AGENT_PATH +
+                                             " --audio default --ack-out default --cmd-vel sim,dds --topic /" + topic_ +
+                                             " --db " + db_.url() + " --spill-file " + path("agent.spill"),
+                                         path("agent.log"));
+  }
+
+  // `dtmfctl sequence --json`, calling on_transmitting(n) at the n-th chord (from 1).
+  SequenceRun run_sequence(const std::string& label, const std::function<void(int)>& on_transmitting) {
+    SequenceRun run;
+    const std::string command = std::string(DTMFCTL_PATH) + " sequence --label '" + label +
+                                "' --json --on-unconfirmed continue --server 127.0.0.1:" + std::to_string(port_) +
+                                " < /dev/null 2>&1";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    char line[8192];
+    while (std::fgets(line, sizeof line, pipe)) {
+      run.output += line;
+      if (line[0] != '{') continue;
+      const auto event = nlohmann::json::parse(line, nullptr, false);
+      if (event.is_discarded() || !event.contains("event")) continue;
+      if (event.contains("run_id")) run.run_id = event["run_id"];
+      if (event["event"] == "transmitting" || event["event"] == "retransmitting") on_transmitting(++run.transmitting);
+    }
+    const int status = ::pclose(pipe);
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+  }
+
+  // The robot's receptions reach the database through its store's queue (and, after an
+  // outage, its spill file): wait until `count` are in, or 60 s.
+  long wait_for_receptions(long count) {
+    long in = 0;
+    for (int i = 0; i < 600; ++i) {
+      try {
+        in = db_.query<long>("SELECT count(*) FROM receptions");
+        if (in >= count) break;
+      } catch (const std::exception&) {
+      }
+      std::this_thread::sleep_for(100ms);
+    }
+    std::this_thread::sleep_for(1s);  // anything beyond `count` too
+    return db_.query<long>("SELECT count(*) FROM receptions");
+  }
+
+  pqxx::row report(const std::string& run_id) {
+    pqxx::connection c(db_.url());
+    pqxx::work tx(c);
+    return tx.exec_params("SELECT * FROM run_report($1::uuid)", run_id)[0];
+  }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  const fs::path dir_ = fs::path(::testing::TempDir()) / ("e2e-" + std::to_string(::getpid()));
+  const int domain_ = 100 + ::getpid() % 100;
+  const std::string topic_ = "cmd_vel_e2e_" + std::to_string(::getpid());
+  test_support::TempDatabase db_;
+  std::unique_ptr<test_support::CmdVelSubscriber> subscriber_;
+  int agent_ = 0, server_ = 0, port_ = 0;
+};
+
+}  // namespace
+
+TEST_F(SystemE2E, SeedSequenceIsAllConfirmedAndLogsEveryRowThroughADatabaseOutage) {
+  const char* pg_script = std::getenv("DTMF_PG_SCRIPT");
+  const char* pg_dir = std::getenv("DTMF_PG_DIR");
+  ASSERT_TRUE(pg_script && pg_dir) << "run through ctest (fixture pg)";
+  bool restarted = false;
+  const SequenceRun run = run_sequence("e2e general", [&](int chord) {
+    // Down from the 10th chord to the 35th: about 15 s, rows of both programs pile up.
+    if (chord == 10) {
+      EXPECT_EQ(run_command(std::string(pg_script) + " stop " + pg_dir).exit_code, 0);
+    }
+    if (chord == 35) restarted = run_command(std::string(pg_script) + " start " + pg_dir + " > /dev/null").exit_code == 0;
+  });
+  ASSERT_TRUE(restarted);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.transmitting, 65) << "no chord needed a retransmission";
+
+  // Every row is in, once: 65 receptions, 27 commands, 65 chords.
+  EXPECT_EQ(wait_for_receptions(65), 65);
+  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM receptions WHERE crc_ok AND reply = 'ack'"), 65);
+  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM commands WHERE outcome = 'confirmed'"), 27);
+  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM frame_attempts WHERE answer = 'ack'"), 65);
+  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM test_runs WHERE ended_at IS NOT NULL"), 1);
+
+  const pqxx::row r = report(run.run_id);
+  EXPECT_EQ(r["transmissions_sent"].as<int>(), 65);
+  EXPECT_EQ(r["transmissions_received"].as<int>(), 65);
+  EXPECT_EQ(r["successfully_matched"].as<int>(), 65);
+  EXPECT_EQ(r["sender_confirmed"].as<int>(), 65);
+  EXPECT_EQ(r["false_positives"].as<int>(), 0);
+  EXPECT_EQ(r["duplicates"].as<int>(), 0);
+  EXPECT_EQ(r["dropped"].as<int>(), 0);
+
+  // cmd_vel: every motion the sequence commands, stamped, and the robot stopped at the end.
+  std::this_thread::sleep_for(500ms);
+  const auto samples = subscriber_->samples();
+  ASSERT_GT(samples.size(), 100u);
+  std::set<std::pair<double, double>> seen;
+  for (const auto& s : samples) {
+    if (!is_zero(s)) seen.insert({s.linear.x, s.angular.z});
+    EXPECT_GT(s.stamp_sec, 1'700'000'000);
+  }
+  EXPECT_EQ(seen, expected_motions());
+  EXPECT_TRUE(is_zero(samples.back()));
+}
+
+TEST_F(SystemE2E, AnAgentKilledMidRunRestartsStoppedAndLosesNoRows) {
+  std::chrono::steady_clock::time_point killed_at;
+  const SequenceRun run = run_sequence("e2e agent restart", [&](int chord) {
+    if (chord == 20) {  // a chord just started: the agent's last reception was over 300 ms ago
+      test_support::stop_process(agent_, SIGKILL);
+      killed_at = std::chrono::steady_clock::now();
+    }
+    if (chord == 24) start_agent();  // its spill file and the database carry on
+  });
+  ASSERT_EQ(run.exit_code, 0) << run.output;  // --on-unconfirmed continue
+
+  const pqxx::row r = report(run.run_id);
+  const long matched = r["successfully_matched"].as<long>();
+  EXPECT_EQ(r["transmissions_sent"].as<int>(), 65);
+  EXPECT_GE(r["dropped"].as<int>(), 1) << "frames played while no agent listened";
+  EXPECT_EQ(matched + r["dropped"].as<long>(), 65);
+  EXPECT_EQ(r["false_positives"].as<int>(), 0);
+  EXPECT_EQ(r["duplicates"].as<int>(), 0);
+  // No lost rows: every chord the sender heard answered has the robot's reception.
+  EXPECT_EQ(wait_for_receptions(matched), matched);
+  {
+    pqxx::connection c(db_.url());
+    pqxx::work tx(c);
+    const auto unlogged = tx.exec_params("SELECT count(*) FROM run_frames($1::uuid) WHERE answer = 'ack' AND latency_ms IS NULL",
+                                         run.run_id)[0][0].as<long>();
+    EXPECT_EQ(unlogged, 0);
+  }
+
+  // The restarted agent publishes zero before anything else, and the robot ends stopped.
+  std::this_thread::sleep_for(500ms);
+  const auto samples = subscriber_->samples();
+  const auto after_kill = std::find_if(samples.begin(), samples.end(), [&](const auto& s) { return s.received > killed_at; });
+  ASSERT_NE(after_kill, samples.end());
+  EXPECT_TRUE(is_zero(*after_kill)) << after_kill->linear.x << " " << after_kill->angular.z;
+  EXPECT_TRUE(is_zero(samples.back()));
+}
