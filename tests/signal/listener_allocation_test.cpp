@@ -1,0 +1,95 @@
+// Signal layer: once running, the listeners allocate nothing per analysis window (issue
+// [7/7]: the receive path must keep up on a Raspberry Pi, where a heap call per 50 ms
+// window is a real cost and a source of jitter). Its own executable: it replaces the
+// global operator new to count every allocation the process makes.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "command/test_sequence.h"
+#include "link/sender_path.h"
+#include "physical/noise.h"
+#include "profile/link_profile.h"
+#include "signal/synthesizer.h"
+#include "signal/tone_listener.h"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+// The replacements pair malloc with free on purpose; GCC cannot see that they are the pair.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return ::operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+using namespace dtmf;
+
+namespace {
+
+// The seed's 65 frames back to back, in pink noise at -40 dBFS.
+std::vector<float> busy_audio(const LinkProfile& profile) {
+  std::vector<link::PlannedFrame> frames;
+  for (const auto& command : command::seed_test_sequence()) {
+    for (const auto& f : link::plan_command(profile, command)) frames.push_back(f);
+  }
+  std::vector<float> audio = link::render_frames(profile, frames);
+  physical::NoiseSource noise(physical::parse_noise("pink", -40), profile.sample_rate_hz, 7);
+  noise.add_to(audio);
+  return audio;
+}
+
+long allocations_while_feeding(signal::ToneListener& listener, std::span<const float> audio, std::size_t block,
+                               std::size_t& heard) {
+  heard = 0;
+  const long before = g_allocations.load();
+  for (std::size_t at = 0; at < audio.size(); at += block) {
+    heard += listener.feed(audio.subspan(at, std::min(block, audio.size() - at))).size();
+  }
+  return g_allocations.load() - before;
+}
+
+}  // namespace
+
+TEST(ListenerAllocation, TheCountingAllocatorSeesAllocations) {
+  const long before = g_allocations.load();
+  auto* v = new std::vector<int>(100);
+  delete v;
+  EXPECT_GE(g_allocations.load() - before, 2);
+}
+
+TEST(ListenerAllocation, TheRobotsListenerAllocatesNothingWhileHearingTheSeedSequence) {
+  const LinkProfile& profile = seed_profile();
+  const auto audio = busy_audio(profile);
+  for (std::size_t block : {std::size_t{480}, std::size_t{2400}, std::size_t{4096}}) {
+    auto listener = signal::chord_listener(profile);
+    std::size_t heard = 0;
+    EXPECT_EQ(allocations_while_feeding(listener, audio, block, heard), 0) << "block " << block;
+    EXPECT_EQ(heard, 65u) << "block " << block;  // and it did hear every frame
+  }
+}
+
+TEST(ListenerAllocation, TheSendersListenerAllocatesNothingWhileHearingAnswers) {
+  const LinkProfile& profile = seed_profile();
+  // 20 answers, ACK and NACK in turn, each followed by a second of silence.
+  std::vector<float> audio;
+  for (int i = 0; i < 20; ++i) {
+    const auto reply = signal::synthesize_reply(profile, i % 2 ? signal::Reply::Nack : signal::Reply::Ack);
+    audio.insert(audio.end(), reply.begin(), reply.end());
+    audio.resize(audio.size() + static_cast<std::size_t>(profile.sample_rate_hz), 0.0f);
+  }
+  auto listener = signal::reply_listener(profile);
+  std::size_t heard = 0;
+  EXPECT_EQ(allocations_while_feeding(listener, audio, 480, heard), 0);
+  EXPECT_EQ(heard, 20u);
+}
