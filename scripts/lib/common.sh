@@ -1,5 +1,5 @@
-# Shared by scripts/test and scripts/quickstart: the Debian packages this project needs,
-# installing the missing ones, and configuring + building into build/.
+# Shared by scripts/test, scripts/quickstart and scripts/experiments: the Debian packages
+# this project needs, installing the missing ones, and configuring + building into build/.
 # Source it; it defines functions only.
 
 # Everything the build, the tests and the demo use (Debian 12 names).
@@ -11,6 +11,7 @@ DTMF_PACKAGES=(
   postgresql libpqxx-dev cyclonedds-dev cyclonedds-tools
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
   espeak-ng sox openssl
+  docker-compose  # tests/docker: validates docker/compose.yaml offline (no engine needed)
   python3 python3-pip python3-venv python3-grpcio python3-protobuf python3-pytest python3-matplotlib
 )
 
@@ -33,10 +34,13 @@ ensure_packages() {
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
-# Configures (once) and builds everything into build/.
+# Configures (once) and builds into build/: everything, or with arguments
+# `build_all DIR [TARGET...]` into DIR only the targets named (scripts/experiments).
 build_all() {
-  if [ ! -f build/build.ninja ]; then
-    cmake -G Ninja -B build -S . -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  local dir=${1:-build}
+  if [ $# -gt 0 ]; then shift; fi
+  if [ ! -f "$dir/build.ninja" ]; then
+    cmake -G Ninja -B "$dir" -S . -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
   fi
-  cmake --build build
+  if [ $# -gt 0 ]; then cmake --build "$dir" --target "$@"; else cmake --build "$dir"; fi
 }
