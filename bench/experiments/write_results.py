@@ -292,9 +292,11 @@ def main() -> int:
     w("")
     w("In the trial runs, a false positive without noise was always a chord heard a second time from its "
       "own reverberant tail, 850 ms after the first, once the debouncer's 800 ms lockout had ended "
-      "(docs/protocol.md §6); the agent's log (`build/experiments/logs/`) shows it as the same frame "
-      "again, \"ignored (no RESET since the last command)\". Whether it happens depends on how the "
-      "tail falls on the 50 ms analysis windows, so it comes and goes from run to run.")
+      "(docs/protocol.md §6). Whether it happens depends on how the tail falls on the 50 ms analysis "
+      "windows, so it comes and goes from run to run. It can cost a command although every chord was "
+      "ACKed and matched: a mode word heard twice is taken for the parameter word (\"ignored (parameter "
+      "word ... has no valid ... field)\" in the agent's log, `build/experiments/logs/`), and the real "
+      "parameter word that follows is then ignored, the failure the seed describes in its §11.3.")
     w("")
     with open(args.out, "w") as f:
         f.write("\n".join(out))
