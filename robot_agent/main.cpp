@@ -68,8 +68,6 @@ int run(const Flags& f) {
     const auto migrated = store::migrate(*connection);
     spdlog::info("database {}: schema version {}", store::describe_database(db), migrated.version_after);
   }
-  auto source = physical::open_audio_source(f.audio, profile.sample_rate_hz, profile.min_recording_rate_hz());
-  spdlog::info("listening to {}", source->describe());
   const std::string ack_out = f.ack_out.empty() ? (offline ? "none" : "default") : f.ack_out;
 
   std::unique_ptr<agent::ReplyPlayer> replies;
@@ -116,6 +114,10 @@ int run(const Flags& f) {
   options.continuous_limit_s = f.continuous_limit_s;
   options.host = f.host.empty() ? hostname() : f.host;
   agent::Agent agent(options, *replies, outputs, store, timeline);
+  // The microphone last: a live stream opened earlier fills up while the rest starts, and
+  // the agent would begin behind real time, hearing the first chords late.
+  auto source = physical::open_audio_source(f.audio, profile.sample_rate_hz, profile.min_recording_rate_hz());
+  spdlog::info("listening to {}", source->describe());
 
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);

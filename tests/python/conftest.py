@@ -56,6 +56,7 @@ class LiveSystem:
                                    "--audio-in", "none", "--db", "none"])
         wait_serving(self.address, server, folder / "server.log")
         wait_serving(self.deaf_address, deaf, folder / "deaf.log")
+        time.sleep(3)  # new PulseAudio streams deliver their first seconds irregularly (tests/e2e)
 
     def start(self, name: str, command: list) -> subprocess.Popen:
         log = open(self.folder / f"{name}.log", "w")
