@@ -18,9 +18,9 @@ Agent::Agent(AgentOptions options, ReplyPlayer& replies, std::vector<CmdVelOutpu
 
 double Agent::audio_ms() const { return static_cast<double>(samples_) * 1000.0 / options_.profile->sample_rate_hz; }
 
-void Agent::process(std::span<const float> samples) {
+void Agent::process(std::span<const float> samples, double queued_ms) {
   samples_ += static_cast<long long>(samples.size());
-  timeline_.block_read(audio_ms());
+  timeline_.block_read(audio_ms(), queued_ms);
   // Frames first: a command heard in this block takes effect from its own time, so the
   // publish ticks of this block already carry it.
   for (const link::ReceivedFrame& frame : receiver_.feed(samples)) on_frame(frame);

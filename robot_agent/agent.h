@@ -32,9 +32,15 @@ namespace dtmf::agent {
 class Timeline {
  public:
   explicit Timeline(bool live) : live_(live), start_(std::chrono::system_clock::now()) {}
-  void block_read(double block_end_ms) {
+  // The block ending at `block_end_ms` of audio was read `queued_ms` of audio behind the
+  // microphone: its end was captured that long before now.
+  void block_read(double block_end_ms, double queued_ms = 0) {
     block_end_ms_ = block_end_ms;
-    if (live_) block_end_wall_ = std::chrono::system_clock::now();
+    if (live_) {
+      block_end_wall_ = std::chrono::system_clock::now() -
+                        std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                            std::chrono::duration<double, std::milli>(queued_ms));
+    }
   }
   std::chrono::system_clock::time_point wall(double audio_ms) const {
     const auto offset = [](double ms) {
@@ -66,7 +72,8 @@ class Agent {
         Timeline& timeline);
 
   // One block of audio, as captured.
-  void process(std::span<const float> samples);
+  // `queued_ms`: audio captured after these samples and not yet read (see Timeline).
+  void process(std::span<const float> samples, double queued_ms = 0);
   // The input has ended: let a timed motion run out (as silence), then stop the wheels.
   // `after_block` runs after each block of that silence (to pace it in real time).
   void finish(const std::function<void()>& after_block = {});

@@ -58,6 +58,7 @@ std::string hostname() {
 int run(const Flags& f) {
   using namespace dtmf;
   const LinkProfile& profile = profile_by_name(f.profile);
+  require_frame_format(profile, FrameFormat::Word16, "dtmf-agent");
   const agent::RobotModel& model = agent::robot_model_by_name(f.robot);
   const bool offline = physical::is_file_spec(f.audio);
 
@@ -131,10 +132,22 @@ int run(const Flags& f) {
     if (f.realtime && offline) std::this_thread::sleep_until(started + std::chrono::duration<double, std::milli>(agent.audio_ms()));
   };
   try {
+    // Audio that piled up while the agent started is the past: answering it now would put
+    // late ACKs on the air, which the sender could take for its next frame's.
+    double skipped_ms = 0;
+    while (!offline && source->queued_ms() > 1000.0 * static_cast<double>(block.size()) / profile.sample_rate_hz) {
+      skipped_ms += 1000.0 * static_cast<double>(source->read(block)) / profile.sample_rate_hz;
+    }
+    if (skipped_ms > 0) spdlog::info("skipped {:.0f} ms of audio recorded while starting", skipped_ms);
+    int behind_warnings = 0;
     while (!g_stop) {
       const std::size_t got = source->read(block);
       if (got == 0) break;
-      agent.process(std::span<const float>(block.data(), got));
+      const double queued_ms = source->queued_ms();
+      if (queued_ms > 500 && behind_warnings++ % 100 == 0) {
+        spdlog::warn("{:.0f} ms of audio waiting to be decoded: the machine is too busy, answers come late", queued_ms);
+      }
+      agent.process(std::span<const float>(block.data(), got), queued_ms);
       pace();
     }
   } catch (const std::exception& e) {

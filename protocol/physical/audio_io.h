@@ -23,6 +23,8 @@ class AudioSource {
   // Fills up to out.size() samples; returns how many. 0 means the end of the stream.
   // A live device blocks until the samples have been captured.
   virtual std::size_t read(std::span<float> out) = 0;
+  // Audio captured but not yet read: how far the reader is behind the microphone.
+  virtual double queued_ms() const { return 0; }
   virtual int sample_rate_hz() const = 0;
   virtual std::string describe() const = 0;
 };

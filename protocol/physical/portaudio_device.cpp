@@ -167,6 +167,10 @@ class PortAudioStream {
 class PortAudioSource : public AudioSource {
  public:
   PortAudioSource(const std::string& spec, int rate) : stream_(spec, Direction::Input, rate) {}
+  double queued_ms() const override {
+    const long frames = Pa_GetStreamReadAvailable(stream_.stream_);
+    return frames > 0 ? 1000.0 * static_cast<double>(frames) / stream_.sample_rate_hz_ : 0.0;
+  }
   std::size_t read(std::span<float> out) override {
     const PaError error = Pa_ReadStream(stream_.stream_, out.data(), static_cast<unsigned long>(out.size()));
     // An overflow lost samples to a busy machine; the stream itself goes on.

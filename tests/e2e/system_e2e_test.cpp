@@ -138,6 +138,15 @@ class SystemE2E : public ::testing::Test {
     EXPECT_EQ(unsent, 0) << "frames heard that were never sent";
     const long echoes = report["false_positives"].as<long>();
     std::printf("false positives %ld (frames never sent: %ld), receptions %ld\n", echoes, unsent, receptions);
+    // For the record: each extra reception, and every attempt of its frame.
+    for (const auto& row : tx.exec_params(
+             "SELECT r.frame, r.heard_at::text, (SELECT string_agg(a.chord_started_at::text || ' ' || "
+             "coalesce(a.answer::text, '-'), '; ') FROM frame_attempts a WHERE a.run_id = $1::uuid AND a.frame = r.frame) "
+             "FROM run_receptions($1::uuid) r WHERE r.crc_ok AND r.id NOT IN "
+             "(SELECT reception_id FROM run_matches($1::uuid) WHERE reception_id IS NOT NULL)", run_id)) {
+      std::printf("  extra reception of frame %s heard %s; attempts: %s\n", row[0].c_str(), row[1].c_str(),
+                  row[2].is_null() ? "none" : row[2].c_str());
+    }
     EXPECT_LE(echoes, 1);
     EXPECT_EQ(receptions, report["successfully_matched"].as<long>() + echoes);
   }
@@ -217,7 +226,7 @@ TEST_F(SystemE2E, AnAgentKilledMidRunRestartsStoppedAndLosesNoRows) {
   EXPECT_EQ(r["duplicates"].as<int>(), 0);
   expect_no_wrong_frame(run.run_id, r, db_.query<long>("SELECT count(*) FROM receptions"));
   // No lost rows: every chord the sender heard answered has the robot's reception.
-  EXPECT_EQ(wait_for_receptions(matched), matched);
+  EXPECT_GE(wait_for_receptions(matched), matched);
   {
     pqxx::connection c(db_.url());
     pqxx::work tx(c);
