@@ -74,6 +74,7 @@ struct Flags {
 int run(const Flags& f) {
   using namespace dtmf;
   const LinkProfile& profile = profile_by_name(f.profile);
+  require_frame_format(profile, FrameFormat::Word16, "dtmf-server");
   const store::DatabaseUrl db = store::parse_database_flag(f.db);
   if (!store::database_disabled(db)) {
     auto connection = store::connect(db);

@@ -21,6 +21,7 @@ struct DecodeOptions {
 
 int run_decode(const DecodeOptions& o) {
   const LinkProfile& profile = profile_by_name(o.profile);
+  require_frame_format(profile, FrameFormat::Word16, "dtmfctl");
   physical::WavFileSource source(o.file, profile.sample_rate_hz, profile.min_recording_rate_hz());
   link::ReceiverPath receiver(profile);
   std::vector<float> block(static_cast<std::size_t>(profile.hop_samples()) * 8);

@@ -43,6 +43,7 @@ command::Command build_command(const EncodeOptions& o) {
 
 int run_encode(const EncodeOptions& o) {
   const LinkProfile& profile = profile_by_name(o.profile);
+  require_frame_format(profile, FrameFormat::Word16, "dtmfctl");
   std::vector<link::PlannedFrame> frames;
   std::string what;
   if (o.word) {

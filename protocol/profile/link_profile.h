@@ -58,6 +58,45 @@ struct DebounceParams {
   double rearm_drop_db = 0; // ... and until it has faded this far (or gone) in some window
 };
 
+// How a command travels. Word16: the seed's — RESET, mode and parameter words, one 16-bit
+// CRC-4 frame each, one four-tone chord per frame. Command48: the fast profile's — a whole
+// command in one 48-bit frame (sequence number, command, CRC-16) sent as two chords of
+// 64-ary tones on the bins of a rectangular analysis window, answered by an ACK that names
+// the frame's sequence number. Layouts in docs/protocol.md.
+enum class FrameFormat { Word16, Command48 };
+
+// The bin-centred tone plan of the Command48 format. Every tone sits on a bin of the
+// rectangular analysis window (frequency = bin * rate / window_samples), so a window lying
+// wholly inside a chord sees each tone in exactly one bin and nothing of its neighbours.
+struct BinLink {
+  int window_samples = 0;  // W; also the tone spacing: rate / W
+  int hop_samples = 0;     // one analysis every hop; a chord lasts W + 2 * edge + hop
+  int edge_samples = 0;    // raised-cosine fade at both ends of every chord
+  std::array<int, 4> band_first_bin{};  // band b carries symbol values at first_bin + v
+  int tones_per_band = 0;               // 64: six bits per band and chord
+  int chords_per_frame = 0;             // 2: 48 bits
+  double tone_amplitude = 0;            // linear, per tone
+  double presence_db = 0;   // a band sounds when its best bin is this far above its floor
+  double dominance_db = 0;  // ... and this far above the band's second-best bin
+  double gone_db = 0;       // the other chord's tone must be this far below this chord's
+  int absent_bands = 0;     // bands of a frame's eight that may fail presence_db (chased first)
+  int chase_symbols = 0;    // least certain symbols whose runner-up is tried when the CRC fails
+  // The sender's reply detector: two bands of 16 tones; ACK(seq) sounds tone seq in both,
+  // NACK tone 0 in the first and tone 8 in the second.
+  int reply_window_samples = 0;
+  int reply_hop_samples = 0;
+  int reply_edge_samples = 0;
+  std::array<int, 2> reply_band_first_bin{};
+  int reply_tones_per_band = 0;
+  double reply_amplitude = 0;     // linear, per tone
+  double reply_presence_db = 0;   // stricter than presence_db: 16 tones, one window, no CRC
+
+  int chord_samples() const { return window_samples + 2 * edge_samples + hop_samples; }
+  int frame_samples() const { return chords_per_frame * chord_samples(); }
+  // Two whole analysis windows fit in a reply, one hop apart: the sender wants both to agree.
+  int reply_samples() const { return reply_window_samples + 2 * reply_edge_samples + 2 * reply_hop_samples; }
+};
+
 struct LinkProfile {
   std::string name;
   std::string description;
@@ -68,6 +107,8 @@ struct LinkProfile {
   DetectorParams robot_detector;   // hears command chords
   DetectorParams sender_detector;  // hears ACK / NACK chords
   DebounceParams debounce;
+  FrameFormat frame_format = FrameFormat::Word16;
+  BinLink bins;  // Command48 only
 
   int hop_samples() const;
   int samples_for_ms(double ms) const;
@@ -78,11 +119,17 @@ struct LinkProfile {
 // The seed report's link.
 const LinkProfile& seed_profile();
 
+// A whole command per 48-bit frame in about 0.1 s: docs/protocol.md, "The fast profile".
+const LinkProfile& fast_profile();
+
 // Every profile this build knows, in the order `--profile` help lists them.
 const std::vector<const LinkProfile*>& all_profiles();
 
 // The profile called `name`; throws std::invalid_argument naming the known profiles.
 const LinkProfile& profile_by_name(std::string_view name);
+
+// Throws std::invalid_argument when `profile` does not use `format`, naming `program`.
+void require_frame_format(const LinkProfile& profile, FrameFormat format, std::string_view program);
 
 // "seed, fast" — for help texts and error messages.
 std::string profile_names();

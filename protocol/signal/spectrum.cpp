@@ -10,13 +10,10 @@
 
 namespace dtmf::signal {
 
-namespace {
-// FFTW's planner is not thread-safe; executing a finished plan is.
 std::mutex& planner_mutex() {
   static std::mutex mutex;
   return mutex;
 }
-}  // namespace
 
 SpectrumAnalyzer::SpectrumAnalyzer(int fft_size, int sample_rate_hz)
     : fft_size_(fft_size), sample_rate_hz_(sample_rate_hz), window_(static_cast<std::size_t>(fft_size)) {

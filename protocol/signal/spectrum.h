@@ -6,12 +6,17 @@
 // (a full-scale sine reads 1.0, i.e. 0 dBFS). Nothing is allocated per window.
 #pragma once
 
+#include <mutex>
 #include <span>
 #include <vector>
 
 struct fftwf_plan_s;
 
 namespace dtmf::signal {
+
+// FFTW's planner is not thread-safe (executing a finished plan is): every plan is made and
+// destroyed under this lock.
+std::mutex& planner_mutex();
 
 class SpectrumAnalyzer {
  public:

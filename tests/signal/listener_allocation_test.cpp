@@ -9,9 +9,12 @@
 #include <new>
 
 #include "command/test_sequence.h"
+#include "link/command_frame_path.h"
 #include "link/sender_path.h"
 #include "physical/noise.h"
 #include "profile/link_profile.h"
+#include "signal/bin_reply_listener.h"
+#include "signal/bin_synthesizer.h"
 #include "signal/synthesizer.h"
 #include "signal/tone_listener.h"
 
@@ -92,4 +95,42 @@ TEST(ListenerAllocation, TheSendersListenerAllocatesNothingWhileHearingAnswers) 
   std::size_t heard = 0;
   EXPECT_EQ(allocations_while_feeding(listener, audio, 480, heard), 0);
   EXPECT_EQ(heard, 20u);
+}
+
+// The fast profile's robot path (listener, chase, gate, payload) and the sender's reply
+// listener: 65 frames of the seed sequence back to back, then 17 named replies.
+TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFramesAndReplies) {
+  const LinkProfile& profile = fast_profile();
+  std::vector<float> audio;
+  std::uint8_t seq = 0;
+  std::size_t sent = 0;
+  for (const auto& command : command::seed_test_sequence()) {
+    const auto f = link::render_command_frame(profile, link::plan_command_frame(command, seq++));
+    audio.insert(audio.end(), f.begin(), f.end());
+    ++sent;
+  }
+  audio.resize(audio.size() + 4800, 0.0f);
+  physical::NoiseSource noise(physical::parse_noise("pink", -40), profile.sample_rate_hz, 7);
+  noise.add_to(audio);
+  std::vector<float> replies;
+  for (int s = 0; s <= 16; ++s) {
+    const auto r = signal::synthesize_named_reply(profile, {s < 16, static_cast<std::uint8_t>(s % 16)});
+    replies.insert(replies.end(), r.begin(), r.end());
+    replies.resize(replies.size() + 2400, 0.0f);
+  }
+  for (std::size_t block : {std::size_t{480}, std::size_t{2400}, std::size_t{4096}}) {
+    link::CommandFramePath path(profile);
+    signal::BinReplyListener reply_listener(profile);
+    std::size_t frames = 0, answers = 0;
+    const long before = g_allocations.load();
+    for (std::size_t at = 0; at < audio.size(); at += block) {
+      frames += path.feed(std::span<const float>(audio).subspan(at, std::min(block, audio.size() - at))).size();
+    }
+    for (std::size_t at = 0; at < replies.size(); at += block) {
+      answers += reply_listener.feed(std::span<const float>(replies).subspan(at, std::min(block, replies.size() - at))).size();
+    }
+    EXPECT_EQ(g_allocations.load() - before, 0) << "block " << block;
+    EXPECT_EQ(frames, sent) << "block " << block;
+    EXPECT_EQ(answers, 17u) << "block " << block;
+  }
 }

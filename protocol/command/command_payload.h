@@ -1,0 +1,28 @@
+// Command abstraction layer, part 4: a whole command as the 28-bit payload of one frame
+// (the fast profile's Command48 format; the seed profile spells commands as words instead).
+//
+//   bits 27..24  kind: 0 = RESET, otherwise the mode number of the "Mode words" table
+//   bits 23..12  field A: speed_percent or rotation_percent, 12 bits (code 0 unused)
+//   bits 11..0   field B: duration_s, 12 bits, for the *_FOR_DURATION modes; else 0
+//
+// Every field has the 12-bit resolution of the seed's DRIVE_FORWARD word, duration included
+// (8 s in 4094 steps of about 2 ms). A payload decodes only when its kind is a command and
+// every field is either a valid code or, where the kind has no such field, zero — so a
+// mode and its parameters take effect together or not at all.
+#pragma once
+
+#include <cstdint>
+
+#include "command/word_codec.h"
+
+namespace dtmf::command {
+
+inline constexpr FieldSpec kDurationField12{"duration_s", 0.0, 8.0, 12};
+
+// Throws ParameterError for an out-of-range parameter.
+std::uint32_t encode_payload(const Command& command);
+
+// The command in `payload`, or an error text naming what does not fit.
+ParameterDecode decode_payload(std::uint32_t payload);
+
+}  // namespace dtmf::command
