@@ -37,6 +37,14 @@ std::optional<Debouncer::Pass> Debouncer::on_window(double t_ms, std::optional<D
     rearmed_ = true;
     return std::nullopt;
   }
+  // A copy of the symbol that just passed, rearm_drop_db or more below its peak, is its
+  // reverberant tail: it neither counts nor re-arms (a chord's last, ragged window often
+  // detects nothing, and re-arming there let the tail pass again once the lockout ended).
+  if (locked_symbol_ == detection->symbol && t_ms < locked_until_ms_ + params_.lockout_ms &&
+      detection->level < locked_peak_level_ * rearm_ratio_) {
+    if (!rearmed_) locked_dip_level_ = std::min(locked_dip_level_, detection->level);
+    return std::nullopt;
+  }
   if (locked_symbol_ && *locked_symbol_ != detection->symbol) rearmed_ = true;
   if (locked_out(*detection, t_ms)) return std::nullopt;
 

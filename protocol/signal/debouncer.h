@@ -5,9 +5,11 @@
 // `lockout_ms`; any other symbol passes as soon as it has its own detections.
 // Ours on top: the symbol that passed also stays ignored until it is re-armed — by a window
 // without it, or by a dip of `rearm_drop_db` below its peak followed by a rise of as much
-// again (a new onset). A chord stretched past the lockout by a room's reverberation thus
-// passes once, while the same chord sent again after a gap passes again, even when the
-// reverberation fills the gap.
+// again (a new onset). For twice the lockout after a pass, detections of that symbol
+// rearm_drop_db or more below its peak are its reverberant tail: they neither count nor
+// re-arm. A chord stretched past the lockout by a room's reverberation thus passes once,
+// while the same chord sent again after a gap passes again, even when the reverberation
+// fills the gap.
 //
 // The caller reports every analysis window, with or without a detection. Pure logic:
 // times are the caller's (milliseconds of audio); nothing is allocated.

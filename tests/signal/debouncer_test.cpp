@@ -93,6 +93,21 @@ TEST(Debouncer, AReverberantTailPastTheLockoutDoesNotPassAgain) {
   for (double t = 850; t <= 1300; t += 50, level *= 0.4) EXPECT_FALSE(hit(d, 7, t, level)) << t;
 }
 
+// Seen in a simulated room (pink noise, RT60 0.3 s): the chord's last window, half chord
+// and half silence, detected nothing; the tail 26 and 40 dB down then passed after the
+// lockout. A window without the chord must not make its quiet tail a new chord.
+TEST(Debouncer, ARaggedLastWindowDoesNotLetTheTailPassAgain) {
+  Debouncer d(seed());
+  sound(d, 7, 100, 800, 0.18);
+  miss(d, 850);
+  EXPECT_FALSE(hit(d, 7, 900, 0.009));
+  EXPECT_FALSE(hit(d, 7, 950, 0.002));
+  miss(d, 1000);
+  // The same chord sent again at its own level passes again.
+  EXPECT_FALSE(hit(d, 7, 1250, 0.17));
+  EXPECT_TRUE(hit(d, 7, 1300, 0.18));
+}
+
 TEST(Debouncer, TheSameChordAgainThroughAReverberantGapPassesAgain) {
   Debouncer d(seed());
   sound(d, 7, 100, 800);
