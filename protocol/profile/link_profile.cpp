@@ -38,12 +38,14 @@ LinkProfile make_seed_profile() {
   p.robot_detector.peak_count = 10;
   p.robot_detector.noise_gate_dbfs = -60;
   p.robot_detector.tone_tolerance_hz = 25;
+  p.robot_detector.dominance_db = 8;  // spandsp's DTMF relative-peak test
 
   p.sender_detector.bandpass_low_hz = 1500;
   p.sender_detector.bandpass_high_hz = 4000;
   p.sender_detector.peak_count = 5;
   p.sender_detector.noise_gate_dbfs = -60;
   p.sender_detector.tone_tolerance_hz = 25;
+  p.sender_detector.dominance_db = 8;
 
   p.debounce.min_detections = 2;   // seed section 8
   p.debounce.window_ms = 300;

@@ -48,6 +48,7 @@ struct DetectorParams {
   int peak_count = 0;           // the N loudest peaks considered
   double noise_gate_dbfs = 0;   // peaks below this (as a sine amplitude) are ignored
   double tone_tolerance_hz = 0; // how far a peak may sit from a plan tone and still match it
+  double dominance_db = 0;      // a band's tone must stand this far above its other plan tones
 };
 
 // When a detected chord becomes a frame.

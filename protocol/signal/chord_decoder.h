@@ -1,11 +1,14 @@
 // Signal layer, part 5: from the peaks of one window to a chord, or to nothing.
 //
 // Robot side: a command chord is accepted only when the peaks that match plan tones give
-// exactly one tone in each of the four bands — a missing band or two tones in one band (two
-// chords at once, or a strong interferer on a plan tone) mean no chord. Peaks that match no
-// plan tone are ignored, as the seed does.
+// one tone in each of the four bands that stands `dominance_db` above any other plan tone
+// of its band — a missing band or two tones of like level in one band (two chords at once,
+// or a strong interferer on a plan tone) mean no chord, while a noise peak far below the
+// chord does not (DTMF receivers judge tones by their relative level the same way, e.g.
+// spandsp's 8 dB "relative peak" tests). Peaks that match no plan tone are ignored, as the
+// seed does.
 // Sender side: an ACK (NACK) is accepted when both of its tones are among the peaks and
-// neither tone of the other reply is.
+// each tone of the other reply is absent or `dominance_db` below.
 // Either way the match carries its level: the amplitude of its weakest tone.
 #pragma once
 
@@ -29,10 +32,10 @@ struct ReplyMatch {
   double level;
 };
 
-std::optional<ChordMatch> decode_chord(const TonePlan& plan, std::span<const Peak> peaks,
-                                       double tolerance_hz);
+std::optional<ChordMatch> decode_chord(const TonePlan& plan, std::span<const Peak> peaks, double tolerance_hz,
+                                       double dominance_db);
 
-std::optional<ReplyMatch> decode_reply(const TonePlan& plan, std::span<const Peak> peaks,
-                                       double tolerance_hz);
+std::optional<ReplyMatch> decode_reply(const TonePlan& plan, std::span<const Peak> peaks, double tolerance_hz,
+                                       double dominance_db);
 
 }  // namespace dtmf::signal

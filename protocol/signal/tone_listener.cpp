@@ -57,9 +57,10 @@ void ToneListener::analyze_window() {
 
 ToneListener chord_listener(const LinkProfile& profile) {
   return ToneListener(profile, profile.robot_detector,
-                [plan = profile.tones, tolerance = profile.robot_detector.tone_tolerance_hz](
+                [plan = profile.tones, tolerance = profile.robot_detector.tone_tolerance_hz,
+                 dominance = profile.robot_detector.dominance_db](
                     std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
-                  const auto chord = decode_chord(plan, peaks, tolerance);
+                  const auto chord = decode_chord(plan, peaks, tolerance, dominance);
                   if (!chord) return std::nullopt;
                   return Debouncer::Detection{chord->frame, chord->level};
                 });
@@ -67,9 +68,10 @@ ToneListener chord_listener(const LinkProfile& profile) {
 
 ToneListener reply_listener(const LinkProfile& profile) {
   return ToneListener(profile, profile.sender_detector,
-                [plan = profile.tones, tolerance = profile.sender_detector.tone_tolerance_hz](
+                [plan = profile.tones, tolerance = profile.sender_detector.tone_tolerance_hz,
+                 dominance = profile.sender_detector.dominance_db](
                     std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
-                  const auto reply = decode_reply(plan, peaks, tolerance);
+                  const auto reply = decode_reply(plan, peaks, tolerance, dominance);
                   if (!reply) return std::nullopt;
                   return Debouncer::Detection{static_cast<std::uint32_t>(reply->reply), reply->level};
                 });
