@@ -57,18 +57,18 @@ LinkProfile make_seed_profile() {
 // The fast profile. Its sizes follow from two budgets, worked out in docs/protocol.md:
 // energy (a 64-ary symbol needs Es/N0 of about 24 to be right 99.98 % of the time at
 // -10 dB SNR, hence a 40 ms window for four tones at once) and compute (one 1920-point FFT
-// per 10.5 ms hop is about 1.4 us here, keeping the decoder above 5000x real time).
+// per 10.25 ms hop is about 1.3 us here).
 LinkProfile make_fast_profile() {
   LinkProfile p;
   p.name = "fast";
-  p.description = "a whole command per 48-bit frame in 105 ms, named ACKs, CRC-16, about 250 bit/s";
+  p.description = "a whole command per 48-bit frame in 102.5 ms, named ACKs, CRC-16, about 250 bit/s";
   p.sample_rate_hz = 48000;
   p.frame_format = FrameFormat::Command48;
 
   BinLink& b = p.bins;
   b.window_samples = 1920;  // 40 ms; tones 25 Hz apart
-  b.edge_samples = 48;      // 1 ms fades keep the switching splatter out of the reply bands
-  b.hop_samples = 504;      // 10.5 ms; chord = 1920 + 2 * 48 + 504 = 2520 = 5 hops (52.5 ms)
+  b.edge_samples = 24;      // 0.5 ms fades: the chord switch stays out of the other chord's bins
+  b.hop_samples = 492;      // 10.25 ms; chord = 1920 + 2 * 24 + 492 = 2460 = 5 hops (51.25 ms)
   b.band_first_bin = {200, 268, 336, 404};  // 5000, 6700, 8400, 10100 Hz; 64 tones + 4 guard bins
   b.tones_per_band = 64;
   b.chords_per_frame = 2;
@@ -78,13 +78,14 @@ LinkProfile make_fast_profile() {
   b.gone_db = 6;
   b.absent_bands = 1;
   b.chase_symbols = 2;
-  b.reply_window_samples = 960;  // 20 ms; reply tones 50 Hz apart
-  b.reply_hop_samples = 240;
+  b.reply_window_samples = 768;  // 16 ms; reply tones 62.5 Hz apart
+  b.reply_hop_samples = 192;     // 4 ms; a reply is 768 + 2 * 48 + 2 * 192 = 1248 samples (26 ms)
   b.reply_edge_samples = 48;
-  b.reply_band_first_bin = {40, 60};  // 2000-2750 Hz and 3000-3750 Hz, below the chords
+  b.reply_band_first_bin = {32, 50};  // 2000-2937.5 Hz and 3125-4062.5 Hz, below the chords
   b.reply_tones_per_band = 16;
   b.reply_amplitude = 0.4;
   b.reply_presence_db = 11;  // noise passes it in both bands once in 300 million windows
+  b.reply_dominance_db = 6;  // speech's harmonics share a band at like levels
 
   // The shared fields, in the units the rest of the code base reads them in.
   const double ms_per_sample = 1000.0 / p.sample_rate_hz;

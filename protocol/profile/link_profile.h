@@ -82,8 +82,8 @@ struct BinLink {
   double gone_db = 0;       // the other chord's tone must be this far below this chord's
   int absent_bands = 0;     // bands of a frame's eight that may fail presence_db (chased first)
   int chase_symbols = 0;    // least certain symbols whose runner-up is tried when the CRC fails
-  // The sender's reply detector: two bands of 16 tones; ACK(seq) sounds tone seq in both,
-  // NACK tone 0 in the first and tone 8 in the second.
+  // The sender's reply detector: two bands of 16 tones; ACK(seq) sounds tone seq in the
+  // first and tone (5 seq + 3) mod 16 in the second, NACK tone 0 and tone 8.
   int reply_window_samples = 0;
   int reply_hop_samples = 0;
   int reply_edge_samples = 0;
@@ -91,6 +91,7 @@ struct BinLink {
   int reply_tones_per_band = 0;
   double reply_amplitude = 0;     // linear, per tone
   double reply_presence_db = 0;   // stricter than presence_db: 16 tones, one window, no CRC
+  double reply_dominance_db = 0;  // stricter than dominance_db: speech has harmonics here
 
   int chord_samples() const { return window_samples + 2 * edge_samples + hop_samples; }
   int frame_samples() const { return chords_per_frame * chord_samples(); }

@@ -15,7 +15,7 @@ BinFrameListener::BinFrameListener(const LinkProfile& profile)
       presence_ratio_(static_cast<float>(std::pow(10.0, profile.bins.presence_db / 10.0))),
       bands_(profile.bins.window_samples, profile.bins.band_first_bin, profile.bins.tones_per_band,
              profile.bins.presence_db, profile.bins.dominance_db),
-      window_(static_cast<std::size_t>(profile.bins.window_samples), 0.0f) {
+      window_(static_cast<std::size_t>(profile.bins.window_samples)) {
   if (profile.frame_format != FrameFormat::Command48 || bins_.chords_per_frame != 2 ||
       bins_.chord_samples() % hop_ != 0) {
     throw std::invalid_argument("profile '" + profile.name +
@@ -27,7 +27,7 @@ BinFrameListener::BinFrameListener(const LinkProfile& profile)
 }
 
 void BinFrameListener::reset() {
-  std::fill(window_.begin(), window_.end(), 0.0f);
+  window_.clear();
   for (WindowRecord& r : ring_) r.readings = {};
   windows_ = 0;
   since_analysis_ = 0;
@@ -37,13 +37,9 @@ void BinFrameListener::reset() {
 
 std::span<const FrameCandidate> BinFrameListener::feed(std::span<const float> samples) {
   found_.clear();
-  const std::size_t w = window_.size();
   while (!samples.empty()) {
     const std::size_t take = std::min(samples.size(), static_cast<std::size_t>(hop_ - since_analysis_));
-    // Slide: drop the oldest `take` samples, append the new ones.
-    std::move(window_.begin() + static_cast<std::ptrdiff_t>(take), window_.end(), window_.begin());
-    std::copy(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(take),
-              window_.begin() + static_cast<std::ptrdiff_t>(w - take));
+    window_.push(samples.first(take));
     samples = samples.subspan(take);
     samples_fed_ += static_cast<long long>(take);
     since_analysis_ += static_cast<int>(take);
@@ -56,13 +52,14 @@ std::span<const FrameCandidate> BinFrameListener::feed(std::span<const float> sa
 }
 
 // Each chord's tones must be gone from the other chord's window, band by band where both
-// sound and differ: a tone still sounds when it stands out of the band's floor and is
-// less than gone_db below that window's own tone. (Noise alone in that bin is no tone: at
-// -10 dB SNR a bare gone_db test would throw away one frame in fifty.)
+// sound and differ: a tone still sounds when it is less than gone_db below that window's
+// own tone and stands presence_db + gone_db out of the band's floor. (Noise alone in that
+// bin is no tone: at -10 dB SNR a test at presence_db would throw away one frame in a
+// hundred, since one noise bin in 500 reaches it.)
 bool BinFrameListener::chords_apart(const WindowRecord& first, const WindowRecord& second) const {
   const auto tones = static_cast<std::size_t>(bins_.tones_per_band);
   auto sounding = [&](float power, const BandReading& band) {
-    return power * gone_ratio_ > band.best && power > presence_ratio_ * band.floor;
+    return power * gone_ratio_ > band.best && power > presence_ratio_ * gone_ratio_ * band.floor;
   };
   for (std::size_t b = 0; b < 4; ++b) {
     const BandReading& a = first.readings[b];
@@ -77,7 +74,7 @@ bool BinFrameListener::chords_apart(const WindowRecord& first, const WindowRecor
 void BinFrameListener::analyze_window() {
   newest_ = (newest_ + 1) % ring_.size();
   WindowRecord& now = ring_[newest_];
-  const auto readings = bands_.analyze(window_);
+  const auto readings = bands_.analyze(window_.window());
   std::copy(readings.begin(), readings.end(), now.readings.begin());
   const auto powers = bands_.powers();
   std::copy(powers.begin(), powers.end(), now.powers.begin());

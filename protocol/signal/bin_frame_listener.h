@@ -23,6 +23,7 @@
 
 #include "profile/link_profile.h"
 #include "signal/bin_bands.h"
+#include "signal/sliding_window.h"
 
 namespace dtmf::signal {
 
@@ -63,7 +64,7 @@ class BinFrameListener {
   float gone_ratio_;
   float presence_ratio_;
   BinBands bands_;
-  std::vector<float> window_;  // the latest W samples, oldest first
+  SlidingWindow window_;  // the latest W samples
   std::vector<WindowRecord> ring_;  // the last hops_per_chord + 1 windows
   std::size_t newest_ = 0;
   long long windows_ = 0;

@@ -5,22 +5,24 @@
 namespace dtmf::signal {
 
 std::array<int, 2> reply_tone_indexes(const NamedReply& reply) {
-  if (reply.ack) return {reply.sequence, reply.sequence};
+  if (reply.ack) return {reply.sequence, ack_second_tone(reply.sequence)};
   return {0, kNackSecondTone};
 }
+
+int ack_second_tone(int sequence) { return (5 * sequence + 3) % 16; }
 
 BinReplyListener::BinReplyListener(const LinkProfile& profile)
     : sample_rate_hz_(profile.sample_rate_hz),
       window_samples_(profile.bins.reply_window_samples),
       hop_(profile.bins.reply_hop_samples),
       bands_(profile.bins.reply_window_samples, profile.bins.reply_band_first_bin, profile.bins.reply_tones_per_band,
-             profile.bins.reply_presence_db, profile.bins.dominance_db),
-      window_(static_cast<std::size_t>(profile.bins.reply_window_samples), 0.0f) {
+             profile.bins.reply_presence_db, profile.bins.reply_dominance_db),
+      window_(static_cast<std::size_t>(profile.bins.reply_window_samples)) {
   heard_.reserve(16);
 }
 
 void BinReplyListener::reset() {
-  std::fill(window_.begin(), window_.end(), 0.0f);
+  window_.clear();
   since_analysis_ = 0;
   samples_fed_ = 0;
   previous_.reset();
@@ -29,12 +31,9 @@ void BinReplyListener::reset() {
 
 std::span<const HeardReply> BinReplyListener::feed(std::span<const float> samples) {
   heard_.clear();
-  const std::size_t w = window_.size();
   while (!samples.empty()) {
     const std::size_t take = std::min(samples.size(), static_cast<std::size_t>(hop_ - since_analysis_));
-    std::move(window_.begin() + static_cast<std::ptrdiff_t>(take), window_.end(), window_.begin());
-    std::copy(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(take),
-              window_.begin() + static_cast<std::ptrdiff_t>(w - take));
+    window_.push(samples.first(take));
     samples = samples.subspan(take);
     samples_fed_ += static_cast<long long>(take);
     since_analysis_ += static_cast<int>(take);
@@ -47,10 +46,10 @@ std::span<const HeardReply> BinReplyListener::feed(std::span<const float> sample
 }
 
 void BinReplyListener::analyze_window() {
-  const auto r = bands_.analyze(window_);
+  const auto r = bands_.analyze(window_.window());
   std::optional<NamedReply> now;
   if (r[0].present && r[1].present) {
-    if (r[0].symbol == r[1].symbol) now = NamedReply{true, r[0].symbol};
+    if (r[1].symbol == ack_second_tone(r[0].symbol)) now = NamedReply{true, r[0].symbol};
     else if (r[0].symbol == 0 && r[1].symbol == kNackSecondTone) now = NamedReply{false, 0};
   }
   if (passed_ && now != passed_) passed_.reset();  // re-armed by a window without it

@@ -103,7 +103,7 @@ TEST(BinReplyListener, EveryAckNamesItsSequenceNumberAndANackIsANack) {
 TEST(BinReplyListener, NoiseOrAToneInOneBandIsNoReply) {
   const LinkProfile& p = fast_profile();
   BinReplyListener listener(p);
-  const std::array<double, 1> tone{(p.bins.reply_band_first_bin[0] + 5) * 50.0};
+  const std::array<double, 1> tone{(p.bins.reply_band_first_bin[0] + 5) * 48000.0 / p.bins.reply_window_samples};
   std::vector<float> one_band = synthesize_chord(p, tone, 100);
   std::vector<float> audio = silence(1000);
   append(audio, one_band);

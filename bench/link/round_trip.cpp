@@ -1,0 +1,201 @@
+// dtmf-bench-roundtrip: the link's round trip in a simulated room — command to confirmation.
+//
+// A stop-and-wait sender and a robot face each other `d` metres apart in a simulated room
+// (physical::AcousticChannel both ways: delay, spreading, air absorption, RT60 0.3 s, pink
+// noise at -50 dBFS; the sender's microphone also hears its own loudspeaker from 0.1 m). Both
+// run block by block (--block-samples, 5 ms by default, like low-latency sound cards): the
+// robot answers every verdict with ACK / NACK at its next block, the sender sends a
+// command's frames one after another — each once its answer came and the channel is free
+// (the seed's chord + gap) — retransmits after a NACK or after ack_timeout_ms, and hands the
+// next command over the moment one is confirmed. Per command: the time from being handed
+// over (as an RPC would hand it) to the ACK of its last frame. Throughput: payload bits of
+// the confirmed commands (frame_trials.h: command_payload_bits) over the run's audio time.
+// No server, no gRPC: this is the link's own share of a command's latency, which
+// dtmf-bench-e2e measures through the whole system where a profile is wired to it.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <deque>
+
+#include "common/bench_report.h"
+#include "link/frame_trials.h"
+#include "physical/acoustic_channel.h"
+#include "profile/link_profile.h"
+#include "program_main.h"
+
+using namespace dtmf;
+using namespace dtmf::bench;
+
+namespace {
+
+struct Options {
+  int commands = 200;
+  double distance_m = 1;
+  std::size_t block_samples = 240;
+  std::uint64_t seed = 1;
+};
+
+// A speaker playing queued buffers one after another, silence in between.
+class Speaker {
+ public:
+  void queue(std::vector<float> audio) { queue_.push_back(std::move(audio)); }
+  bool idle() const { return queue_.empty(); }
+  void next_block(std::span<float> out) {
+    std::fill(out.begin(), out.end(), 0.0f);
+    std::size_t at = 0;
+    while (at < out.size() && !queue_.empty()) {
+      const auto& front = queue_.front();
+      const std::size_t n = std::min(out.size() - at, front.size() - position_);
+      std::copy_n(front.begin() + static_cast<long>(position_), n, out.begin() + static_cast<long>(at));
+      at += n;
+      position_ += n;
+      if (position_ == front.size()) {
+        queue_.pop_front();
+        position_ = 0;
+      }
+    }
+  }
+
+ private:
+  std::deque<std::vector<float>> queue_;
+  std::size_t position_ = 0;
+};
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size()) - 1, p * static_cast<double>(v.size())))];
+}
+
+nlohmann::json run(const LinkProfile& profile, const Options& o) {
+  physical::ChannelConfig room;
+  room.noise = physical::parse_noise("pink", -50);
+  room.reverb.rt60_s = 0.3;
+  room.seed = o.seed;
+  physical::AcousticChannel to_robot(profile.sample_rate_hz, room);
+  to_robot.add_transmitter(o.distance_m);
+  room.seed = o.seed + 1;
+  physical::AcousticChannel to_sender(profile.sample_rate_hz, room);
+  to_sender.add_transmitter(0.1);  // its own loudspeaker
+  to_sender.add_transmitter(o.distance_m);
+
+  Responder robot(profile);
+  AnswerListener sender_ear(profile);
+  Speaker sender_speaker, robot_speaker;
+  const double ms_per_sample = 1000.0 / profile.sample_rate_hz;
+  const std::vector<command::Command> commands = {command::DriveForDuration{50, 2}, command::TurnForDuration{-30, 1.5},
+                                                  command::DriveForward{80}, command::Stop{}};
+  std::uint8_t next_sequence = 0;
+
+  std::vector<double> latencies_ms;
+  long frames_sent = 0, frames_first_time = 0, retransmissions = 0, failed_commands = 0, payload_bits = 0;
+  int command_index = -1;
+  std::vector<Transmission> frames;
+  std::size_t frame = 0;
+  int attempt = 0;
+  double handed_over_ms = 0, frame_started_ms = 0, channel_free_ms = 0;
+  bool awaiting = false, want_send = false;
+
+  auto next_command = [&](double now_ms) {
+    if (++command_index >= o.commands) return;
+    frames = command_transmissions(profile, commands[static_cast<std::size_t>(command_index) % commands.size()], next_sequence);
+    frame = 0;
+    attempt = 0;
+    handed_over_ms = now_ms;
+    want_send = true;
+  };
+  next_command(0);
+
+  std::vector<float> speaker_block(o.block_samples), robot_block(o.block_samples), heard;
+  long long samples = 0;
+  while (command_index < o.commands) {
+    const double now_ms = static_cast<double>(samples) * ms_per_sample;  // start of this block
+    if (want_send && now_ms >= channel_free_ms) {
+      sender_speaker.queue(frames[frame].audio);
+      ++frames_sent;
+      ++attempt;
+      if (attempt > 1) ++retransmissions;
+      frame_started_ms = now_ms;
+      const double chord_ms = static_cast<double>(frames[frame].audio.size()) * ms_per_sample;
+      channel_free_ms = now_ms + chord_ms + profile.timing.gap_ms;
+      awaiting = true;
+      want_send = false;
+    }
+    sender_speaker.next_block(speaker_block);
+    robot_speaker.next_block(robot_block);
+    samples += static_cast<long long>(o.block_samples);
+    const double end_ms = static_cast<double>(samples) * ms_per_sample;
+
+    heard.clear();
+    to_robot.process(speaker_block, heard);
+    for (auto& answer : robot.feed(heard)) robot_speaker.queue(std::move(answer));
+
+    heard.clear();
+    const std::array<std::span<const float>, 2> both{std::span<const float>(speaker_block), std::span<const float>(robot_block)};
+    to_sender.process(both, heard);
+    for (const Answer& a : sender_ear.feed(heard)) {
+      if (!awaiting) continue;
+      if (a.ack && a.sequence != frames[frame].sequence) continue;  // names another frame
+      if (!a.ack) {
+        want_send = attempt <= profile.timing.auto_retransmissions;
+        awaiting = false;
+        continue;
+      }
+      awaiting = false;
+      if (attempt == 1) ++frames_first_time;
+      if (++frame < frames.size()) {
+        attempt = 0;
+        want_send = true;
+      } else {
+        latencies_ms.push_back(end_ms - handed_over_ms);
+        payload_bits += command_payload_bits(profile, commands[static_cast<std::size_t>(command_index) % commands.size()]);
+        next_command(end_ms);
+      }
+    }
+    if (awaiting && end_ms - frame_started_ms > profile.timing.ack_timeout_ms) {
+      awaiting = false;
+      if (attempt <= profile.timing.auto_retransmissions) {
+        want_send = true;
+      } else {
+        ++failed_commands;
+        next_command(end_ms);
+      }
+    }
+  }
+  const double run_s = static_cast<double>(samples) / profile.sample_rate_hz;
+  const double median = percentile(latencies_ms, 0.5), p95 = percentile(latencies_ms, 0.95);
+  const double max = latencies_ms.empty() ? 0 : *std::max_element(latencies_ms.begin(), latencies_ms.end());
+  std::printf("round trip  %-5s %d commands at %.1f m: confirmed %zu, failed %ld; latency median %.1f ms, p95 %.1f, max %.1f; "
+              "%.1f bit/s net; %ld of %ld frames answered at the first attempt, %ld retransmissions\n",
+              profile.name.c_str(), o.commands, o.distance_m, latencies_ms.size(), failed_commands, median, p95, max,
+              static_cast<double>(payload_bits) / run_s, frames_first_time, frames_sent, retransmissions);
+  return {{"benchmark", "roundtrip"}, {"profile", profile.name}, {"commands", o.commands},
+          {"distance_m", o.distance_m}, {"block_samples", o.block_samples}, {"confirmed", latencies_ms.size()},
+          {"failed", failed_commands}, {"latency_ms", {{"median", median}, {"p95", p95}, {"max", max}}},
+          {"latencies_ms", latencies_ms}, {"payload_bits", payload_bits}, {"run_s", run_s},
+          {"throughput_bps", static_cast<double>(payload_bits) / run_s}, {"frames_sent", frames_sent},
+          {"frames_first_time", frames_first_time}, {"retransmissions", retransmissions}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app("dtmf-bench-roundtrip: command to confirmation over the simulated room, block by block");
+  std::string profile_name = "seed", json_path;
+  Options o;
+  app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
+  app.add_option("--json", json_path, "write the results to this JSON file");
+  app.add_option("--commands", o.commands, "commands to send, one after another")->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--distance-m", o.distance_m, "sender to robot")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--block-samples", o.block_samples, "audio block of both sides")->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--seed", o.seed, "random seed (noise)")->capture_default_str();
+  if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
+  return program::run([&] {
+    write_json(json_path, run(profile_by_name(profile_name), o));
+    return 0;
+  }, [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-roundtrip: %s\n", why.c_str()); });
+}

@@ -1,0 +1,49 @@
+// One continuous stream of random frames through a channel, scored slot by slot.
+//
+// Frames follow each other at their normal spacing (chord, then gap: one slot each). Each
+// slot's clean audio goes through the channel (noise, a room), and the receiver is fed what
+// comes out in fixed blocks (1024 samples by default), as a sound device delivers it; one
+// more slot without a frame lets late or echoed detections show. An accepted frame belongs
+// to the slot in which it started, with start times read half an analysis window early
+// (a window centred up to half its length before a chord already holds some of it).
+// Definitions (docs/benchmarks.md):
+//   success       the slot's frame was accepted exactly once with the right bits;
+//   wrong accept  an accepted (check-passing) frame whose bits were not sent in its slot.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "link/frame_trials.h"
+
+namespace dtmf::bench {
+
+struct TrialCounts {
+  std::uint64_t frames = 0;         // sent
+  std::uint64_t success = 0;
+  std::uint64_t missed = 0;         // never accepted with the right bits
+  std::uint64_t duplicated = 0;     // accepted with the right bits more than once
+  std::uint64_t wrong_accepts = 0;
+  std::uint64_t check_failed = 0;   // heard but failing the check (NACKed by a robot)
+
+  TrialCounts& operator+=(const TrialCounts& o);
+};
+
+// Turns one slot of clean audio into what the microphone records (appended to `heard`).
+using Channel = std::function<void(std::span<const float> clean, std::vector<float>& heard)>;
+
+struct StreamOptions {
+  std::size_t frames = 500;
+  std::uint64_t seed = 1;            // frame contents
+  std::size_t block_samples = 1024;  // receiver feed size
+};
+
+TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const Channel& channel);
+
+// Mean power of the frames' audio over its non-silent part (the chord), from `count`
+// random frames: the "signal" of the SNR definition.
+double mean_sound_power(FrameTrials& trials, std::size_t count, std::uint64_t seed);
+
+}  // namespace dtmf::bench

@@ -1,0 +1,98 @@
+// Smoke test of the benchmark programs: each runs with tiny counts (seconds, not minutes)
+// and its JSON must hold the fields bench/write_benchmarks.py reads, with plausible values:
+// both profiles decode every frame at +40 dB and nearly none at -30 dB, silence holds no
+// frame, commands are confirmed over the link's round trip and one Drive command end to
+// end. The real runs are scripts/bench's.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+namespace {
+
+nlohmann::json run(const std::string& command, const std::string& name) {
+  const std::string json_path = ::testing::TempDir() + "/bench-smoke-" + name + ".json";
+  std::remove(json_path.c_str());
+  const std::string line = command + " --json " + json_path + " > /dev/null";
+  EXPECT_EQ(std::system(line.c_str()), 0) << line;
+  std::ifstream in(json_path);
+  if (!in) return nlohmann::json::object();
+  return nlohmann::json::parse(in);
+}
+
+class BenchSmokeProfile : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BenchSmokeProfile, SnrSweepSeesTheObviousEnds) {
+  const auto doc = run(std::string(SNR_PATH) + " --profile " + GetParam() +
+                       " --snr-db -30 --snr-db 40 --frames 20 --chunk-frames 10 --topup-frames 0", "snr-" + GetParam());
+  ASSERT_EQ(doc["points"].size(), 2u);
+  const auto& low = doc["points"][0];
+  const auto& high = doc["points"][1];
+  EXPECT_EQ(low["snr_db"], -30);
+  EXPECT_EQ(low["frames"], 20);
+  EXPECT_LT(low["success_rate"].get<double>(), 0.2);
+  EXPECT_EQ(high["success_rate"].get<double>(), 1.0);
+  EXPECT_EQ(high["wrong_accepts"], 0);
+  for (const char* key : {"signal_power", "lowest_snr_db_99", "lowest_snr_db_99_9", "seed", "profile"}) {
+    EXPECT_TRUE(doc.contains(key)) << key;
+  }
+  EXPECT_EQ(doc["lowest_snr_db_99"], 40);
+}
+
+TEST(BenchSmoke, DistanceSweepHearsNearFrames) {
+  const auto doc = run(std::string(DISTANCE_PATH) + " --profile seed --distance-m 1 --distance-m 5 --frames 10", "distance");
+  ASSERT_EQ(doc["points"].size(), 2u);
+  for (const auto& point : doc["points"]) {
+    EXPECT_EQ(point["success_rate"].get<double>(), 1.0) << point.dump();
+    EXPECT_EQ(point["wrong_accepts"], 0);
+  }
+  EXPECT_EQ(doc["noise_dbfs"], -50);
+}
+
+TEST(BenchSmoke, TalkoffFindsNothingInSilence) {
+  // 10 s of silence (raw float32 zeros) on stdin.
+  const auto doc = run("head -c 1920000 /dev/zero | " + std::string(TALKOFF_PATH) + " --profile seed --signal silence",
+                       "talkoff");
+  EXPECT_NEAR(doc["audio_s"].get<double>(), 10.0, 1e-6);
+  for (const char* key : {"accepted_per_hour", "check_failed_per_hour", "acks_per_hour", "nacks_per_hour"}) {
+    EXPECT_EQ(doc[key].get<double>(), 0.0) << key;
+  }
+}
+
+TEST_P(BenchSmokeProfile, DecoderIsFasterThanRealTime) {
+  const auto doc = run(std::string(DECODER_PATH) + " --profile " + GetParam() + " --audio-s 5", "decoder-" + GetParam());
+  ASSERT_EQ(doc["signals"].size(), 2u);
+  for (const auto& s : doc["signals"]) {
+    EXPECT_GT(s["realtime_factor"].get<double>(), 100.0) << s.dump();
+    EXPECT_EQ(s["frames_accepted"], s["frames_expected"]);
+  }
+}
+
+TEST_P(BenchSmokeProfile, RoundTripConfirmsEveryCommand) {
+  const auto doc = run(std::string(ROUNDTRIP_PATH) + " --profile " + GetParam() + " --commands 4", "roundtrip-" + GetParam());
+  EXPECT_EQ(doc["confirmed"], 4);
+  EXPECT_EQ(doc["failed"], 0);
+  EXPECT_EQ(doc["latencies_ms"].size(), 4u);
+  const double median = doc["latency_ms"]["median"].get<double>();
+  if (GetParam() == "fast") {
+    EXPECT_LT(median, 200.0) << "one 102.5 ms frame and its answer";
+    EXPECT_EQ(doc["payload_bits"], 4 * 28);
+  } else {
+    EXPECT_GT(median, 1000.0) << "up to three 0.8 s chords";
+  }
+  EXPECT_GT(doc["throughput_bps"].get<double>(), 5.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Profiles, BenchSmokeProfile, ::testing::Values("seed", "fast"));
+
+TEST(BenchSmoke, EndToEndConfirmsOneCommand) {
+  const auto doc = run(std::string(E2E_PATH) + " --profile seed --commands 1", "e2e");
+  EXPECT_EQ(doc["confirmed"], 1);
+  EXPECT_GT(doc["latency_ms_median"].get<double>(), 1000.0);  // three 0.8 s chords
+  EXPECT_EQ(doc["payload_bits"], 36);
+  EXPECT_GT(doc["throughput_bps"].get<double>(), 5.0);
+}
+
+}  // namespace
