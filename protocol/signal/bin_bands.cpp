@@ -11,6 +11,24 @@
 
 namespace dtmf::signal {
 
+namespace {
+// The first index of the largest of n values: the maximum in four independent lanes, then
+// one scan for it (no data-dependent branch in the hot loop).
+int index_of_max(const float* v, int n) {
+  float lanes[4] = {v[0], v[0], v[0], v[0]};
+  int i = 0;
+  for (; i + 4 <= n; i += 4) {
+    for (int l = 0; l < 4; ++l) lanes[l] = std::max(lanes[l], v[i + l]);
+  }
+  float top = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+  for (; i < n; ++i) top = std::max(top, v[i]);
+  for (i = 0; i < n; ++i) {
+    if (v[i] == top) return i;
+  }
+  return 0;
+}
+}  // namespace
+
 BinBands::BinBands(int window_samples, std::span<const int> band_first_bin, int tones_per_band,
                    double presence_db, double dominance_db)
     : window_samples_(window_samples),
@@ -54,21 +72,27 @@ std::span<const BandReading> BinBands::analyze(std::span<const float> window) {
     float* power = powers_.data() + band * static_cast<std::size_t>(tones_);
     const fftwf_complex* x = bins + first_bin_[band];
     BandReading r;
-    int best = 0, second = 1;
-    float sum = 0;
-    for (int t = 0; t < tones_; ++t) {
-      power[t] = x[t][0] * x[t][0] + x[t][1] * x[t][1];
-      sum += power[t];
-    }
-    if (power[1] > power[0]) std::swap(best, second);
-    for (int t = 2; t < tones_; ++t) {
-      if (power[t] > power[best]) {
-        second = best;
-        best = t;
-      } else if (power[t] > power[second]) {
-        second = t;
+    // Passes without data-dependent branches (powers with their sum in four lanes, then
+    // the best, then the second) take 0.4 us a window here; one pass keeping a running best
+    // and second took 1.1 us, nearly the FFT's own time (bench/decoder).
+    float lanes[4] = {0, 0, 0, 0};
+    int t = 0;
+    for (; t + 4 <= tones_; t += 4) {
+      for (int l = 0; l < 4; ++l) {
+        power[t + l] = x[t + l][0] * x[t + l][0] + x[t + l][1] * x[t + l][1];
+        lanes[l] += power[t + l];
       }
     }
+    for (; t < tones_; ++t) {
+      power[t] = x[t][0] * x[t][0] + x[t][1] * x[t][1];
+      lanes[0] += power[t];
+    }
+    const float sum = (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
+    const int best = index_of_max(power, tones_);
+    const float kept = power[best];
+    power[best] = -1.0f;  // out of the way while the runner-up is found
+    const int second = index_of_max(power, tones_);
+    power[best] = kept;
     r.symbol = static_cast<std::uint8_t>(best);
     r.runner_up = static_cast<std::uint8_t>(second);
     r.best = power[best];
