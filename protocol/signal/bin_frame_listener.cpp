@@ -15,7 +15,7 @@ BinFrameListener::BinFrameListener(const LinkProfile& profile)
       presence_ratio_(static_cast<float>(std::pow(10.0, profile.bins.presence_db / 10.0))),
       bands_(profile.bins.window_samples, profile.bins.band_first_bin, profile.bins.tones_per_band,
              profile.bins.presence_db, profile.bins.dominance_db),
-      window_(static_cast<std::size_t>(profile.bins.window_samples)) {
+      window_(static_cast<std::size_t>(profile.bins.window_samples), static_cast<std::size_t>(profile.bins.hop_samples)) {
   if (profile.frame_format != FrameFormat::Command48 || bins_.chords_per_frame != 2 ||
       bins_.chord_samples() % hop_ != 0) {
     throw std::invalid_argument("profile '" + profile.name +
@@ -30,24 +30,12 @@ void BinFrameListener::reset() {
   window_.clear();
   for (WindowRecord& r : ring_) r.readings = {};
   windows_ = 0;
-  since_analysis_ = 0;
-  samples_fed_ = 0;
   analysed_until_ms_ = 0;
 }
 
 std::span<const FrameCandidate> BinFrameListener::feed(std::span<const float> samples) {
   found_.clear();
-  while (!samples.empty()) {
-    const std::size_t take = std::min(samples.size(), static_cast<std::size_t>(hop_ - since_analysis_));
-    window_.push(samples.first(take));
-    samples = samples.subspan(take);
-    samples_fed_ += static_cast<long long>(take);
-    since_analysis_ += static_cast<int>(take);
-    if (since_analysis_ == hop_) {
-      since_analysis_ = 0;
-      analyze_window();
-    }
-  }
+  window_.feed(samples, [this] { analyze_window(); });
   return found_;
 }
 
@@ -79,7 +67,7 @@ void BinFrameListener::analyze_window() {
   const auto powers = bands_.powers();
   std::copy(powers.begin(), powers.end(), now.powers.begin());
   ++windows_;
-  analysed_until_ms_ = 1000.0 * static_cast<double>(samples_fed_) / sample_rate_hz_;
+  analysed_until_ms_ = 1000.0 * static_cast<double>(window_.samples_fed()) / sample_rate_hz_;
   if (windows_ <= hops_per_chord_) return;
 
   // The oldest record in the ring is exactly one chord before this one.

@@ -64,12 +64,10 @@ class BinFrameListener {
   float gone_ratio_;
   float presence_ratio_;
   BinBands bands_;
-  SlidingWindow window_;  // the latest W samples
+  SlidingWindow window_;  // the latest W samples, analysed every hop
   std::vector<WindowRecord> ring_;  // the last hops_per_chord + 1 windows
   std::size_t newest_ = 0;
   long long windows_ = 0;
-  int since_analysis_ = 0;
-  long long samples_fed_ = 0;
   double analysed_until_ms_ = 0;
   std::vector<FrameCandidate> found_;
 };

@@ -17,31 +17,20 @@ BinReplyListener::BinReplyListener(const LinkProfile& profile)
       hop_(profile.bins.reply_hop_samples),
       bands_(profile.bins.reply_window_samples, profile.bins.reply_band_first_bin, profile.bins.reply_tones_per_band,
              profile.bins.reply_presence_db, profile.bins.reply_dominance_db),
-      window_(static_cast<std::size_t>(profile.bins.reply_window_samples)) {
+      window_(static_cast<std::size_t>(profile.bins.reply_window_samples),
+              static_cast<std::size_t>(profile.bins.reply_hop_samples)) {
   heard_.reserve(16);
 }
 
 void BinReplyListener::reset() {
   window_.clear();
-  since_analysis_ = 0;
-  samples_fed_ = 0;
   previous_.reset();
   passed_.reset();
 }
 
 std::span<const HeardReply> BinReplyListener::feed(std::span<const float> samples) {
   heard_.clear();
-  while (!samples.empty()) {
-    const std::size_t take = std::min(samples.size(), static_cast<std::size_t>(hop_ - since_analysis_));
-    window_.push(samples.first(take));
-    samples = samples.subspan(take);
-    samples_fed_ += static_cast<long long>(take);
-    since_analysis_ += static_cast<int>(take);
-    if (since_analysis_ == hop_) {
-      since_analysis_ = 0;
-      analyze_window();
-    }
-  }
+  window_.feed(samples, [this] { analyze_window(); });
   return heard_;
 }
 
@@ -55,7 +44,7 @@ void BinReplyListener::analyze_window() {
   if (passed_ && now != passed_) passed_.reset();  // re-armed by a window without it
   if (now && now == previous_ && !passed_) {
     passed_ = now;
-    const double heard_ms = 1000.0 * static_cast<double>(samples_fed_) / sample_rate_hz_;
+    const double heard_ms = 1000.0 * static_cast<double>(window_.samples_fed()) / sample_rate_hz_;
     const double start_ms = heard_ms - 1000.0 * (window_samples_ + hop_) / sample_rate_hz_;
     heard_.push_back(HeardReply{*now, start_ms, heard_ms});
   }

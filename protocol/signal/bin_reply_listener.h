@@ -60,8 +60,6 @@ class BinReplyListener {
   int hop_;
   BinBands bands_;
   SlidingWindow window_;
-  int since_analysis_ = 0;
-  long long samples_fed_ = 0;
   std::optional<NamedReply> previous_;  // what the last window read
   std::optional<NamedReply> passed_;    // passed and not yet re-armed
   std::vector<HeardReply> heard_;

@@ -8,46 +8,30 @@ ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& det
                            Decode decode)
     : sample_rate_hz_(profile.sample_rate_hz),
       fft_size_(profile.analysis.fft_size),
-      hop_(profile.hop_samples()),
       analyzer_(profile.analysis.fft_size, profile.sample_rate_hz),
       peaks_(detector, analyzer_.bin_hz(), static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1)),
       decode_(std::move(decode)),
       debouncer_(profile.debounce),
-      window_(static_cast<std::size_t>(profile.analysis.fft_size), 0.0f) {
+      window_(static_cast<std::size_t>(profile.analysis.fft_size), static_cast<std::size_t>(profile.hop_samples())) {
   // Room for the passes of any usual block; a huge block may grow it once.
   heard_.reserve(64);
 }
 
 void ToneListener::reset() {
-  std::fill(window_.begin(), window_.end(), 0.0f);
-  since_analysis_ = 0;
-  samples_fed_ = 0;
+  window_.clear();
   debouncer_.reset();
   last_peaks_ = {};
 }
 
 std::span<const Heard> ToneListener::feed(std::span<const float> samples) {
   heard_.clear();
-  while (!samples.empty()) {
-    const auto take = std::min<std::size_t>(samples.size(), static_cast<std::size_t>(hop_ - since_analysis_));
-    // Slide the window left by `take` and append the new samples.
-    std::copy(window_.begin() + static_cast<std::ptrdiff_t>(take), window_.end(), window_.begin());
-    std::copy(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(take),
-              window_.end() - static_cast<std::ptrdiff_t>(take));
-    samples = samples.subspan(take);
-    samples_fed_ += static_cast<long long>(take);
-    since_analysis_ += static_cast<int>(take);
-    if (since_analysis_ == hop_) {
-      since_analysis_ = 0;
-      analyze_window();
-    }
-  }
+  window_.feed(samples, [this] { analyze_window(); });
   return heard_;
 }
 
 void ToneListener::analyze_window() {
-  last_peaks_ = peaks_.detect(analyzer_.analyze(window_));
-  const double end_ms = static_cast<double>(samples_fed_) * 1000.0 / sample_rate_hz_;
+  last_peaks_ = peaks_.detect(analyzer_.analyze(window_.window()));
+  const double end_ms = static_cast<double>(window_.samples_fed()) * 1000.0 / sample_rate_hz_;
   if (const auto pass = debouncer_.on_window(end_ms, decode_(last_peaks_))) {
     const double half_window_ms = 500.0 * fft_size_ / sample_rate_hz_;
     heard_.push_back(Heard{pass->symbol, std::max(0.0, pass->first_detection_ms - half_window_ms),

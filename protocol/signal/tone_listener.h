@@ -19,6 +19,7 @@
 #include "signal/chord_decoder.h"
 #include "signal/debouncer.h"
 #include "signal/peak_detector.h"
+#include "signal/sliding_window.h"
 #include "signal/spectrum.h"
 #include "signal/tone_plan.h"
 
@@ -50,14 +51,11 @@ class ToneListener {
 
   int sample_rate_hz_;
   int fft_size_;
-  int hop_;
   SpectrumAnalyzer analyzer_;
   PeakDetector peaks_;
   Decode decode_;
   Debouncer debouncer_;
-  std::vector<float> window_;  // the latest fft_size samples, oldest first
-  int since_analysis_ = 0;
-  long long samples_fed_ = 0;
+  SlidingWindow window_;  // the latest fft_size samples, analysed every hop
   std::span<const Peak> last_peaks_;
   std::vector<Heard> heard_;
 };
