@@ -135,7 +135,9 @@ int frame_data_bits(const LinkProfile& profile) {
 }
 
 int FrameTrials::data_bits() const { return frame_data_bits(profile_); }
-int FrameTrials::check_bits() const { return command48(profile_) ? 16 : reliability::kCrcBits; }
+int FrameTrials::check_bits() const {
+  return command48(profile_) ? reliability::kCommandCrcBits : reliability::kCrcBits;
+}
 
 namespace {
 // A random valid command: every kind, parameters drawn over their whole ranges.

@@ -5,7 +5,7 @@ namespace dtmf::reliability {
 namespace {
 constexpr std::uint16_t kPolynomial = 0x1021;
 constexpr std::uint16_t kInitial = 0xFFFF;
-constexpr int kCrcBits = 16;
+constexpr int kCrcBits = kCommandCrcBits;
 constexpr int kCheckedBits = kSequenceBits + kPayloadBits;
 }  // namespace
 

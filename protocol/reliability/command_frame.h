@@ -22,6 +22,7 @@ inline constexpr int kCommandSymbols = 8;
 inline constexpr int kSymbolBits = 6;
 inline constexpr int kSequenceBits = 4;
 inline constexpr int kPayloadBits = 28;
+inline constexpr int kCommandCrcBits = 16;
 inline constexpr std::uint32_t kPayloadMask = (1u << kPayloadBits) - 1;
 inline constexpr std::uint8_t kSequenceMask = (1u << kSequenceBits) - 1;
 
