@@ -1,10 +1,15 @@
-// The robot agent's core: the receive path wired to its answers, its logs and the wheels.
+// The robot agent's core: the receive paths wired to its answers, its logs and the wheels.
 //
-//   audio block -> ReceiverPath (spectrum, chord, debouncer, CRC, word state machine)
-//      each heard frame -> ACK if intact, NACK if not (ReplyPlayer)
+//   audio block -> ReceiverPath (seed: spectrum, chord, debouncer, CRC-4, word state machine)
+//               -> CommandFramePath (fast: bin bands, chase, CRC-16, sequence filter)
+//      each heard frame -> ACK if intact (naming its sequence number under fast), NACK if
+//                          not, in the frame's own profile (ReplyPlayer)
 //                       -> a receptions row (store)
-//                       -> a complete command -> VelocityProvider
+//                       -> a complete, new command -> VelocityProvider
 //   every publish period -> VelocityProvider::update -> every cmd_vel output
+//
+// The agent listens with every profile it is given at once, so the sender may choose the
+// profile per command.
 //
 // The agent's clock is the audio itself: milliseconds of samples heard since start. A live
 // device delivers them in real time; a file as fast as it can be read, so an offline run
@@ -19,6 +24,7 @@
 #include <vector>
 
 #include "cmd_vel/velocity.h"
+#include "link/command_frame_path.h"
 #include "link/receiver_path.h"
 #include "profile/link_profile.h"
 #include "reply_player.h"
@@ -56,14 +62,26 @@ class Timeline {
   double block_end_ms_ = 0;
 };
 
+// A frame the agent heard and answered, whatever its profile.
+struct HeardFrame {
+  const LinkProfile* profile = nullptr;
+  double start_ms = 0;
+  double heard_ms = 0;
+  std::uint64_t bits = 0;
+  bool intact = false;
+  std::optional<command::Word> word;        // seed frames
+  std::optional<command::Command> command;  // the command it completed (seed) or carried (fast, new frames)
+};
+
 struct AgentOptions {
-  const LinkProfile* profile = &seed_profile();
+  // The profiles to listen with; all must share one sample rate.
+  std::vector<const LinkProfile*> profiles{&seed_profile()};
   RobotModel model = burger();
   double publish_rate_hz = 20;
   double continuous_limit_s = 30;
   std::string host;  // for the receptions rows
   // Told of every frame heard, after it was handled (for monitors and tests).
-  std::function<void(const link::ReceivedFrame&)> on_frame_heard;
+  std::function<void(const HeardFrame&)> on_frame_heard;
 };
 
 class Agent {
@@ -81,11 +99,18 @@ class Agent {
   void stop_now(const std::string& why);
 
   double audio_ms() const;
+  // The block size that suits every profile listened with (its smallest analysis hop).
+  int block_samples() const { return block_samples_; }
   const VelocityProvider& provider() const { return provider_; }
   std::size_t frames_heard() const { return frames_heard_; }
 
  private:
-  void on_frame(const link::ReceivedFrame& frame);
+  void on_word_frame(const LinkProfile& profile, const link::ReceivedFrame& frame);
+  void on_command_frame(const LinkProfile& profile, const link::ReceivedCommandFrame& frame);
+  store::ReceptionRow reception_row(const LinkProfile& profile, double start_ms, double heard_ms, bool intact) const;
+  // The command takes effect from `heard_ms`; the row gets the velocity it set.
+  void execute(const command::Command& command, double heard_ms, store::ReceptionRow& row);
+  void told(const HeardFrame& frame) const;
   // Publishes every tick up to audio_ms (including a tick at exactly audio_ms if inclusive).
   void publish_until(double audio_ms, bool inclusive = true);
   void publish(const Velocity& velocity, double audio_ms);
@@ -95,7 +120,11 @@ class Agent {
   std::vector<CmdVelOutput*> outputs_;
   store::Store& store_;
   Timeline& timeline_;
-  link::ReceiverPath receiver_;
+  int sample_rate_hz_;
+  int block_samples_;
+  // One receive path per profile listened with.
+  std::vector<std::pair<const LinkProfile*, std::unique_ptr<link::ReceiverPath>>> word_paths_;
+  std::vector<std::pair<const LinkProfile*, std::unique_ptr<link::CommandFramePath>>> command_paths_;
   VelocityProvider provider_;
   long long samples_ = 0;
   double next_publish_ms_ = 0;

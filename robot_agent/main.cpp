@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -33,7 +34,7 @@ struct Flags {
   std::string audio = "default";
   std::string ack_out;  // default: "none" for a file input, else the default device
   std::vector<std::string> cmd_vel{"dds"};
-  std::string profile = "seed";
+  std::vector<std::string> profiles;  // empty: every profile
   std::string robot = "burger";
   double publish_rate_hz = 20;
   double continuous_limit_s = 30;
@@ -57,8 +58,10 @@ std::string hostname() {
 
 int run(const Flags& f) {
   using namespace dtmf;
-  const LinkProfile& profile = profile_by_name(f.profile);
-  require_frame_format(profile, FrameFormat::Word16, "dtmf-agent");
+  std::vector<const LinkProfile*> profiles;
+  for (const std::string& name : f.profiles) profiles.push_back(&profile_by_name(name));
+  if (profiles.empty()) profiles = all_profiles();
+  const LinkProfile& profile = *profiles.front();  // all share its sample rate (Agent checks)
   const agent::RobotModel& model = agent::robot_model_by_name(f.robot);
   const bool offline = physical::is_file_spec(f.audio);
 
@@ -73,14 +76,14 @@ int run(const Flags& f) {
 
   std::unique_ptr<agent::ReplyPlayer> replies;
   struct Silent : agent::ReplyPlayer {
-    void play(signal::Reply, double) override {}
+    void play(std::vector<float>, double) override {}
     void finish(double) override {}
   };
   if (ack_out == "none") replies = std::make_unique<Silent>();
   else if (physical::is_file_spec(ack_out) || offline)
     replies = std::make_unique<agent::ReplyTimeline>(profile, physical::open_audio_sink(ack_out, profile.sample_rate_hz));
   else
-    replies = std::make_unique<agent::LiveReplyPlayer>(profile, physical::open_audio_sink(ack_out, profile.sample_rate_hz));
+    replies = std::make_unique<agent::LiveReplyPlayer>(physical::open_audio_sink(ack_out, profile.sample_rate_hz));
   spdlog::info("answering through {}", ack_out);
 
   std::vector<std::unique_ptr<agent::CmdVelOutput>> owned;
@@ -109,7 +112,7 @@ int run(const Flags& f) {
 
   agent::Timeline timeline(!offline);
   agent::AgentOptions options;
-  options.profile = &profile;
+  options.profiles = profiles;
   options.model = model;
   options.publish_rate_hz = f.publish_rate_hz;
   options.continuous_limit_s = f.continuous_limit_s;
@@ -117,14 +120,18 @@ int run(const Flags& f) {
   agent::Agent agent(options, *replies, outputs, store, timeline);
   // The microphone last: a live stream opened earlier fills up while the rest starts, and
   // the agent would begin behind real time, hearing the first chords late.
-  auto source = physical::open_audio_source(f.audio, profile.sample_rate_hz, profile.min_recording_rate_hz());
+  int min_rate_hz = 0;
+  for (const LinkProfile* p : profiles) min_rate_hz = std::max(min_rate_hz, p->min_recording_rate_hz());
+  auto source = physical::open_audio_source(f.audio, profile.sample_rate_hz, min_rate_hz);
   spdlog::info("listening to {}", source->describe());
 
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  spdlog::info("robot {} ({:.2f} m/s, {:.2f} rad/s), profile {}, publishing at {:.0f} Hz", model.name,
-               model.max_linear_mps, model.max_angular_rps, profile.name, f.publish_rate_hz);
-  std::vector<float> block(static_cast<std::size_t>(profile.hop_samples()));
+  std::string names;
+  for (const LinkProfile* p : profiles) names += (names.empty() ? "" : ", ") + p->name;
+  spdlog::info("robot {} ({:.2f} m/s, {:.2f} rad/s), listening with profiles {}, publishing at {:.0f} Hz", model.name,
+               model.max_linear_mps, model.max_angular_rps, names, f.publish_rate_hz);
+  std::vector<float> block(static_cast<std::size_t>(agent.block_samples()));
   int exit_code = 0;
   const auto started = std::chrono::steady_clock::now();
   // A recording played back as if it were being heard now.
@@ -174,7 +181,9 @@ int main(int argc, char** argv) {
       ->envname("DTMF_AGENT_ACK_OUT");
   app.add_option("--cmd-vel", f.cmd_vel, "outputs, one or more of: dds (ROS 2), sim (simulated robot), log (JSON lines on stdout)")
       ->delimiter(',')->check(CLI::IsMember({"dds", "sim", "log"}))->capture_default_str();
-  app.add_option("--profile", f.profile, "link profile: " + dtmf::profile_names())->capture_default_str();
+  app.add_option("--profile", f.profiles,
+                 "link profiles to listen with, comma-separated (default: all of " + dtmf::profile_names() + ")")
+      ->delimiter(',');
   app.add_option("--robot", f.robot, "TurtleBot3 model: burger or waffle")->envname("TURTLEBOT3_MODEL")
       ->check(CLI::IsMember({"burger", "waffle", "waffle_pi"}))->capture_default_str();
   app.add_option("--publish-rate-hz", f.publish_rate_hz, "cmd_vel publish rate")->check(CLI::Range(1.0, 200.0))->capture_default_str();

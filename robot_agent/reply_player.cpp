@@ -4,9 +4,17 @@
 
 #include <vector>
 
+#include "signal/bin_synthesizer.h"
 #include "signal/synthesizer.h"
 
 namespace dtmf::agent {
+
+std::vector<float> reply_audio(const LinkProfile& profile, bool ack, std::optional<std::uint8_t> sequence) {
+  if (profile.frame_format == FrameFormat::Command48) {
+    return signal::synthesize_named_reply(profile, signal::NamedReply{ack, ack ? sequence.value_or(0) : std::uint8_t{0}});
+  }
+  return signal::synthesize_reply(profile, ack ? signal::Reply::Ack : signal::Reply::Nack);
+}
 
 ReplyTimeline::ReplyTimeline(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> sink)
     : profile_(profile), sink_(std::move(sink)) {}
@@ -20,12 +28,11 @@ void ReplyTimeline::silence_until(long long sample) {
   }
 }
 
-void ReplyTimeline::play(signal::Reply reply, double audio_ms) {
+void ReplyTimeline::play(std::vector<float> audio, double audio_ms) {
   // A chord asked for while the previous one still sounds starts right after it.
   silence_until(profile_.samples_for_ms(audio_ms));
-  const std::vector<float> chord = signal::synthesize_reply(profile_, reply);
-  sink_->write(chord);
-  written_ += static_cast<long long>(chord.size());
+  sink_->write(audio);
+  written_ += static_cast<long long>(audio.size());
 }
 
 void ReplyTimeline::finish(double audio_ms) {
@@ -33,8 +40,8 @@ void ReplyTimeline::finish(double audio_ms) {
   sink_->drain();
 }
 
-LiveReplyPlayer::LiveReplyPlayer(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> sink)
-    : profile_(profile), sink_(std::move(sink)), thread_([this] { run(); }) {}
+LiveReplyPlayer::LiveReplyPlayer(std::unique_ptr<physical::AudioSink> sink)
+    : sink_(std::move(sink)), thread_([this] { run(); }) {}
 
 LiveReplyPlayer::~LiveReplyPlayer() {
   {
@@ -45,10 +52,10 @@ LiveReplyPlayer::~LiveReplyPlayer() {
   thread_.join();
 }
 
-void LiveReplyPlayer::play(signal::Reply reply, double) {
+void LiveReplyPlayer::play(std::vector<float> audio, double) {
   {
     std::lock_guard lock(mutex_);
-    queue_.push_back(reply);
+    queue_.push_back(std::move(audio));
   }
   wake_.notify_one();
 }
@@ -59,19 +66,17 @@ void LiveReplyPlayer::finish(double) {
 }
 
 void LiveReplyPlayer::run() {
-  const std::vector<float> ack = signal::synthesize_reply(profile_, signal::Reply::Ack);
-  const std::vector<float> nack = signal::synthesize_reply(profile_, signal::Reply::Nack);
   std::unique_lock lock(mutex_);
   while (true) {
     wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
     if (queue_.empty()) return;
-    const signal::Reply reply = queue_.front();
+    const std::vector<float> audio = queue_.front();
     lock.unlock();
     try {
-      sink_->write(reply == signal::Reply::Ack ? ack : nack);
+      sink_->write(audio);
       sink_->drain();
     } catch (const std::exception& e) {
-      spdlog::error("cannot answer with {}: {}", reply == signal::Reply::Ack ? "ACK" : "NACK", e.what());
+      spdlog::error("cannot play an answer: {}", e.what());
     }
     lock.lock();
     queue_.pop_front();

@@ -1,5 +1,7 @@
 // How the robot answers: ACK or NACK chords through its loudspeaker (physical layer sink).
 //
+// reply_audio() renders an answer in a frame's own profile: the seed's two-tone ACK / NACK
+// chords, or the fast profile's 16 ms reply whose ACK names the frame's sequence number.
 // ReplyTimeline writes a file: each chord at the audio time of the frame it answers, with
 // silence between, so an offline run leaves a recording aligned with its input.
 // LiveReplyPlayer plays on a device from its own thread, so answering never holds up
@@ -10,18 +12,23 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <vector>
 #include <thread>
 
 #include "physical/audio_io.h"
 #include "profile/link_profile.h"
-#include "signal/tone_plan.h"
 
 namespace dtmf::agent {
+
+// An ACK (naming `sequence` under the fast profile) or a NACK, as audio.
+std::vector<float> reply_audio(const LinkProfile& profile, bool ack, std::optional<std::uint8_t> sequence);
 
 class ReplyPlayer {
  public:
   virtual ~ReplyPlayer() = default;
-  virtual void play(signal::Reply reply, double audio_ms) = 0;
+  // Plays `audio` (from reply_audio) as the answer to a frame heard at `audio_ms`.
+  virtual void play(std::vector<float> audio, double audio_ms) = 0;
   // The input ended at `audio_ms`: finish what is playing or being written.
   virtual void finish(double audio_ms) = 0;
 };
@@ -29,7 +36,7 @@ class ReplyPlayer {
 class ReplyTimeline : public ReplyPlayer {
  public:
   ReplyTimeline(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> sink);
-  void play(signal::Reply reply, double audio_ms) override;
+  void play(std::vector<float> audio, double audio_ms) override;
   void finish(double audio_ms) override;
 
  private:
@@ -42,19 +49,18 @@ class ReplyTimeline : public ReplyPlayer {
 
 class LiveReplyPlayer : public ReplyPlayer {
  public:
-  LiveReplyPlayer(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> sink);
+  explicit LiveReplyPlayer(std::unique_ptr<physical::AudioSink> sink);
   ~LiveReplyPlayer() override;
-  void play(signal::Reply reply, double audio_ms) override;
+  void play(std::vector<float> audio, double audio_ms) override;
   void finish(double audio_ms) override;
 
  private:
   void run();
 
-  const LinkProfile& profile_;
   std::unique_ptr<physical::AudioSink> sink_;
   std::mutex mutex_;
   std::condition_variable wake_;
-  std::deque<signal::Reply> queue_;
+  std::deque<std::vector<float>> queue_;
   bool stopping_ = false;
   std::thread thread_;
 };

@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "command/command.h"
-#include "link/sender_path.h"
+#include "link/transmit_plan.h"
+#include "profile/link_profile.h"
 #include "reliability/retry_controller.h"
 #include "rows.h"
 
@@ -29,7 +30,6 @@ struct ProgressEvent {
   Kind kind;
   int frame_index = 0;
   int attempt = 0;
-  std::optional<link::PlannedFrame> frame;
   std::optional<double> response_time_ms;
   std::string detail;
   int queue_position = 0;
@@ -38,12 +38,13 @@ struct ProgressEvent {
 
 class Job {
  public:
-  Job(command::Command command, std::vector<link::PlannedFrame> frames, Policy policy,
+  Job(const LinkProfile& profile, command::Command command, std::vector<link::TransmitFrame> frames, Policy policy,
       std::chrono::milliseconds decision_timeout, std::optional<std::string> run_id);
 
   const std::string& id() const { return id_; }
   const command::Command& command() const { return command_; }
-  const std::vector<link::PlannedFrame>& frames() const { return frames_; }
+  const LinkProfile& profile() const { return profile_; }
+  const std::vector<link::TransmitFrame>& frames() const { return frames_; }
   Policy policy() const { return policy_; }
   const std::optional<std::string>& run_id() const { return run_id_; }
   // The commands row as logged; only the transmitter's threads touch it.
@@ -68,8 +69,9 @@ class Job {
 
  private:
   std::string id_ = store::new_id();
+  const LinkProfile& profile_;
   command::Command command_;
-  std::vector<link::PlannedFrame> frames_;
+  std::vector<link::TransmitFrame> frames_;
   Policy policy_;
   std::chrono::milliseconds decision_timeout_;
   std::optional<std::string> run_id_;

@@ -74,7 +74,6 @@ struct Flags {
 int run(const Flags& f) {
   using namespace dtmf;
   const LinkProfile& profile = profile_by_name(f.profile);
-  require_frame_format(profile, FrameFormat::Word16, "dtmf-server");
   const store::DatabaseUrl db = store::parse_database_flag(f.db);
   if (!store::database_disabled(db)) {
     auto connection = store::connect(db);
@@ -126,7 +125,7 @@ int run(const Flags& f) {
                              " (is another server using the port? choose one with --port)");
   }
   grpc_server->GetHealthCheckService()->SetServingStatus(true);
-  spdlog::info("serving dtmf.v1.Teleop on {}:{} ({}{}), profile {}", f.address, port,
+  spdlog::info("serving dtmf.v1.Teleop on {}:{} ({}{}), default profile {}", f.address, port,
                f.tls_cert.empty() ? "plaintext" : "TLS", options.auth_token.empty() ? "" : ", bearer token", profile.name);
 
   std::signal(SIGINT, on_signal);
@@ -152,7 +151,8 @@ int main(int argc, char** argv) {
       ->envname("DTMF_SERVER_AUDIO_OUT")->capture_default_str();
   app.add_option("--audio-in", f.audio_in, "microphone for the robot's ACK / NACK: a device, default, wav:FILE, or none")
       ->envname("DTMF_SERVER_AUDIO_IN")->capture_default_str();
-  app.add_option("--profile", f.profile, "link profile: " + dtmf::profile_names())->capture_default_str();
+  app.add_option("--profile", f.profile, "link profile of commands that name none (CommandOptions.profile): " +
+                                            dtmf::profile_names())->capture_default_str();
   app.add_option("--db", f.db, "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
       ->envname("DTMF_DB_URL");
   app.add_option("--spill-file", f.spill_file, "where log rows wait while the database is away");

@@ -48,6 +48,13 @@ CommandSettings command_settings(const v1::CommandOptions& options, const Comman
                        std::to_string(timeout_s));
   }
   if (timeout_s > 0) settings.decision_timeout = std::chrono::milliseconds(static_cast<long>(timeout_s * 1000));
+  if (!options.profile().empty()) {
+    try {
+      settings.profile = &profile_by_name(options.profile());
+    } catch (const std::invalid_argument& e) {
+      throw RequestError(std::string("options.profile: ") + e.what());
+    }
+  }
   return settings;
 }
 

@@ -17,6 +17,7 @@ namespace dtmf::server {
 struct CommandSettings {
   Policy policy;
   std::chrono::milliseconds decision_timeout;
+  const LinkProfile* profile = nullptr;  // nullptr: the transmitter's default
 };
 
 // The command a request asks for; throws RequestError.

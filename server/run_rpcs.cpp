@@ -35,7 +35,7 @@ void fill_frame(v1::FrameRecord& frame, const pqxx::row& row) {
   frame.set_command(row["command"].as<std::string>());
   frame.set_position(row["position"].as<std::uint32_t>());
   frame.set_attempt(row["attempt"].as<std::uint32_t>());
-  frame.set_word(row["word"].as<std::uint32_t>());
+  if (!row["word"].is_null()) frame.set_word(row["word"].as<std::uint32_t>());
   frame.set_frame_bits(row["frame_bits"].as<std::string>());
   std::istringstream tones(row["tones"].as<std::string>());
   for (double hz; tones >> hz;) frame.add_tones_hz(hz);
@@ -56,7 +56,8 @@ grpc::Status database_trouble(const std::exception& e) {
 
 }  // namespace
 
-grpc::Status TeleopService::start_run(const std::string& label, const std::string& notes, std::string& run_id) {
+grpc::Status TeleopService::start_run(const std::string& label, const std::string& notes, const LinkProfile& profile,
+                                      std::string& run_id) {
   std::lock_guard lock(runs_mutex_);
   if (active_run_) {
     return {grpc::StatusCode::FAILED_PRECONDITION,
@@ -65,7 +66,7 @@ grpc::Status TeleopService::start_run(const std::string& label, const std::strin
   store::TestRunRow run;
   run.label = label;
   run.notes = notes;
-  run.profile = transmitter_.profile().name;
+  run.profile = profile.name;
   run.started_at = store::WallClock::now();
   run.host = options_.host;
   store_.write(run);
@@ -94,7 +95,7 @@ grpc::Status TeleopService::StartRun(grpc::ServerContext* context, const v1::Sta
   if (auto denied = authorize(context); !denied.ok()) return denied;
   if (request->label().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "label: name the run, e.g. general, noise or 4 m"};
   std::string run_id;
-  auto status = start_run(request->label(), request->notes(), run_id);
+  auto status = start_run(request->label(), request->notes(), transmitter_.profile(), run_id);
   response->set_run_id(run_id);
   return status;
 }

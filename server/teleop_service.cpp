@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command/test_sequence.h"
+#include "reliability/crc4.h"
 
 namespace dtmf::server {
 
@@ -32,9 +33,11 @@ void fill(v1::Progress& out, Job& job, const ProgressEvent& event) {
   out.set_frame_index(static_cast<std::uint32_t>(event.frame_index));
   out.set_frame_count(static_cast<std::uint32_t>(job.frames().size()));
   out.set_attempt(static_cast<std::uint32_t>(event.attempt));
-  const link::PlannedFrame& frame = event.frame ? *event.frame : job.frames()[static_cast<std::size_t>(event.frame_index)];
-  out.set_word(frame.word);
-  out.set_frame_bits(reliability::bit_string(frame.frame));
+  out.set_profile(job.profile().name);
+  const link::TransmitFrame& frame = job.frames()[static_cast<std::size_t>(event.frame_index)];
+  if (frame.word) out.set_word(*frame.word);
+  if (frame.sequence) out.set_sequence(*frame.sequence);
+  out.set_frame_bits(reliability::bit_string(frame.bits, frame.bit_count));
   for (double hz : frame.tones_hz) out.add_tones_hz(hz);
   if (event.response_time_ms) out.set_response_time_ms(*event.response_time_ms);
   out.set_detail(event.detail);
@@ -75,9 +78,11 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
   std::shared_ptr<Job> job;
   try {
     const CommandSettings settings = command_settings(request_options, options_.defaults);
-    job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front);
+    job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile);
   } catch (const RequestError& e) {
     return e.status();
+  } catch (const std::invalid_argument& e) {  // a profile this server cannot send
+    return {grpc::StatusCode::INVALID_ARGUMENT, std::string("options.profile: ") + e.what()};
   } catch (const QueueFull& e) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
   } catch (const TransmitterUnavailable& e) {
@@ -166,15 +171,22 @@ grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const 
                                             grpc::ServerWriter<v1::RunTestSequenceResponse>* writer) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
   if (request->label().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "label: name the run, e.g. general, noise or 4 m"};
+  const LinkProfile* profile = nullptr;
   try {
-    command_settings(request->options(), options_.defaults);
+    profile = command_settings(request->options(), options_.defaults).profile;
+    if (profile) transmitter_.usable_profile(profile->name);
   } catch (const RequestError& e) {
     return e.status();
+  } catch (const std::invalid_argument& e) {
+    return {grpc::StatusCode::INVALID_ARGUMENT, std::string("options.profile: ") + e.what()};
   }
+  if (!profile) profile = &transmitter_.profile();
   std::string run_id;
-  if (auto started = start_run(request->label(), request->notes(), run_id); !started.ok()) return started;
+  if (auto started = start_run(request->label(), request->notes(), *profile, run_id); !started.ok()) return started;
   const auto commands = command::seed_test_sequence();
-  const auto total = static_cast<std::uint32_t>(command::frame_count(commands));
+  // Fast frames carry a whole command each.
+  const auto total = static_cast<std::uint32_t>(profile->frame_format == FrameFormat::Command48
+                                                    ? commands.size() : command::frame_count(commands));
   std::uint32_t before = 0, done = 0;  // frames of the commands already through, and in all
   grpc::Status status = grpc::Status::OK;
   for (std::size_t k = 0; k < commands.size() && status.ok(); ++k) {

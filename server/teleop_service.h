@@ -45,7 +45,8 @@ class TeleopService final : public v1::Teleop::Service {
   template <class Write>
   grpc::Status run_command(grpc::ServerContext* context, const command::Command& command,
                            const v1::CommandOptions& options, bool to_front, Write write);
-  grpc::Status start_run(const std::string& label, const std::string& notes, std::string& run_id);
+  grpc::Status start_run(const std::string& label, const std::string& notes, const LinkProfile& profile,
+                         std::string& run_id);
   grpc::Status end_run(const std::string& run_id);
 
   Transmitter& transmitter_;

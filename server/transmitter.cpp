@@ -2,14 +2,17 @@
 
 #include <spdlog/spdlog.h>
 
-#include "signal/tone_listener.h"
+#include <algorithm>
+#include <random>
+
+#include "reliability/command_frame.h"
 
 namespace dtmf::server {
 
 namespace {
 using Kind = ProgressEvent::Kind;
 
-store::CommandRow command_row(const Job& job, const LinkProfile& profile, const std::string& host) {
+store::CommandRow command_row(const Job& job, const std::string& host) {
   store::CommandRow row;
   row.id = job.id();
   row.run_id = job.run_id();
@@ -22,7 +25,7 @@ store::CommandRow command_row(const Job& job, const LinkProfile& profile, const 
     if constexpr (requires { c.duration_s; }) row.parameters["duration_s"] = c.duration_s;
     (void)sizeof(T);
   }, job.command());
-  row.profile = profile.name;
+  row.profile = job.profile().name;
   row.frame_count = static_cast<int>(job.frames().size());
   row.requested_at = store::WallClock::now();
   row.host = host;
@@ -34,6 +37,12 @@ Transmitter::Transmitter(const LinkProfile& profile, std::unique_ptr<physical::A
                          std::unique_ptr<physical::AudioSource> microphone, store::Store& store, TransmitterOptions options)
     : profile_(profile), speaker_(std::move(speaker)), microphone_(std::move(microphone)), store_(store),
       options_(std::move(options)) {
+  for (const LinkProfile* p : all_profiles()) {
+    if (p->sample_rate_hz == profile_.sample_rate_hz) profiles_.push_back(p);
+  }
+  // A robot that heard frame n of a former run of this server must not take this run's
+  // first frame for a retransmission of it: start the numbering anywhere.
+  next_sequence_ = static_cast<std::uint8_t>(std::random_device{}() & reliability::kSequenceMask);
   worker_ = std::thread([this] { run(); });
   listener_ = std::thread([this] { listen(); });
 }
@@ -44,15 +53,27 @@ double Transmitter::now_ms() const {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - epoch_).count();
 }
 
+const LinkProfile& Transmitter::usable_profile(std::string_view name) const {
+  const LinkProfile& p = profile_by_name(name);
+  if (std::find(profiles_.begin(), profiles_.end(), &p) == profiles_.end()) {
+    throw std::invalid_argument("profile " + p.name + " needs " + std::to_string(p.sample_rate_hz) +
+                                " Hz audio and this server's devices run at " + std::to_string(profile_.sample_rate_hz) + " Hz");
+  }
+  return p;
+}
+
 std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy policy,
-                                         std::chrono::milliseconds decision_timeout, bool to_front) {
+                                         std::chrono::milliseconds decision_timeout, bool to_front,
+                                         const LinkProfile* profile) {
+  const LinkProfile& chosen = profile ? usable_profile(profile->name) : profile_;
   std::shared_ptr<Job> job;
   store::CommandRow first_row;
   int position = 0;
   {
     std::lock_guard lock(mutex_);
-    job = std::make_shared<Job>(command, link::plan_command(profile_, command), policy, decision_timeout, run_id_);
-    job->log_row() = command_row(*job, profile_, options_.host);
+    job = std::make_shared<Job>(chosen, command, link::plan_transmission(chosen, command, next_sequence_), policy,
+                                decision_timeout, run_id_);
+    job->log_row() = command_row(*job, options_.host);
     first_row = job->log_row();  // the worker may update the job's row once it is queued
     if (stopping_) throw TransmitterUnavailable("the server is shutting down");
     if (!unavailable_.empty()) throw TransmitterUnavailable(unavailable_);
@@ -100,8 +121,10 @@ void Transmitter::shutdown() {
 }
 
 void Transmitter::listen() {
-  auto listener = signal::reply_listener(profile_);
-  std::vector<float> block(static_cast<std::size_t>(profile_.hop_samples()));
+  ReplyListeners listener(profiles_);
+  int block_samples = profile_.hop_samples();
+  for (const LinkProfile* p : profiles_) block_samples = std::min(block_samples, p->hop_samples());
+  std::vector<float> block(static_cast<std::size_t>(block_samples));
   double audio_ms = 0;
   while (true) {
     {
@@ -121,22 +144,27 @@ void Transmitter::listen() {
     if (got == 0) return;  // the input ended (a file, or a stopped simulated air)
     audio_ms += 1000.0 * static_cast<double>(got) / profile_.sample_rate_hz;
     const double now = now_ms();
-    for (const signal::Heard& heard : listener.feed(std::span<const float>(block.data(), got))) {
+    for (const HeardAnswer& heard : listener.feed(std::span<const float>(block.data(), got))) {
       std::lock_guard lock(mutex_);
-      // The block just read ends now; the reply passed the debouncer a little earlier.
-      replies_.push_back({static_cast<signal::Reply>(heard.symbol), now - (audio_ms - heard.heard_ms)});
+      // The block just read ends now; the reply was heard a little earlier.
+      replies_.push_back({heard, now - (audio_ms - heard.heard_ms)});
       changed_.notify_all();
     }
   }
 }
 
-std::optional<Transmitter::HeardReply> Transmitter::wait_reply(double since_ms, double until_ms) {
+std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const LinkProfile& profile, const link::TransmitFrame& frame,
+                                                               double since_ms, double until_ms) {
   std::unique_lock lock(mutex_);
   while (true) {
-    while (!replies_.empty() && replies_.front().steady_ms < since_ms) replies_.pop_front();  // for an earlier chord
-    if (!replies_.empty()) {
+    while (!replies_.empty()) {
       const HeardReply reply = replies_.front();
       replies_.pop_front();
+      if (reply.steady_ms < since_ms || reply.answer.profile != &profile) continue;  // not an answer to this frame
+      if (reply.answer.sequence && reply.answer.sequence != frame.sequence) {
+        spdlog::debug("an ACK naming frame {} while frame {} waits: late, ignored", *reply.answer.sequence, *frame.sequence);
+        continue;
+      }
       return reply;
     }
     if (stopping_ || now_ms() >= until_ms) return std::nullopt;
@@ -144,10 +172,10 @@ std::optional<Transmitter::HeardReply> Transmitter::wait_reply(double since_ms, 
   }
 }
 
-void Transmitter::play(const std::vector<float>& chord, double start_ms) {
-  speaker_->write(chord);
-  // A file sink takes the chord at once: keep the pace of a real loudspeaker anyway.
-  const double end_ms = start_ms + profile_.timing.chord_ms;
+void Transmitter::play(const link::TransmitFrame& frame, double start_ms) {
+  speaker_->write(frame.audio);
+  // A file sink takes the audio at once: keep the pace of a real loudspeaker anyway.
+  const double end_ms = start_ms + frame.tone_ms;
   while (now_ms() < end_ms) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(end_ms - now_ms()));
 }
 

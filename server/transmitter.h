@@ -1,11 +1,13 @@
-// The sender's transmitter: one acoustic channel, so one chord on air at a time.
+// The sender's transmitter: one acoustic channel, so one frame on air at a time.
 //
 // Commands from any number of callers wait in one bounded queue (Stop goes to its front);
 // a worker thread takes them one by one and sends each frame under a RetryController
-// (seed Fig. 8): it plays the chord, waits for the ACK listener to hear an ACK or NACK
-// heard after the chord started, or for the ACK timeout, retransmits once by itself, and
-// then follows the command's policy (ask the caller, continue, or fail). A second thread
-// listens to the microphone with the sender's detector (ACK / NACK). Frames of a command
+// (seed Fig. 8): it plays the frame, waits for an answer of the frame's profile heard after
+// the frame started (under the fast profile, an ACK must name the frame's sequence number),
+// or for the ACK timeout, retransmits by itself, and then follows the command's policy (ask
+// the caller, continue, or fail). A second thread listens to the microphone with every
+// profile's reply detector (ReplyListeners). Each command goes out under the profile its
+// caller chose, or the transmitter's default. Frames of a command
 // go out in order with nothing between them but other frames of the same command; a
 // cancelled command's queued frames never play, a chord already on air completes.
 // Every command and every attempt is logged through the store.
@@ -22,8 +24,8 @@
 
 #include "job.h"
 #include "physical/audio_io.h"
+#include "reply_listeners.h"
 #include "profile/link_profile.h"
-#include "signal/tone_plan.h"
 #include "store.h"
 
 namespace dtmf::server {
@@ -44,13 +46,16 @@ struct TransmitterOptions {
 
 class Transmitter {
  public:
+  // `profile`: the default for commands that name none. Every profile in all_profiles()
+  // with its sample rate can be chosen per command.
   Transmitter(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> speaker,
               std::unique_ptr<physical::AudioSource> microphone, store::Store& store, TransmitterOptions options);
   ~Transmitter();
 
   // Queues a command. Throws QueueFull, TransmitterUnavailable, command::ParameterError.
   std::shared_ptr<Job> submit(const command::Command& command, Policy policy,
-                              std::chrono::milliseconds decision_timeout, bool to_front = false);
+                              std::chrono::milliseconds decision_timeout, bool to_front = false,
+                              const LinkProfile* profile = nullptr);
   // Answers the job awaiting a decision; false if no such job waits.
   bool decide(const std::string& command_id, reliability::Decision decision);
   // Commands submitted from now on belong to this test run (none: outside runs).
@@ -59,10 +64,12 @@ class Transmitter {
   void shutdown();
 
   const LinkProfile& profile() const { return profile_; }
+  // The profile called `name` if this transmitter can send it; else std::invalid_argument.
+  const LinkProfile& usable_profile(std::string_view name) const;
 
  private:
   struct HeardReply {
-    signal::Reply reply;
+    HeardAnswer answer;
     double steady_ms;
   };
 
@@ -72,10 +79,13 @@ class Transmitter {
   store::FrameAttemptRow attempt_row(const Job& job, int frame_index, int attempt, double start_ms) const;
   store::WallTime wall(double steady_ms) const;
   double now_ms() const;
-  void play(const std::vector<float>& chord, double start_ms);
-  std::optional<HeardReply> wait_reply(double since_ms, double until_ms);
+  void play(const link::TransmitFrame& frame, double start_ms);
+  // The first answer to `frame` of `profile` heard after `since_ms`, or nothing by `until_ms`.
+  std::optional<HeardReply> wait_reply(const LinkProfile& profile, const link::TransmitFrame& frame, double since_ms,
+                                       double until_ms);
 
   const LinkProfile& profile_;
+  std::vector<const LinkProfile*> profiles_;  // what this transmitter can send and hear
   std::unique_ptr<physical::AudioSink> speaker_;
   std::unique_ptr<physical::AudioSource> microphone_;
   store::Store& store_;
@@ -91,6 +101,7 @@ class Transmitter {
   std::string unavailable_;  // why the audio path failed, once it did
   bool stopping_ = false;
   double channel_free_ms_ = 0;
+  std::uint8_t next_sequence_ = 0;  // Command48: the number of the next new frame
 
   std::thread worker_;
   std::thread listener_;

@@ -1,8 +1,6 @@
 // Transmitter::send: one command's frames through the retry controller (seed Fig. 8).
 #include <spdlog/spdlog.h>
 
-#include "command/word_codec.h"
-#include "signal/synthesizer.h"
 #include "transmitter.h"
 
 namespace dtmf::server {
@@ -20,21 +18,23 @@ store::WallTime Transmitter::wall(double steady_ms) const {
 }
 
 store::FrameAttemptRow Transmitter::attempt_row(const Job& job, int frame_index, int attempt, double start_ms) const {
-  const link::PlannedFrame& f = job.frames()[static_cast<std::size_t>(frame_index)];
+  const link::TransmitFrame& f = job.frames()[static_cast<std::size_t>(frame_index)];
   store::FrameAttemptRow row;
   row.run_id = job.run_id();
   row.command_id = job.id();
   row.position = frame_index;
   row.attempt = attempt;
-  row.word = f.word;
-  row.frame = f.frame;
+  if (f.word) row.word = *f.word;
+  row.frame = f.bits;
+  row.frame_width = f.bit_count;
   row.tones_hz = f.tones_hz;
   row.chord_started_at = wall(start_ms);
   return row;
 }
 
 void Transmitter::send(Job& job) {
-  const reliability::RetryPolicy policy{profile_.timing.auto_retransmissions, profile_.timing.ack_timeout_ms};
+  const LinkProfile& profile = job.profile();
+  const reliability::RetryPolicy policy{profile.timing.auto_retransmissions, profile.timing.ack_timeout_ms};
   bool continued = false;
   job.log_row().outcome = "transmitting";
   store_.write(job.log_row());
@@ -52,8 +52,7 @@ void Transmitter::send(Job& job) {
   };
 
   for (int index = 0; index < static_cast<int>(job.frames().size()); ++index) {
-    const link::PlannedFrame& frame = job.frames()[static_cast<std::size_t>(index)];
-    const std::vector<float> chord = signal::synthesize_chord(profile_, frame.tones_hz, profile_.timing.chord_ms);
+    const link::TransmitFrame& frame = job.frames()[static_cast<std::size_t>(index)];
     reliability::RetryController retry(policy);
     retry.start();
     std::optional<store::FrameAttemptRow> attempt;
@@ -78,14 +77,13 @@ void Transmitter::send(Job& job) {
           ProgressEvent sending{retry.attempt() == 1 ? Kind::Transmitting : Kind::Retransmitting};
           sending.frame_index = index;
           sending.attempt = retry.attempt();
-          sending.frame = frame;
           job.emit(sending);
           chord_start = now_ms();
           retry.on_transmit_started(chord_start);
           attempt = attempt_row(job, index, retry.attempt(), chord_start);
           store_.write(*attempt);
           try {
-            play(chord, chord_start);
+            play(frame, chord_start);
           } catch (const std::exception& e) {
             {
               std::lock_guard lock(mutex_);
@@ -97,16 +95,16 @@ void Transmitter::send(Job& job) {
           }
           attempt->chord_ended_at = wall(now_ms());
           store_.write(*attempt);
-          channel_free_ms_ = chord_start + profile_.timing.chord_ms + profile_.timing.gap_ms;
+          channel_free_ms_ = chord_start + frame.tone_ms + profile.timing.gap_ms;
           break;
         }
         case RetryState::AwaitingAnswer: {
-          const auto reply = wait_reply(chord_start, *retry.deadline_ms());
+          const auto reply = wait_reply(profile, frame, chord_start, *retry.deadline_ms());
           ProgressEvent answer{Kind::NoAnswer};
           answer.frame_index = index;
           answer.attempt = retry.attempt();
           if (reply) {
-            const auto kind = reply->reply == signal::Reply::Ack ? reliability::Answer::Ack : reliability::Answer::Nack;
+            const auto kind = reply->answer.ack ? reliability::Answer::Ack : reliability::Answer::Nack;
             retry.on_answer(kind, reply->steady_ms);
             answer.kind = kind == reliability::Answer::Ack ? Kind::Ack : Kind::Nack;
             answer.response_time_ms = retry.response_time_ms();

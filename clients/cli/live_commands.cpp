@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "offline_commands.h"
+#include "profile/link_profile.h"
 #include "progress_view.h"
 #include "report_view.h"
 #include "server_connection.h"
@@ -20,6 +21,7 @@ struct LiveOptions {
   ServerOptions server;
   bool json = false;
   std::string on_unconfirmed = "fail";
+  std::string profile;  // empty: the server's default
   std::optional<double> speed, rotation, duration;
   std::string label, notes;
 };
@@ -29,6 +31,7 @@ v1::CommandOptions command_options(const LiveOptions& o) {
   v1::CommandOptions options;
   if (::isatty(STDIN_FILENO)) options.set_on_unconfirmed(v1::UNCONFIRMED_POLICY_ASK);
   else options.set_on_unconfirmed(o.on_unconfirmed == "continue" ? v1::UNCONFIRMED_POLICY_CONTINUE : v1::UNCONFIRMED_POLICY_FAIL);
+  options.set_profile(o.profile);
   return options;
 }
 
@@ -126,6 +129,9 @@ void add_live_commands(CLI::App& app, Action& run) {
     command->add_option("--on-unconfirmed", o->on_unconfirmed,
                         "without a terminal to ask: fail or continue when a frame stays unconfirmed")
         ->check(CLI::IsMember({"fail", "continue"}))->capture_default_str();
+    command->add_option("--profile", o->profile,
+                        "link profile to send with: " + profile_names() + " (default: the server's --profile)")
+        ->envname("DTMF_PROFILE");
     command->callback([o, command, &run] { run = [o, kind = command->get_name()] { return run_live(kind, *o); }; });
   };
   CLI::App* drive = app.add_subcommand("drive", "drive forward (DRIVE_FOR_DURATION with --duration, else DRIVE_FORWARD)");

@@ -77,7 +77,7 @@ nlohmann::json to_json(const CommandRow& r) {
 
 nlohmann::json to_json(const FrameAttemptRow& r) {
   return {{"id", r.id}, {"run_id", optional_json(r.run_id)}, {"command_id", r.command_id},
-          {"position", r.position}, {"attempt", r.attempt}, {"word", r.word}, {"frame", r.frame},
+          {"position", r.position}, {"attempt", r.attempt}, {"word", optional_json(r.word)}, {"frame", r.frame}, {"frame_width", r.frame_width},
           {"tones_hz", r.tones_hz}, {"chord_started_at", iso_time(r.chord_started_at)},
           {"chord_ended_at", optional_time(r.chord_ended_at)}, {"answer", optional_json(r.answer)},
           {"answered_at", optional_time(r.answered_at)}};
@@ -85,7 +85,7 @@ nlohmann::json to_json(const FrameAttemptRow& r) {
 
 nlohmann::json to_json(const ReceptionRow& r) {
   return {{"id", r.id}, {"host", text_or_null(r.host)}, {"profile", r.profile},
-          {"started_at", optional_time(r.started_at)}, {"heard_at", iso_time(r.heard_at)}, {"frame", r.frame},
+          {"started_at", optional_time(r.started_at)}, {"heard_at", iso_time(r.heard_at)}, {"frame", r.frame}, {"frame_width", r.frame_width},
           {"crc_ok", r.crc_ok}, {"reply", optional_json(r.reply)}, {"word", optional_json(r.word)},
           {"event", text_or_null(r.event)}, {"command_state", text_or_null(r.command_state)},
           {"command", text_or_null(r.command)}, {"linear_mps", optional_json(r.linear_mps)},

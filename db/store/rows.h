@@ -7,12 +7,13 @@
 // time, so both hosts' clocks must be synchronised (docs/database.md).
 #pragma once
 
-#include <array>
+#include <cstdint>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace dtmf::store {
 
@@ -57,9 +58,10 @@ struct FrameAttemptRow {
   std::string command_id;
   int position = 0;  // frame within its command, from 0
   int attempt = 1;   // 1 = first transmission
-  int word = 0;
-  int frame = 0;
-  std::array<double, 4> tones_hz{};
+  std::optional<int> word;   // Word16 frames
+  std::int64_t frame = 0;    // the frame's bits, CRC included
+  int frame_width = 16;      // bits: 16 (seed) or 48 (fast)
+  std::vector<double> tones_hz;
   WallTime chord_started_at{};
   std::optional<WallTime> chord_ended_at;
   std::optional<std::string> answer;  // ack, nack, none
@@ -72,7 +74,8 @@ struct ReceptionRow {
   std::string profile;
   std::optional<WallTime> started_at;
   WallTime heard_at{};
-  int frame = 0;
+  std::int64_t frame = 0;
+  int frame_width = 16;
   bool crc_ok = false;
   std::optional<std::string> reply;  // ack, nack
   std::optional<int> word;

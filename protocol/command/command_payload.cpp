@@ -78,4 +78,6 @@ ParameterDecode decode_payload(std::uint32_t payload) {
   return refuse("kind is not a command");
 }
 
+Command quantised_payload(const Command& command) { return *decode_payload(encode_payload(command)).command; }
+
 }  // namespace dtmf::command

@@ -22,6 +22,8 @@ inline constexpr FieldSpec kDurationField12{"duration_s", 0.0, 8.0, 12};
 // Throws ParameterError for an out-of-range parameter.
 std::uint32_t encode_payload(const Command& command);
 
+// `command` as the robot will execute it from a payload: encoded and decoded again.
+Command quantised_payload(const Command& command);
 // The command in `payload`, or an error text naming what does not fit.
 ParameterDecode decode_payload(std::uint32_t payload);
 

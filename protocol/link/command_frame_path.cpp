@@ -46,7 +46,8 @@ std::span<const ReceivedCommandFrame> CommandFramePath::feed(std::span<const flo
     reading.runner_up = c.runner_up;
     reading.certainty = c.certainty;
     if (const auto nack = gate_.on_time(c.heard_ms)) deliver(*nack);
-    if (const auto verdict = gate_.on_candidate(c.start_ms, c.heard_ms, reliability::chase_decode(reading, chase_symbols_))) {
+    if (const auto verdict = gate_.on_candidate(c.start_ms, c.heard_ms, reliability::chase_decode(reading, chase_symbols_),
+                                                reliability::from_symbols(c.symbols))) {
       deliver(*verdict);
     }
   }
@@ -71,13 +72,14 @@ void CommandFramePath::deliver(const reliability::Verdict& verdict) {
   ReceivedCommandFrame r;
   r.start_ms = verdict.start_ms;
   r.heard_ms = verdict.heard_ms;
+  r.bits = verdict.read_bits;
   if (verdict.accepted) {
+    r.bits = verdict.accepted->bits;
     const auto decoded = command::decode_payload(verdict.accepted->frame.payload);
     last_accepted_ = reliability::to_symbols(verdict.accepted->bits);
     last_start_ms_ = verdict.start_ms;
     if (decoded.command) {
       r.frame = verdict.accepted->frame;
-      r.bits = verdict.accepted->bits;
       r.substitutions = verdict.accepted->substitutions;
       r.repeat = !sequence_.first_time(*r.frame);
       if (!r.repeat) r.command = decoded.command;

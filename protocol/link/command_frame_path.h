@@ -42,7 +42,7 @@ struct ReceivedCommandFrame {
   double start_ms = 0;
   double heard_ms = 0;
   std::optional<reliability::CommandFrame> frame;  // nullopt: not intact, answer NACK
-  std::uint64_t bits = 0;                          // as accepted (intact frames)
+  std::uint64_t bits = 0;                          // as accepted; for a NACK, as first read
   int substitutions = 0;                           // symbols the chase replaced
   bool repeat = false;                             // same sequence and bits as the last executed
   std::optional<command::Command> command;         // for new intact frames

@@ -23,10 +23,10 @@ Word frame_word(Frame frame) { return static_cast<Word>(frame >> kCrcBits); }
 
 std::uint8_t frame_crc(Frame frame) { return static_cast<std::uint8_t>(frame & 0xF); }
 
-std::string bit_string(std::uint32_t bits, int width) {
+std::string bit_string(std::uint64_t bits, int width) {
   std::string text(static_cast<std::size_t>(width), '0');
   for (int i = 0; i < width; ++i) {
-    if (bits & (1u << (width - 1 - i))) text[static_cast<std::size_t>(i)] = '1';
+    if ((bits >> (width - 1 - i)) & 1u) text[static_cast<std::size_t>(i)] = '1';
   }
   return text;
 }

@@ -30,6 +30,6 @@ bool frame_ok(Frame frame);
 Word frame_word(Frame frame);
 std::uint8_t frame_crc(Frame frame);
 // "1011001011011101": `width` bits, most significant first.
-std::string bit_string(std::uint32_t bits, int width = kFrameBits);
+std::string bit_string(std::uint64_t bits, int width = kFrameBits);
 
 }  // namespace dtmf::reliability

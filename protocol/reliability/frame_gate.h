@@ -23,14 +23,16 @@ struct Verdict {
   double start_ms = 0;  // when the frame began sounding
   double heard_ms = 0;  // when the verdict was reached
   std::optional<ChasedFrame> accepted;  // nullopt: NACK
+  std::uint64_t read_bits = 0;          // NACK: what the cluster's first candidate read (for logs)
 };
 
 class FrameGate {
  public:
   FrameGate(double lockout_ms, double cluster_gap_ms);
 
-  // A candidate heard at `heard_ms`, and what the chase made of it.
-  std::optional<Verdict> on_candidate(double start_ms, double heard_ms, const std::optional<ChasedFrame>& frame);
+  // A candidate heard at `heard_ms` reading `read_bits`, and what the chase made of it.
+  std::optional<Verdict> on_candidate(double start_ms, double heard_ms, const std::optional<ChasedFrame>& frame,
+                                      std::uint64_t read_bits = 0);
   // Time has reached `now_ms` (after every window): a failed cluster may end in a NACK.
   std::optional<Verdict> on_time(double now_ms);
   void reset();
@@ -42,6 +44,7 @@ class FrameGate {
   bool cluster_open_ = false;
   double cluster_start_ms_ = 0;
   double cluster_last_ms_ = 0;
+  std::uint64_t cluster_bits_ = 0;
 };
 
 }  // namespace dtmf::reliability

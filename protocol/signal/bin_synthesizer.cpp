@@ -1,5 +1,6 @@
 #include "signal/bin_synthesizer.h"
 
+#include <algorithm>
 #include <span>
 
 #include "signal/synthesizer.h"
@@ -15,15 +16,24 @@ double edge_ms(const LinkProfile& profile, int edge_samples) {
 }
 }  // namespace
 
+std::array<double, kFrameBands> symbol_tones_hz(const LinkProfile& profile,
+                                                const std::array<std::uint8_t, kFrameBands>& symbols) {
+  const BinLink& b = profile.bins;
+  std::array<double, kFrameBands> tones{};
+  for (std::size_t i = 0; i < kFrameBands; ++i) {
+    tones[i] = bin_hz(profile, b.band_first_bin[i % 4] + (symbols[i] % b.tones_per_band), b.window_samples);
+  }
+  return tones;
+}
+
 std::vector<float> synthesize_symbols(const LinkProfile& profile, const std::array<std::uint8_t, kFrameBands>& symbols) {
   const BinLink& b = profile.bins;
   const auto chord = static_cast<std::size_t>(b.chord_samples());
+  const auto all_tones = symbol_tones_hz(profile, symbols);
   std::vector<float> out(chord * 2, 0.0f);
   for (std::size_t c = 0; c < 2; ++c) {
     std::array<double, 4> tones{};
-    for (std::size_t band = 0; band < 4; ++band) {
-      tones[band] = bin_hz(profile, b.band_first_bin[band] + (symbols[c * 4 + band] % b.tones_per_band), b.window_samples);
-    }
+    std::copy_n(all_tones.begin() + static_cast<std::ptrdiff_t>(c * 4), 4, tones.begin());
     add_chord(std::span<float>(out).subspan(c * chord, chord), tones, b.tone_amplitude,
               edge_ms(profile, b.edge_samples), profile.sample_rate_hz);
   }

@@ -17,6 +17,9 @@
 
 namespace dtmf::signal {
 
+// The eight tones of a frame: the first chord's four bands, then the second's.
+std::array<double, kFrameBands> symbol_tones_hz(const LinkProfile& profile,
+                                                const std::array<std::uint8_t, kFrameBands>& symbols);
 // The two chords of a frame whose symbols are `symbols` (frame_samples long).
 std::vector<float> synthesize_symbols(const LinkProfile& profile, const std::array<std::uint8_t, kFrameBands>& symbols);
 

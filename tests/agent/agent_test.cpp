@@ -27,7 +27,10 @@ class RecordingOutput : public CmdVelOutput {
 
 class RecordingReplies : public ReplyPlayer {
  public:
-  void play(signal::Reply reply, double audio_ms) override { replies.emplace_back(reply, audio_ms); }
+  void play(std::vector<float> audio, double audio_ms) override {
+    const bool ack = audio == reply_audio(seed_profile(), true, std::nullopt);
+    replies.emplace_back(ack ? signal::Reply::Ack : signal::Reply::Nack, audio_ms);
+  }
   void finish(double) override {}
   std::vector<std::pair<signal::Reply, double>> replies;
 };
@@ -107,8 +110,8 @@ TEST(Agent, TheReplyTimelinePutsEachChordWhereItsFrameWasHeard) {
   const auto audio = link::render_frames(p, link::plan_command(p, command::Stop{}));
   {
     ReplyTimeline timeline(p, std::make_unique<physical::WavFileSink>(path, p.sample_rate_hz));
-    timeline.play(signal::Reply::Ack, 100);
-    timeline.play(signal::Reply::Nack, 1100);
+    timeline.play(reply_audio(seed_profile(), true, std::nullopt), 100);
+    timeline.play(reply_audio(seed_profile(), false, std::nullopt), 1100);
     timeline.finish(2000);
   }
   const auto written = physical::read_audio_file(path, p.sample_rate_hz);

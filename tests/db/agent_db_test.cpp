@@ -34,6 +34,6 @@ TEST(AgentDatabase, EveryReceptionIsLoggedWithItsVerdictAnswerAndEffect) {
   EXPECT_DOUBLE_EQ(db.query<double>("SELECT linear_mps FROM receptions WHERE event = 'command'"), 0.11);
   EXPECT_EQ(db.query<std::string>("SELECT command FROM receptions WHERE event = 'command'"),
             command::describe(command::quantised(command::DriveForDuration{50, 1})));
-  EXPECT_EQ(db.query<std::string>("SELECT frame_bits(frame) FROM receptions WHERE NOT crc_ok"),
+  EXPECT_EQ(db.query<std::string>("SELECT frame_bits(frame, frame_width) FROM receptions WHERE NOT crc_ok"),
             reliability::bit_string(bad.frame));
 }

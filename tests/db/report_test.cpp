@@ -52,7 +52,7 @@ FrameAttemptRow attempt_row(const std::string& run_id, const Transmission& t, in
   a.attempt = attempt;
   a.word = t.frame.word;
   a.frame = t.frame.frame;
-  a.tones_hz = t.frame.tones_hz;
+  a.tones_hz.assign(t.frame.tones_hz.begin(), t.frame.tones_hz.end());
   a.chord_started_at = start;
   a.chord_ended_at = start + milliseconds(800);
   a.answer = "none";

@@ -8,7 +8,7 @@ namespace dtmf::test_support {
 namespace {
 class Mute : public agent::ReplyPlayer {
  public:
-  void play(signal::Reply, double) override {}
+  void play(std::vector<float>, double) override {}
   void finish(double) override {}
 };
 }  // namespace
@@ -24,12 +24,12 @@ class LiveSystem::Recorder : public agent::CmdVelOutput {
 };
 
 LiveSystem::LiveSystem(LiveSystemOptions options)
-    : options_(std::move(options)), air_(seed_profile().sample_rate_hz, [] {
+    : options_(std::move(options)), air_(options_.profile->sample_rate_hz, [] {
         physical::ChannelConfig quiet;
         quiet.noise = physical::parse_noise("white", -70);
         return quiet;
       }()) {
-  const LinkProfile& profile = seed_profile();
+  const LinkProfile& profile = *options_.profile;
   auto sender = air_.add_station("sender", 0.0);
   auto robot = air_.add_station("robot", options_.distance_m);
   air_.start();
@@ -38,21 +38,23 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   no_db.database = std::string();
   robot_store_ = std::make_unique<store::Store>(no_db);
   robot_microphone_ = std::move(robot.microphone);
-  if (options_.robot_answers) robot_replies_ = std::make_unique<agent::LiveReplyPlayer>(profile, std::move(robot.speaker));
+  if (options_.robot_answers) robot_replies_ = std::make_unique<agent::LiveReplyPlayer>(std::move(robot.speaker));
   else robot_replies_ = std::make_unique<Mute>();
   recorder_ = std::make_unique<Recorder>();
   timeline_ = std::make_unique<agent::Timeline>(true);
   agent::AgentOptions agent_options;
-  agent_options.on_frame_heard = [this](const link::ReceivedFrame& frame) {
-    if (!frame.crc_ok) return;
+  agent_options.profiles = all_profiles();
+  agent_options.on_frame_heard = [this](const agent::HeardFrame& frame) {
+    if (!frame.intact) return;
     std::lock_guard lock(heard_.mutex);
-    heard_.words.push_back(reliability::frame_word(frame.frame));
-    if (frame.event && frame.event->command) heard_.commands.push_back(command::describe(*frame.event->command));
+    ++heard_.intact_frames;
+    if (frame.word) heard_.words.push_back(*frame.word);
+    if (frame.command) heard_.commands.push_back(command::describe(*frame.command));
   };
   agent_ = std::make_unique<agent::Agent>(agent_options, *robot_replies_,
                                           std::vector<agent::CmdVelOutput*>{recorder_.get()}, *robot_store_, *timeline_);
-  robot_ = std::thread([this, &profile] {
-    std::vector<float> block(static_cast<std::size_t>(profile.hop_samples()));
+  robot_ = std::thread([this] {
+    std::vector<float> block(static_cast<std::size_t>(agent_->block_samples()));
     while (!stopping_) {
       const std::size_t got = robot_microphone_->read(block);
       if (got == 0) return;
@@ -92,6 +94,11 @@ std::unique_ptr<v1::Teleop::Stub> LiveSystem::client() const { return v1::Teleop
 std::vector<int> LiveSystem::words_heard() {
   std::lock_guard lock(heard_.mutex);
   return heard_.words;
+}
+
+int LiveSystem::intact_frames_heard() {
+  std::lock_guard lock(heard_.mutex);
+  return heard_.intact_frames;
 }
 
 std::vector<std::string> LiveSystem::commands_executed() {

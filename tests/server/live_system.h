@@ -18,6 +18,7 @@
 namespace dtmf::test_support {
 
 struct LiveSystemOptions {
+  const LinkProfile* profile = &seed_profile();  // the server's default; the robot hears every profile
   double distance_m = 1.0;
   bool robot_answers = true;  // false: the robot's loudspeaker is dead (every ACK lost)
   std::string auth_token;
@@ -26,11 +27,12 @@ struct LiveSystemOptions {
   server::Policy default_policy = server::Policy::Fail;
 };
 
-// What the robot heard, in order: one entry per intact frame.
+// What the robot heard, in order: seed words of intact frames, and commands executed.
 struct HeardWords {
   std::mutex mutex;
   std::vector<int> words;
   std::vector<std::string> commands;
+  int intact_frames = 0;  // of every profile, repeats included
 };
 
 class LiveSystem {
@@ -43,6 +45,7 @@ class LiveSystem {
   int port() const { return port_; }
   std::vector<int> words_heard();
   std::vector<std::string> commands_executed();
+  int intact_frames_heard();
   agent::Velocity last_velocity();
   // The sound devices go away (a USB sound card unplugged): the room stops.
   void pull_the_plug() { air_.stop(); }

@@ -106,6 +106,12 @@ TEST(Server, BadRequestsAreInvalidArgumentNamingTheFieldAndNeverReachTheAir) {
          v1::DecideResponse out;
          return client->Decide(&c, r, &out);
        }, "command_id"},
+      {"unknown profile", [&] {
+         v1::DriveRequest r;
+         r.set_speed_percent(10);
+         r.mutable_options()->set_profile("slow");
+         return read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, r); }).status;
+       }, "options.profile"},
       {"sequence without label", [&] {
          v1::RunTestSequenceRequest r;
          return read_stream<v1::RunTestSequenceResponse>([&](grpc::ClientContext& c) { return client->RunTestSequence(&c, r); }).status;

@@ -1,0 +1,100 @@
+// The fast profile through the whole system: real gRPC on loopback, the transmitter, a
+// simulated room, the robot agent listening with every profile. A command asks for the
+// profile in its options; the server's default stays the seed's.
+#include <gtest/gtest.h>
+
+#include "command/command_payload.h"
+#include "live_system.h"
+
+using namespace dtmf;
+using test_support::LiveSystem;
+using test_support::LiveSystemOptions;
+using test_support::read_stream;
+
+namespace {
+
+v1::DriveRequest fast_drive(double speed, double duration_s) {
+  v1::DriveRequest r;
+  r.set_speed_percent(speed);
+  r.set_duration_s(duration_s);
+  r.mutable_options()->set_profile("fast");
+  return r;
+}
+
+}  // namespace
+
+TEST(ServerFast, ADriveIsOneNamedFrameConfirmedAndExecutedWhole) {
+  LiveSystem system;
+  auto client = system.client();
+  const auto result = read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, fast_drive(50, 3)); });
+  ASSERT_TRUE(result.status.ok()) << result.status.error_message();
+  const std::string expected = command::describe(command::quantised_payload(command::DriveForDuration{50, 3}));
+  int transmitted = 0, acked = 0;
+  std::optional<std::uint32_t> sequence;
+  for (const auto& r : result.responses) {
+    const v1::Progress& p = r.progress();
+    EXPECT_EQ(p.profile(), "fast");
+    EXPECT_EQ(p.frame_count(), 1u);
+    EXPECT_EQ(p.command(), expected);
+    EXPECT_FALSE(p.has_word()) << "a fast frame carries a command, not a word";
+    if (p.event() == v1::FRAME_EVENT_TRANSMITTING) {
+      ++transmitted;
+      EXPECT_EQ(p.frame_bits().size(), 48u);
+      EXPECT_EQ(p.tones_hz_size(), 8);
+      ASSERT_TRUE(p.has_sequence());
+      sequence = p.sequence();
+    }
+    if (p.event() == v1::FRAME_EVENT_ACK) {
+      ++acked;
+      EXPECT_GT(p.response_time_ms(), 0);
+      EXPECT_LT(p.response_time_ms(), 500);  // the fast profile's ACK timeout
+    }
+  }
+  EXPECT_EQ(result.responses.back().progress().event(), v1::FRAME_EVENT_CONFIRMED);
+  EXPECT_EQ(transmitted, 1);
+  EXPECT_EQ(acked, 1);
+  EXPECT_TRUE(sequence.has_value());
+  EXPECT_EQ(system.commands_executed(), std::vector<std::string>{expected});
+  EXPECT_TRUE(system.words_heard().empty()) << "no seed word went on air";
+  EXPECT_DOUBLE_EQ(system.last_velocity().linear_mps, 0.11);
+}
+
+TEST(ServerFast, ConsecutiveCommandsGetConsecutiveSequenceNumbersAndMixWithTheSeed) {
+  LiveSystem system;
+  auto client = system.client();
+  std::vector<std::uint32_t> sequences;
+  for (double speed : {10.0, 20.0, 30.0}) {
+    const auto r = read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, fast_drive(speed, 1)); });
+    ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+    sequences.push_back(r.responses.back().progress().sequence());
+  }
+  EXPECT_EQ((sequences[1] + 16 - sequences[0]) % 16, 1u);
+  EXPECT_EQ((sequences[2] + 16 - sequences[1]) % 16, 1u);
+  // The next command without a profile goes out under the server's default, the seed's.
+  v1::ResetRequest reset;
+  const auto seed = read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, reset); });
+  ASSERT_TRUE(seed.status.ok()) << seed.status.error_message();
+  EXPECT_EQ(seed.responses.back().progress().profile(), "seed");
+  EXPECT_EQ(system.words_heard(), std::vector<int>{0});
+  EXPECT_EQ(system.commands_executed().size(), 3u) << "a seed RESET executes no command";
+}
+
+TEST(ServerFast, AFrameRetransmittedAfterLostAcksIsExecutedOnce) {
+  LiveSystemOptions options;
+  options.robot_answers = false;  // every ACK is lost: the sender retransmits
+  LiveSystem system(options);
+  auto client = system.client();
+  v1::DriveRequest request = fast_drive(40, 2);
+  request.mutable_options()->set_on_unconfirmed(v1::UNCONFIRMED_POLICY_FAIL);
+  const auto result = read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, request); });
+  EXPECT_EQ(result.status.error_code(), grpc::StatusCode::ABORTED) << result.status.error_message();
+  int transmissions = 0;
+  for (const auto& r : result.responses) {
+    const auto e = r.progress().event();
+    transmissions += e == v1::FRAME_EVENT_TRANSMITTING || e == v1::FRAME_EVENT_RETRANSMITTING;
+  }
+  const int expected = 1 + fast_profile().timing.auto_retransmissions;
+  EXPECT_EQ(transmissions, expected);
+  EXPECT_EQ(system.intact_frames_heard(), expected) << "the robot heard every transmission";
+  EXPECT_EQ(system.commands_executed().size(), 1u) << "and executed the command once";
+}
