@@ -1,5 +1,6 @@
 #include "reply_listeners.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace dtmf::server {
@@ -10,6 +11,8 @@ ReplyListeners::ReplyListeners(std::span<const LinkProfile* const> profiles) {
       throw std::invalid_argument("profiles " + profiles.front()->name + " and " + p->name +
                                   " use different sample rates and cannot share a microphone");
     }
+    const int hop = p->frame_format == FrameFormat::Command48 ? p->bins.reply_hop_samples : p->hop_samples();
+    block_samples_ = block_samples_ == 0 ? hop : std::min(block_samples_, hop);
     if (p->frame_format == FrameFormat::Command48) named_listeners_.emplace_back(p, std::make_unique<signal::BinReplyListener>(*p));
     else chord_listeners_.push_back(std::make_unique<ChordEar>(*p));
   }

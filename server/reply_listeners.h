@@ -33,6 +33,9 @@ class ReplyListeners {
   // All profiles must share one sample rate (they share one microphone).
   explicit ReplyListeners(std::span<const LinkProfile* const> profiles);
   std::vector<HeardAnswer> feed(std::span<const float> samples);
+  // The block to read the microphone in: every listener's hop divides into it, so an answer
+  // is heard as soon as its last window is in (the fast reply's hop is 4 ms).
+  int block_samples() const { return block_samples_; }
 
  private:
   struct ChordEar {  // the listener is built in place: it owns an FFT plan and cannot move
@@ -40,6 +43,7 @@ class ReplyListeners {
     const LinkProfile* profile;
     signal::ToneListener listener;
   };
+  int block_samples_ = 0;
   std::vector<std::unique_ptr<ChordEar>> chord_listeners_;
   std::vector<std::pair<const LinkProfile*, std::unique_ptr<signal::BinReplyListener>>> named_listeners_;
 };

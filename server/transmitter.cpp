@@ -122,9 +122,7 @@ void Transmitter::shutdown() {
 
 void Transmitter::listen() {
   ReplyListeners listener(profiles_);
-  int block_samples = profile_.hop_samples();
-  for (const LinkProfile* p : profiles_) block_samples = std::min(block_samples, p->hop_samples());
-  std::vector<float> block(static_cast<std::size_t>(block_samples));
+  std::vector<float> block(static_cast<std::size_t>(listener.block_samples()));
   double audio_ms = 0;
   while (true) {
     {

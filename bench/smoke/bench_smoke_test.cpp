@@ -95,4 +95,12 @@ TEST(BenchSmoke, EndToEndConfirmsOneCommand) {
   EXPECT_GT(doc["throughput_bps"].get<double>(), 5.0);
 }
 
+TEST(BenchSmoke, EndToEndConfirmsFastCommandsInOneFrameEach) {
+  const auto doc = run(std::string(E2E_PATH) + " --profile fast --commands 3", "e2e");
+  EXPECT_EQ(doc["confirmed"], 3);
+  EXPECT_EQ(doc["frames_first_attempt"], 3);
+  EXPECT_EQ(doc["payload_bits"], 3 * 28);
+  EXPECT_LT(doc["latency_ms_median"].get<double>(), 1000.0);  // one 0.1 s frame and its answer
+}
+
 }  // namespace

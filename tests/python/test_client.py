@@ -34,6 +34,19 @@ def test_turn_stop_and_reset_end_confirmed(robot):
     robot.stop().result()
 
 
+def test_the_fast_profile_sends_a_whole_command_in_one_named_frame(robot):
+    events = list(robot.drive(speed=30, duration=1, profile="fast"))
+    assert [e.event for e in events] == [FrameEvent.QUEUED, FrameEvent.TRANSMITTING, FrameEvent.ACK,
+                                         FrameEvent.CONFIRMED]
+    ack = events[2]
+    assert (ack.profile, ack.word, ack.frame_count, len(ack.frame_bits), len(ack.tones_hz)) == ("fast", None, 1, 48, 8)
+    assert ack.sequence is not None and 0 < ack.response_time_ms < 500
+    assert robot.reset().result().profile == "seed"  # the server's default
+    with pytest.raises(BadRequest) as raised:
+        robot.stop(profile="slow").result()
+    assert "options.profile" in raised.value.details
+
+
 def test_a_bad_value_raises_bad_request_naming_the_field(robot):
     with pytest.raises(BadRequest) as raised:
         robot.drive(speed=150, duration=1).result()

@@ -28,7 +28,7 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
         physical::ChannelConfig quiet;
         quiet.noise = physical::parse_noise("white", -70);
         return quiet;
-      }()) {
+      }(), options_.air_block_ms) {
   const LinkProfile& profile = *options_.profile;
   auto sender = air_.add_station("sender", 0.0);
   auto robot = air_.add_station("robot", options_.distance_m);

@@ -20,6 +20,7 @@ namespace dtmf::test_support {
 struct LiveSystemOptions {
   const LinkProfile* profile = &seed_profile();  // the server's default; the robot hears every profile
   double distance_m = 1.0;
+  double air_block_ms = 10;   // the room's audio period: what a device buffer adds to each way
   bool robot_answers = true;  // false: the robot's loudspeaker is dead (every ACK lost)
   std::string auth_token;
   std::size_t max_queue = 32;

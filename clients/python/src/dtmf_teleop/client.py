@@ -92,34 +92,38 @@ class Client:
 
     # --- commands: each streams its progress --------------------------------------------
 
+    # Every command takes on_unconfirmed (what to do with a frame left unconfirmed) and
+    # profile ("seed" or "fast"; None: the server's default).
+
     def drive(self, speed: float, duration: Optional[float] = None, *,
-              on_unconfirmed: Optional[Unconfirmed] = None) -> CommandCall:
+              on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
         """Drive forward at speed percent (0..100) for duration seconds (0..8), or until
         the next command when duration is None."""
-        request = pb.DriveRequest(speed_percent=speed, options=_options(on_unconfirmed))
+        request = pb.DriveRequest(speed_percent=speed, options=_options(on_unconfirmed, profile))
         if duration is not None:
             request.duration_s = duration
         return self._command(self._stub.Drive, request)
 
     def turn(self, rotation: float, duration: Optional[float] = None, *,
-             on_unconfirmed: Optional[Unconfirmed] = None) -> CommandCall:
+             on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
         """Turn in place at rotation percent (-100..100, positive is left) for duration
         seconds (0..8), or until the next command when duration is None."""
-        request = pb.TurnRequest(rotation_percent=rotation, options=_options(on_unconfirmed))
+        request = pb.TurnRequest(rotation_percent=rotation, options=_options(on_unconfirmed, profile))
         if duration is not None:
             request.duration_s = duration
         return self._command(self._stub.Turn, request)
 
-    def stop(self, *, on_unconfirmed: Optional[Unconfirmed] = None) -> CommandCall:
-        return self._command(self._stub.Stop, pb.StopRequest(options=_options(on_unconfirmed)))
+    def stop(self, *, on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
+        return self._command(self._stub.Stop, pb.StopRequest(options=_options(on_unconfirmed, profile)))
 
-    def reset(self, *, on_unconfirmed: Optional[Unconfirmed] = None) -> CommandCall:
-        return self._command(self._stub.Reset, pb.ResetRequest(options=_options(on_unconfirmed)))
+    def reset(self, *, on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
+        return self._command(self._stub.Reset, pb.ResetRequest(options=_options(on_unconfirmed, profile)))
 
     def run_sequence(self, label: str, notes: str = "", *,
-                     on_unconfirmed: Optional[Unconfirmed] = None) -> CommandCall:
-        """The seed's 65-frame test sequence as a labelled test run; yields SequenceProgress."""
-        request = pb.RunTestSequenceRequest(label=label, notes=notes, options=_options(on_unconfirmed))
+                     on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
+        """The seed's test sequence as a labelled test run (65 frames under the seed
+        profile, one frame per command under fast); yields SequenceProgress."""
+        request = pb.RunTestSequenceRequest(label=label, notes=notes, options=_options(on_unconfirmed, profile))
         call = self._stub.RunTestSequence(request, metadata=self._metadata)
         return CommandCall(self, call, SequenceProgress.from_proto)
 
@@ -171,10 +175,12 @@ class Client:
             raise errors.from_rpc_error(e, self.target) from None
 
 
-def _options(on_unconfirmed: Optional[Unconfirmed]) -> pb.CommandOptions:
+def _options(on_unconfirmed: Optional[Unconfirmed], profile: Optional[str] = None) -> pb.CommandOptions:
     options = pb.CommandOptions()
     if on_unconfirmed is not None:
         options.on_unconfirmed = on_unconfirmed.value
+    if profile is not None:
+        options.profile = profile
     return options
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
+from typing import Optional
 
 from ._stubs.dtmf.v1 import teleop_pb2 as pb
 
@@ -50,20 +51,24 @@ class Progress:
     frame_index: int              # from 0
     frame_count: int
     attempt: int                  # 1 = first transmission
-    word: int
-    frame_bits: str               # "1011001011011101"
+    word: Optional[int]           # seed frames; None for fast frames (a whole command each)
+    frame_bits: str               # "1011001011011101" (48 bits under the fast profile)
     tones_hz: tuple[float, ...] = field(default_factory=tuple)
     response_time_ms: float = 0.0  # with ACK / NACK: chord start to the answer
     detail: str = ""
     queue_position: int = 0
     time_unix_ms: int = 0
+    profile: str = ""              # "seed" or "fast"
+    sequence: Optional[int] = None  # fast: the number the frame's ACK names
 
     @classmethod
     def from_proto(cls, p: pb.Progress) -> "Progress":
         return cls(event=FrameEvent(p.event), command_id=p.command_id, command=p.command,
-                   frame_index=p.frame_index, frame_count=p.frame_count, attempt=p.attempt, word=p.word,
+                   frame_index=p.frame_index, frame_count=p.frame_count, attempt=p.attempt,
+                   word=p.word if p.HasField("word") else None,
                    frame_bits=p.frame_bits, tones_hz=tuple(p.tones_hz), response_time_ms=p.response_time_ms,
-                   detail=p.detail, queue_position=p.queue_position, time_unix_ms=p.time_unix_ms)
+                   detail=p.detail, queue_position=p.queue_position, time_unix_ms=p.time_unix_ms,
+                   profile=p.profile, sequence=p.sequence if p.HasField("sequence") else None)
 
 
 @dataclass(frozen=True)
