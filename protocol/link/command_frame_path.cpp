@@ -15,7 +15,9 @@ PlannedCommandFrame plan_command_frame(const command::Command& command, std::uin
     p.frame = reliability::CommandFrame{static_cast<std::uint8_t>((sequence + step) & reliability::kSequenceMask), payload};
     p.bits = reliability::pack(p.frame);
     p.symbols = reliability::to_symbols(p.bits);
-    if (!std::equal(p.symbols.begin(), p.symbols.begin() + 4, p.symbols.begin() + 4)) break;
+    bool shared_tone = false;
+    for (std::size_t b = 0; b < 4; ++b) shared_tone = shared_tone || p.symbols[b] == p.symbols[b + 4];
+    if (!shared_tone) break;
   }
   return p;
 }

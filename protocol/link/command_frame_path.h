@@ -31,8 +31,9 @@ struct PlannedCommandFrame {
 };
 
 // The frame of `command` with sequence number `sequence`, or the next number whose frame has
-// two different chords (the listener takes equal chords for one chord seen twice; about one
-// frame in 16 million needs this). The caller numbers its next command from the returned
+// no tone in both chords (the listener takes a band's tone in both chords for one chord seen
+// twice, or for a seed chord; about one frame in 16 needs the next number, and a run of
+// more than a few is practically impossible). The caller numbers its next command from the returned
 // frame's number. Throws command::ParameterError for an out-of-range parameter.
 PlannedCommandFrame plan_command_frame(const command::Command& command, std::uint8_t sequence);
 // The frame's two chords (profile.bins.frame_samples() long).

@@ -81,8 +81,11 @@ void BinFrameListener::analyze_window() {
     if (!r.present) ++c.absent;
   }
   if (c.absent > bins_.absent_bands || !chords_apart(first, now)) return;
-  // Both windows inside one chord (or a held sound): senders never send two equal chords.
-  if (std::equal(c.symbols.begin(), c.symbols.begin() + 4, c.symbols.begin() + 4)) return;
+  // A tone in both chords' windows: one chord seen twice, a held sound, or another profile's
+  // chord. Senders never repeat a band's tone within a frame.
+  for (std::size_t b = 0; b < 4; ++b) {
+    if (first.readings[b].present && now.readings[b].present && c.symbols[b] == c.symbols[b + 4]) return;
+  }
   const double ms_per_sample = 1000.0 / sample_rate_hz_;
   c.heard_ms = analysed_until_ms_;
   // The first chord's window started one chord and one window before now; the chord itself

@@ -9,8 +9,10 @@
 // inside the first. A pair of windows is a candidate when all but `absent_bands` of the
 // eight bands sound, and each chord's tones are gone from the other's window (a sustained
 // note or a hum sounds in both; a frame's two chords never do). Two windows reading the same
-// four symbols are one chord seen twice, never a frame: senders never send equal chords
-// (link/command_frame_path.h). Whether the symbols form a
+// symbol in a band where both sound are no frame either: senders never put the same tone in
+// both chords of a frame (link/command_frame_path.h), while one chord seen twice, a held
+// sound, or a seed chord (tones in two or three of these bands, noise in the rest) always
+// does. Whether the symbols form a
 // frame is the reliability layer's question (CRC-16 with a chase of runner-ups).
 // Times are milliseconds since the first sample fed; the stream is taken to be preceded by
 // silence. Once constructed, feeding allocates nothing.

@@ -7,6 +7,8 @@
 #include <random>
 
 #include "command/command_payload.h"
+#include "command/test_sequence.h"
+#include "link/sender_path.h"
 #include "link/command_frame_path.h"
 #include "physical/acoustic_channel.h"
 
@@ -44,10 +46,12 @@ TEST(CommandFramePath, EveryKindWithEverySequenceNumberComesBackOnceOverTheRoom)
   std::vector<std::string> expected;
   for (int seq = 0; seq < 16; ++seq) {
     for (const auto& c : kEveryKind) {
-      const auto f = link::render_command_frame(p, link::plan_command_frame(c, static_cast<std::uint8_t>(seq)));
+      // About one frame in 16 takes a later number, so that its chords share no tone.
+      const auto planned = link::plan_command_frame(c, static_cast<std::uint8_t>(seq));
+      const auto f = link::render_command_frame(p, planned);
       sent.insert(sent.end(), f.begin(), f.end());
       sent.insert(sent.end(), 960, 0.0f);  // 20 ms, as if waiting for the ACK
-      expected.push_back(std::to_string(seq) + " " + quantised_text(c));
+      expected.push_back(std::to_string(planned.frame.sequence) + " " + quantised_text(c));
     }
   }
   sent.insert(sent.end(), 9600, 0.0f);
@@ -126,4 +130,25 @@ TEST(CommandFramePath, AHeldChordOrSilenceExecutesNothing) {
   held.insert(held.end(), 5000, 0.0f);
   for (const auto& r : receive(held)) EXPECT_FALSE(r.command);
   EXPECT_TRUE(receive(std::vector<float>(96000, 0.0f)).empty());
+}
+
+// The agent listens with both profiles: the seed's chords must leave the fast path silent,
+// not even a NACK (which would put a reply on the air and a row in the report).
+TEST(CommandFramePath, TheSeedsChordsMakeNoVerdictAtAll) {
+  const LinkProfile& seed = seed_profile();
+  std::vector<link::PlannedFrame> frames;
+  for (const auto& c : command::seed_test_sequence()) {
+    for (const auto& f : link::plan_command(seed, c)) frames.push_back(f);
+  }
+  physical::ChannelConfig room;
+  room.noise = physical::parse_noise("white", -70);
+  room.reverb.rt60_s = 0.3;
+  physical::AcousticChannel channel(p.sample_rate_hz, room);
+  channel.add_transmitter(1.0);
+  std::vector<float> heard;
+  channel.process(link::render_frames(seed, frames), heard);
+  const auto got = receive(heard);
+  int nacks = 0;
+  for (const auto& r : got) nacks += !r.frame;
+  EXPECT_EQ(got.size(), 0u) << nacks << " NACKs for " << frames.size() << " seed chords";
 }
