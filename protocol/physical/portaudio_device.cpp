@@ -15,10 +15,26 @@ namespace dtmf::physical {
 
 namespace {
 
-// Device buffer depth in seconds. The defaults (8.7 ms low, 35 ms high on PulseAudio)
-// underran or overran whenever a loaded 2-core machine kept a thread off the CPU longer,
-// and a chord with a hole in it was heard twice (tests/e2e).
-constexpr double kMinBufferS = 0.2;
+// Device buffer depth. PortAudio's defaults (8.7 ms low, 35 ms high on PulseAudio) underran
+// or overran whenever a loaded 2-core machine kept a thread off the CPU longer. 200 ms cured
+// that, but a buffer delays every answer by its depth in each direction, and the fast
+// profile's round trip (frame, ACK) must fit its 500 ms ACK timeout with room to spare: 50 ms
+// keeps both profiles' end-to-end tests clean on these machines. DTMF_AUDIO_BUFFER_MS changes it.
+constexpr double kDefaultBufferMs = 50;
+constexpr double kMinBufferMs = 5, kMaxBufferMs = 2000;
+
+double buffer_s() {
+  const char* text = std::getenv("DTMF_AUDIO_BUFFER_MS");
+  if (!text || !*text) return kDefaultBufferMs / 1000.0;
+  char* end = nullptr;
+  const double ms = std::strtod(text, &end);
+  if (*end != '\0' || !(ms >= kMinBufferMs && ms <= kMaxBufferMs)) {
+    throw AudioError("DTMF_AUDIO_BUFFER_MS='" + std::string(text) + "': give the audio buffer depth in milliseconds, " +
+                     std::to_string(static_cast<int>(kMinBufferMs)) + " to " + std::to_string(static_cast<int>(kMaxBufferMs)) +
+                     " (default " + std::to_string(static_cast<int>(kDefaultBufferMs)) + ")");
+  }
+  return ms / 1000.0;
+}
 
 // PortAudio probes every ALSA and JACK device it can think of, and both libraries print
 // each failed probe to stderr (hundreds of lines on a machine without a sound card). What
@@ -126,10 +142,9 @@ class PortAudioStream {
     params.channelCount = 1;
     params.sampleFormat = paFloat32;
     const PaDeviceInfo* info = Pa_GetDeviceInfo(device_.index);
-    // A deep buffer (kMinBufferS, or the device's high latency if more): a busy machine
-    // then neither drops recorded samples nor plays gaps into a chord, either of which can
-    // make a chord be heard twice. A chord is written at once, so its start is not delayed.
-    params.suggestedLatency = std::max(kMinBufferS, direction == Direction::Input ? info->defaultHighInputLatency
+    // A buffer no shallower than buffer_s(), or the device's high latency if more: a busy
+    // machine then neither drops recorded samples nor plays gaps into a chord.
+    params.suggestedLatency = std::max(buffer_s(), direction == Direction::Input ? info->defaultHighInputLatency
                                                                                   : info->defaultHighOutputLatency);
     const PaError error =
         Pa_OpenStream(&stream_, direction == Direction::Input ? &params : nullptr,

@@ -4,6 +4,7 @@
 #include "agent.h"
 #include "command/word_codec.h"
 #include "link/sender_path.h"
+#include "link/transmit_plan.h"
 #include "physical/wav_file.h"
 #include "signal/tone_listener.h"
 
@@ -124,4 +125,60 @@ TEST(Agent, TheReplyTimelinePutsEachChordWhereItsFrameWasHeard) {
   EXPECT_EQ(static_cast<signal::Reply>(heard[1].symbol), signal::Reply::Nack);
   EXPECT_NEAR(heard[0].start_ms, 100, 60);
   EXPECT_NEAR(heard[1].start_ms, 1100, 60);
+}
+
+// Listening with both profiles: a fast frame, its retransmission, then a seed command.
+TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) {
+  const LinkProfile& fast = fast_profile();
+  const LinkProfile& seed = seed_profile();
+  std::uint8_t sequence = 5;
+  const auto frame = link::plan_transmission(fast, command::DriveForDuration{40, 1}, sequence).front();
+  std::vector<float> audio(static_cast<std::size_t>(fast.samples_for_ms(100)), 0.0f);
+  const auto append = [&](const std::vector<float>& more, double silence_ms) {
+    audio.insert(audio.end(), more.begin(), more.end());
+    audio.resize(audio.size() + static_cast<std::size_t>(fast.samples_for_ms(silence_ms)), 0.0f);
+  };
+  append(frame.audio, 500);
+  append(frame.audio, 500);  // the sender did not hear the ACK: the same frame again
+  append(link::render_frames(seed, link::plan_command(seed, command::DriveForward{30})), 500);
+
+  struct Recorded : ReplyPlayer {
+    void play(std::vector<float> audio, double) override { answers.push_back(std::move(audio)); }
+    void finish(double) override {}
+    std::vector<std::vector<float>> answers;
+  } replies;
+  RecordingOutput output;
+  std::vector<HeardFrame> heard;
+  AgentOptions options;
+  options.profiles = {&seed, &fast};
+  options.on_frame_heard = [&](const HeardFrame& f) { heard.push_back(f); };
+  store::StoreOptions no_db;
+  no_db.database = std::string();
+  store::Store store(no_db);
+  Timeline timeline(false);
+  Agent agent(options, replies, {&output}, store, timeline);
+  EXPECT_EQ(agent.block_samples(), fast.hop_samples());
+  const auto block = static_cast<std::size_t>(agent.block_samples());
+  for (std::size_t i = 0; i < audio.size(); i += block) {
+    agent.process(std::span<const float>(audio).subspan(i, std::min(block, audio.size() - i)));
+  }
+
+  ASSERT_EQ(heard.size(), 5u);  // two fast frames, three seed words
+  const auto named_ack = reply_audio(fast, true, frame.sequence);
+  for (int i : {0, 1}) {
+    EXPECT_EQ(heard[i].profile, &fast);
+    EXPECT_TRUE(heard[i].intact);
+    EXPECT_EQ(heard[i].bits, frame.bits);
+    EXPECT_FALSE(heard[i].word);
+    EXPECT_EQ(replies.answers[i], named_ack) << "the ACK names the frame's sequence number";
+  }
+  EXPECT_TRUE(heard[0].command.has_value());
+  EXPECT_FALSE(heard[1].command.has_value()) << "a retransmission is answered, not executed again";
+  for (int i : {2, 3, 4}) {
+    EXPECT_EQ(heard[i].profile, &seed);
+    EXPECT_TRUE(heard[i].word.has_value());
+    EXPECT_EQ(replies.answers[i], reply_audio(seed, true, std::nullopt));
+  }
+  EXPECT_TRUE(heard[4].command.has_value());
+  EXPECT_GT(output.published.back().velocity.linear_mps, 0) << "the seed's DRIVE_FORWARD runs on";
 }

@@ -1,9 +1,10 @@
 // The whole system as users run it: real dtmf-agent, dtmf-server and dtmfctl processes
 // talking through the PulseAudio air (ctest fixture air), logging to a real PostgreSQL
 // (fixture pg, a fresh database per test), driving cmd_vel over real DDS to a ROS 2-like
-// subscriber in this test. Each test runs the seed's 65-frame sequence through
-// `dtmfctl sequence --json` and acts on its events as they stream: it stops the database,
-// or kills the robot agent, in the middle of the run.
+// subscriber in this test. Each test runs the seed's test sequence (27 commands: 65 frames
+// under the seed profile, 27 under fast) through `dtmfctl sequence --json --profile P` and
+// acts on its events as they stream: it stops the database, or kills the robot agent, in
+// the middle of the run. Every test runs under both profiles.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -17,6 +18,7 @@
 
 #include "../agent/dds_test_subscriber.h"
 #include "../db/temp_database.h"
+#include "command/command_payload.h"
 #include "command/test_sequence.h"
 #include "command/word_codec.h"
 #include "robot_model.h"
@@ -31,12 +33,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The seed sequence's velocities on a Burger: every non-zero (linear, angular) it commands.
-std::set<std::pair<double, double>> expected_motions() {
+// The seed sequence's velocities on a Burger: every non-zero (linear, angular) it commands,
+// as the profile's fields carry them.
+std::set<std::pair<double, double>> expected_motions(const std::string& profile) {
   std::set<std::pair<double, double>> motions;
   for (const auto& command : command::seed_test_sequence()) {
     agent::VelocityProvider provider(agent::burger(), 0);
-    provider.apply(command::quantised(command), 0);
+    provider.apply(profile == "fast" ? command::quantised_payload(command) : command::quantised(command), 0);
     const auto v = provider.update(0);
     if (v.linear_mps != 0 || v.angular_rps != 0) motions.insert({v.linear_mps, v.angular_rps});
   }
@@ -52,8 +55,14 @@ struct SequenceRun {
   std::string output;
 };
 
-class SystemE2E : public ::testing::Test {
+class SystemE2E : public ::testing::TestWithParam<std::string> {
  protected:
+  const std::string& profile() const { return GetParam(); }
+  // Frames of the sequence: a fast frame carries a whole command.
+  int frames() const { return profile() == "fast" ? static_cast<int>(command::seed_test_sequence().size()) : 65; }
+  // The n-th of the seed's 65 frames, at the same point of this profile's run.
+  int at_frame(int of_65) const { return std::max(1, of_65 * frames() / 65); }
+
   void SetUp() override {
     setenv("CYCLONEDDS_URI", R"(<General><Interfaces><NetworkInterface name="lo"/></Interfaces></General>)", 1);
     fs::create_directories(dir_);
@@ -86,7 +95,7 @@ class SystemE2E : public ::testing::Test {
   // `dtmfctl sequence --json`, calling on_transmitting(n) at the n-th chord (from 1).
   SequenceRun run_sequence(const std::string& label, const std::function<void(int)>& on_transmitting) {
     SequenceRun run;
-    const std::string command = std::string(DTMFCTL_PATH) + " sequence --label '" + label +
+    const std::string command = std::string(DTMFCTL_PATH) + " sequence --profile " + profile() + " --label '" + label +
                                 "' --json --on-unconfirmed continue --server 127.0.0.1:" + std::to_string(port_) +
                                 " < /dev/null 2>&1";
     FILE* pipe = ::popen(command.c_str(), "r");
@@ -163,33 +172,33 @@ class SystemE2E : public ::testing::Test {
 
 }  // namespace
 
-TEST_F(SystemE2E, SeedSequenceIsAllConfirmedAndLogsEveryRowThroughADatabaseOutage) {
+TEST_P(SystemE2E, SeedSequenceIsAllConfirmedAndLogsEveryRowThroughADatabaseOutage) {
   const char* pg_script = std::getenv("DTMF_PG_SCRIPT");
   const char* pg_dir = std::getenv("DTMF_PG_DIR");
   ASSERT_TRUE(pg_script && pg_dir) << "run through ctest (fixture pg)";
   bool restarted = false;
   const SequenceRun run = run_sequence("e2e general", [&](int chord) {
-    // Down from the 10th chord to the 35th: about 15 s, rows of both programs pile up.
-    if (chord == 10) {
+    // Down from the 10th chord to the 35th (seed: about 15 s): rows of both programs pile up.
+    if (chord == at_frame(10)) {
       EXPECT_EQ(run_command(std::string(pg_script) + " stop " + pg_dir).exit_code, 0);
     }
-    if (chord == 35) restarted = run_command(std::string(pg_script) + " start " + pg_dir + " > /dev/null").exit_code == 0;
+    if (chord == at_frame(35)) restarted = run_command(std::string(pg_script) + " start " + pg_dir + " > /dev/null").exit_code == 0;
   });
   ASSERT_TRUE(restarted);
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_EQ(run.transmitting, 65) << "no chord needed a retransmission";
+  EXPECT_EQ(run.transmitting, frames()) << "no chord needed a retransmission";
 
-  // Every row is in, once: 65 receptions (and any echo, below), 27 commands, 65 chords.
-  const long receptions = wait_for_receptions(65);
+  // Every row is in, once: a reception per frame (and any echo, below), 27 commands.
+  const long receptions = wait_for_receptions(frames());
   EXPECT_EQ(db_.query<long>("SELECT count(*) FROM receptions WHERE crc_ok AND reply = 'ack'"), receptions);
   EXPECT_EQ(db_.query<long>("SELECT count(*) FROM commands WHERE outcome = 'confirmed'"), 27);
-  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM frame_attempts WHERE answer = 'ack'"), 65);
-  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM test_runs WHERE ended_at IS NOT NULL"), 1);
+  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM frame_attempts WHERE answer = 'ack'"), frames());
+  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM test_runs WHERE ended_at IS NOT NULL AND profile = '" + profile() + "'"), 1);
 
   const pqxx::row r = report(run.run_id);
-  EXPECT_EQ(r["transmissions_sent"].as<int>(), 65);
-  EXPECT_EQ(r["successfully_matched"].as<int>(), 65);
-  EXPECT_EQ(r["sender_confirmed"].as<int>(), 65);
+  EXPECT_EQ(r["transmissions_sent"].as<int>(), frames());
+  EXPECT_EQ(r["successfully_matched"].as<int>(), frames());
+  EXPECT_EQ(r["sender_confirmed"].as<int>(), frames());
   EXPECT_EQ(r["duplicates"].as<int>(), 0);
   EXPECT_EQ(r["dropped"].as<int>(), 0);
   expect_no_wrong_frame(run.run_id, r, receptions);
@@ -203,26 +212,30 @@ TEST_F(SystemE2E, SeedSequenceIsAllConfirmedAndLogsEveryRowThroughADatabaseOutag
     if (!is_zero(s)) seen.insert({s.linear.x, s.angular.z});
     EXPECT_GT(s.stamp_sec, 1'700'000'000);
   }
-  EXPECT_EQ(seen, expected_motions());
+  EXPECT_EQ(seen, expected_motions(profile()));
   EXPECT_TRUE(is_zero(samples.back()));
 }
 
-TEST_F(SystemE2E, AnAgentKilledMidRunRestartsStoppedAndLosesNoRows) {
+TEST_P(SystemE2E, AnAgentKilledMidRunRestartsStoppedAndLosesNoRows) {
   std::chrono::steady_clock::time_point killed_at;
   const SequenceRun run = run_sequence("e2e agent restart", [&](int chord) {
-    if (chord == 20) {  // a chord just started: the agent's last reception was over 300 ms ago
+    if (chord == at_frame(20)) {
+      // A chord just started. The agent's last reception was a few milliseconds ago (fast) and
+      // may still wait in its store's memory queue, which a SIGKILL would lose: give the store
+      // the time it takes to write a row first.
+      std::this_thread::sleep_for(300ms);
       test_support::stop_process(agent_, SIGKILL);
       killed_at = std::chrono::steady_clock::now();
     }
-    if (chord == 24) start_agent();  // its spill file and the database carry on
+    if (chord == at_frame(24)) start_agent();  // its spill file and the database carry on
   });
   ASSERT_EQ(run.exit_code, 0) << run.output;  // --on-unconfirmed continue
 
   const pqxx::row r = report(run.run_id);
   const long matched = r["successfully_matched"].as<long>();
-  EXPECT_EQ(r["transmissions_sent"].as<int>(), 65);
+  EXPECT_EQ(r["transmissions_sent"].as<int>(), frames());
   EXPECT_GE(r["dropped"].as<int>(), 1) << "frames played while no agent listened";
-  EXPECT_EQ(matched + r["dropped"].as<long>(), 65);
+  EXPECT_EQ(matched + r["dropped"].as<long>(), frames());
   EXPECT_EQ(r["duplicates"].as<int>(), 0);
   expect_no_wrong_frame(run.run_id, r, db_.query<long>("SELECT count(*) FROM receptions"));
   // No lost rows: every chord the sender heard answered has the robot's reception.
@@ -243,3 +256,6 @@ TEST_F(SystemE2E, AnAgentKilledMidRunRestartsStoppedAndLosesNoRows) {
   EXPECT_TRUE(is_zero(*after_kill)) << after_kill->linear.x << " " << after_kill->angular.z;
   EXPECT_TRUE(is_zero(samples.back()));
 }
+
+INSTANTIATE_TEST_SUITE_P(Profiles, SystemE2E, ::testing::Values("seed", "fast"),
+                         [](const auto& info) { return info.param; });
