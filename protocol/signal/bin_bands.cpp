@@ -4,28 +4,54 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "signal/spectrum.h"
 
 namespace dtmf::signal {
 
 namespace {
-// The first index of the largest of n values: the maximum in four independent lanes, then
-// one scan for it (no data-dependent branch in the hot loop).
-int index_of_max(const float* v, int n) {
-  float lanes[4] = {v[0], v[0], v[0], v[0]};
-  int i = 0;
-  for (; i + 4 <= n; i += 4) {
-    for (int l = 0; l < 4; ++l) lanes[l] = std::max(lanes[l], v[i + l]);
+// Bins ordered as the readings rank them: by power, and among equal powers the lower index
+// first. The bit pattern of a float >= 0 grows with its value, so one 64-bit key holds both
+// (the power's bits, then the index counted down) and is unique for each bin: the best two
+// are then the two largest keys, found with max and min alone, in any order of the bins.
+// (Powers of a finite window are never negative or NaN.)
+inline std::uint64_t rank_key(float power, int at) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &power, sizeof bits);
+  return (std::uint64_t{bits} << 32) | (0xFFFFFFFFu - static_cast<std::uint32_t>(at));
+}
+inline int key_index(std::uint64_t key) { return static_cast<int>(0xFFFFFFFFu - static_cast<std::uint32_t>(key)); }
+
+struct TopTwo {
+  std::uint64_t best = 0, second = 0;  // 0 is below every bin's key
+  void add(std::uint64_t key) {
+    second = std::max(second, std::min(best, key));
+    best = std::max(best, key);
   }
-  float top = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
-  for (; i < n; ++i) top = std::max(top, v[i]);
-  for (i = 0; i < n; ++i) {
-    if (v[i] == top) return i;
+  void add(const TopTwo& o) {
+    second = std::max(std::max(second, o.second), std::min(best, o.best));
+    best = std::max(best, o.best);
   }
-  return 0;
+};
+
+// {index of the best, index of the runner-up} of v[0..n), n >= 2: the first index of the
+// largest value, then the first index of the largest of the others.
+inline std::pair<int, int> top_two(const float* v, int n) {
+  TopTwo lanes[4];
+  int t = 0;
+  for (; t + 4 <= n; t += 4) {
+    for (int l = 0; l < 4; ++l) lanes[l].add(rank_key(v[t + l], t + l));
+  }
+  for (; t < n; ++t) lanes[0].add(rank_key(v[t], t));
+  lanes[0].add(lanes[1]);
+  lanes[2].add(lanes[3]);
+  lanes[0].add(lanes[2]);
+  return {key_index(lanes[0].best), key_index(lanes[0].second)};
 }
 }  // namespace
 
@@ -51,7 +77,9 @@ BinBands::BinBands(int window_samples, std::span<const int> band_first_bin, int 
   output_ = fftwf_alloc_complex(static_cast<std::size_t>(top_bin + 1));
   // MEASURE: this size is planned once per process (FFTW keeps the wisdom) and runs
   // markedly faster than an estimated plan for a size that is not a power of two.
-  plan_ = fftwf_plan_dft_r2c_1d(window_samples, input_, static_cast<fftwf_complex*>(output_), FFTW_MEASURE);
+  // PRESERVE_INPUT is r2c's default, spelt out: analyze() runs the plan on the caller's window.
+  plan_ = fftwf_plan_dft_r2c_1d(window_samples, input_, static_cast<fftwf_complex*>(output_),
+                                FFTW_MEASURE | FFTW_PRESERVE_INPUT);
 }
 
 BinBands::~BinBands() {
@@ -61,20 +89,30 @@ BinBands::~BinBands() {
   fftwf_free(output_);
 }
 
-std::span<const BandReading> BinBands::analyze(std::span<const float> window) {
+std::span<const BandReading> BinBands::analyze(std::span<const float> window, std::span<float> powers) {
   if (window.size() != static_cast<std::size_t>(window_samples_)) {
     throw std::invalid_argument("analysis window must hold " + std::to_string(window_samples_) + " samples");
   }
-  std::copy(window.begin(), window.end(), input_);
-  fftwf_execute(plan_);
+  if (powers.size() != powers_.size()) {
+    throw std::invalid_argument("powers must hold " + std::to_string(powers_.size()) + " values");
+  }
+  // The plan preserves its input, so it reads the window where it lies when that is aligned
+  // as its own input array was (SlidingWindow's windows are); otherwise, a copy.
+  if (fftwf_alignment_of(const_cast<float*>(window.data())) == fftwf_alignment_of(input_)) {
+    fftwf_execute_dft_r2c(plan_, const_cast<float*>(window.data()), static_cast<fftwf_complex*>(output_));
+  } else {
+    std::copy(window.begin(), window.end(), input_);
+    fftwf_execute(plan_);
+  }
   const auto* bins = static_cast<const fftwf_complex*>(output_);
   for (std::size_t band = 0; band < first_bin_.size(); ++band) {
-    float* power = powers_.data() + band * static_cast<std::size_t>(tones_);
+    float* power = powers.data() + band * static_cast<std::size_t>(tones_);
     const fftwf_complex* x = bins + first_bin_[band];
     BandReading r;
-    // Passes without data-dependent branches (powers with their sum in four lanes, then
-    // the best, then the second) take 0.4 us a window here; one pass keeping a running best
-    // and second took 1.1 us, nearly the FFT's own time (bench/decoder).
+    // Passes without data-dependent branches: the powers with their sum in four lanes, then
+    // top_two() over keys (about half the time of the earlier maximum-then-scan, done twice;
+    // one pass keeping a running best and second with branches took 1.1 us a window, nearly
+    // the FFT's own time (bench/decoder)).
     float lanes[4] = {0, 0, 0, 0};
     int t = 0;
     for (; t + 4 <= tones_; t += 4) {
@@ -88,11 +126,7 @@ std::span<const BandReading> BinBands::analyze(std::span<const float> window) {
       lanes[0] += power[t];
     }
     const float sum = (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
-    const int best = index_of_max(power, tones_);
-    const float kept = power[best];
-    power[best] = -1.0f;  // out of the way while the runner-up is found
-    const int second = index_of_max(power, tones_);
-    power[best] = kept;
+    const auto [best, second] = top_two(power, tones_);
     r.symbol = static_cast<std::uint8_t>(best);
     r.runner_up = static_cast<std::uint8_t>(second);
     r.best = power[best];

@@ -40,9 +40,13 @@ class BinBands {
   BinBands& operator=(const BinBands&) = delete;
 
   // Analyses `window` (window_samples long) and returns one reading per band.
-  std::span<const BandReading> analyze(std::span<const float> window);
+  std::span<const BandReading> analyze(std::span<const float> window) { return analyze(window, powers_); }
+  // The same, with the powers written to `powers` (bands() x tones_per_band) instead of
+  // powers(), for a caller that keeps them (BinFrameListener: no copy per window).
+  std::span<const BandReading> analyze(std::span<const float> window, std::span<float> powers);
 
-  // Powers of the latest window, band after band, tones_per_band each.
+  // Powers of the latest window analysed without a `powers` of its own, band after band,
+  // tones_per_band each.
   std::span<const float> powers() const { return powers_; }
   int bands() const { return static_cast<int>(first_bin_.size()); }
   int tones_per_band() const { return tones_; }

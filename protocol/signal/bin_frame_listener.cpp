@@ -62,10 +62,8 @@ bool BinFrameListener::chords_apart(const WindowRecord& first, const WindowRecor
 void BinFrameListener::analyze_window() {
   newest_ = (newest_ + 1) % ring_.size();
   WindowRecord& now = ring_[newest_];
-  const auto readings = bands_.analyze(window_.window());
+  const auto readings = bands_.analyze(window_.window(), now.powers);
   std::copy(readings.begin(), readings.end(), now.readings.begin());
-  const auto powers = bands_.powers();
-  std::copy(powers.begin(), powers.end(), now.powers.begin());
   ++windows_;
   analysed_until_ms_ = 1000.0 * static_cast<double>(window_.samples_fed()) / sample_rate_hz_;
   if (windows_ <= hops_per_chord_) return;
