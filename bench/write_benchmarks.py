@@ -131,11 +131,13 @@ def summary_rows(d):
 
     rows = [
         ("Response time (chord start → ACK heard), median", "about 883 ms (avg. 883–888)", "–", response),
-        ("Command handed over → confirmed, link round trip in a simulated room, median", "–", "≤ 150 ms",
+        # The targets are the RPC's (end to end, below); the link round trip shows what the
+        # link alone takes, without gRPC, queues and threads.
+        ("Command handed over → confirmed, link round trip in a simulated room, median", "–", "–",
          trip(lambda d: num(d["latency_ms"]["median"], 0, " ms"))),
         ("Link round trip: p95 / max", "–", "–",
          trip(lambda d: f"{num(d['latency_ms']['p95'], 0)} / {num(d['latency_ms']['max'], 0)} ms")),
-        ("Net payload throughput, link round trip (stop and wait)", "16–18 bit/s (gross)", "≥ 250 bit/s",
+        ("Net payload throughput, link round trip (stop and wait)", "16–18 bit/s (gross)", "–",
          trip(lambda d: num(d["throughput_bps"], 1, " bit/s"))),
         ("Drive command: RPC call → confirmed, median", "–", "≤ 150 ms", e2e("latency_ms_median", 0, " ms")),
         ("Drive command: p95 / max", "–", "–",

@@ -72,17 +72,27 @@ grpc::Status TeleopService::authorize(grpc::ServerContext* context) const {
           "this server needs a bearer token: send metadata 'authorization: Bearer <token>' (dtmfctl --token-file FILE)"};
 }
 
+CommandSettings TeleopService::settings_of(const v1::CommandOptions& options) const {
+  const CommandSettings settings = command_settings(options, options_.defaults);
+  if (settings.profile) {
+    try {
+      transmitter_.usable_profile(settings.profile->name);
+    } catch (const std::invalid_argument& e) {
+      throw RequestError(std::string("options.profile: ") + e.what());
+    }
+  }
+  return settings;
+}
+
 template <class Write>
 grpc::Status TeleopService::run_command(grpc::ServerContext* context, const command::Command& command,
                                         const v1::CommandOptions& request_options, bool to_front, Write write) {
   std::shared_ptr<Job> job;
   try {
-    const CommandSettings settings = command_settings(request_options, options_.defaults);
+    const CommandSettings settings = settings_of(request_options);
     job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile);
   } catch (const RequestError& e) {
     return e.status();
-  } catch (const std::invalid_argument& e) {  // a profile this server cannot send
-    return {grpc::StatusCode::INVALID_ARGUMENT, std::string("options.profile: ") + e.what()};
   } catch (const QueueFull& e) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
   } catch (const TransmitterUnavailable& e) {
@@ -173,12 +183,9 @@ grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const 
   if (request->label().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "label: name the run, e.g. general, noise or 4 m"};
   const LinkProfile* profile = nullptr;
   try {
-    profile = command_settings(request->options(), options_.defaults).profile;
-    if (profile) transmitter_.usable_profile(profile->name);
+    profile = settings_of(request->options()).profile;
   } catch (const RequestError& e) {
     return e.status();
-  } catch (const std::invalid_argument& e) {
-    return {grpc::StatusCode::INVALID_ARGUMENT, std::string("options.profile: ") + e.what()};
   }
   if (!profile) profile = &transmitter_.profile();
   std::string run_id;

@@ -45,6 +45,9 @@ class TeleopService final : public v1::Teleop::Service {
   template <class Write>
   grpc::Status run_command(grpc::ServerContext* context, const command::Command& command,
                            const v1::CommandOptions& options, bool to_front, Write write);
+  // The request's options over the server's defaults, with a profile this server can send;
+  // throws RequestError.
+  CommandSettings settings_of(const v1::CommandOptions& options) const;
   grpc::Status start_run(const std::string& label, const std::string& notes, const LinkProfile& profile,
                          std::string& run_id);
   grpc::Status end_run(const std::string& run_id);
