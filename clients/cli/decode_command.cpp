@@ -5,7 +5,9 @@
 #include <string>
 
 #include "frame_output.h"
+#include "link/command_frame_path.h"
 #include "link/receiver_path.h"
+#include "reliability/command_frame.h"
 #include "offline_commands.h"
 #include "physical/wav_file.h"
 
@@ -19,9 +21,39 @@ struct DecodeOptions {
   std::string file;
 };
 
+// The fast profile: every verdict, with the command an intact frame carries.
+int run_decode_command_frames(const DecodeOptions& o, const LinkProfile& profile) {
+  physical::WavFileSource source(o.file, profile.sample_rate_hz, profile.min_recording_rate_hz());
+  link::CommandFramePath path(profile);
+  std::vector<float> block(static_cast<std::size_t>(profile.hop_samples()) * 8);
+  int frames = 0, intact = 0;
+  while (const std::size_t got = source.read(block)) {
+    for (const link::ReceivedCommandFrame& r : path.feed(std::span<const float>(block.data(), got))) {
+      ++frames;
+      intact += r.frame ? 1 : 0;
+      const std::string bits = reliability::bit_string(r.bits, reliability::kCommandFrameBits);
+      const std::string what = r.command ? command::describe(*r.command) : r.repeat ? "repeat, not executed again"
+                                                                           : r.error.empty() ? "(rejected)" : r.error;
+      if (o.json) {
+        nlohmann::json json{{"t_ms", std::lround(r.start_ms)}, {"heard_ms", std::lround(r.heard_ms)}, {"frame", bits},
+                            {"crc_ok", r.frame.has_value()}, {"what", what}};
+        if (r.frame) json["sequence"] = r.frame->sequence;
+        std::cout << json.dump() << '\n';
+      } else {
+        std::printf("%8.3f s  %s  CRC %s  %s\n", r.start_ms / 1000.0, bits.c_str(), r.frame ? "ok  " : "FAIL", what.c_str());
+      }
+    }
+  }
+  if (!o.json) {
+    std::printf("%s: %d frame%s heard, %d intact, %d failed the CRC (profile %s)\n", source.describe().c_str(), frames,
+                frames == 1 ? "" : "s", intact, frames - intact, profile.name.c_str());
+  }
+  return 0;
+}
+
 int run_decode(const DecodeOptions& o) {
   const LinkProfile& profile = profile_by_name(o.profile);
-  require_frame_format(profile, FrameFormat::Word16, "dtmfctl");
+  if (profile.frame_format == FrameFormat::Command48) return run_decode_command_frames(o, profile);
   physical::WavFileSource source(o.file, profile.sample_rate_hz, profile.min_recording_rate_hz());
   link::ReceiverPath receiver(profile);
   std::vector<float> block(static_cast<std::size_t>(profile.hop_samples()) * 8);

@@ -7,9 +7,12 @@
 #include <string>
 
 #include "command/test_sequence.h"
+#include "command/command_payload.h"
 #include "command/word_codec.h"
 #include "frame_output.h"
 #include "link/sender_path.h"
+#include "link/transmit_plan.h"
+#include "reliability/crc4.h"
 #include "offline_commands.h"
 #include "physical/wav_file.h"
 
@@ -41,9 +44,47 @@ command::Command build_command(const EncodeOptions& o) {
   return command::Reset{};
 }
 
+// The fast profile: one frame per command, numbered from 0, each followed by the time its
+// answer takes (kAnswerWaitMs), as a sender would space them.
+constexpr double kAnswerWaitMs = 100;
+
+int run_encode_command_frames(const EncodeOptions& o, const LinkProfile& profile) {
+  if (o.word) throw std::invalid_argument("--word: the " + profile.name + " profile sends whole commands, not words; "
+                                          "give a command (drive, turn, stop, reset, sequence)");
+  const std::vector<command::Command> commands =
+      o.kind == "sequence" ? command::seed_test_sequence() : std::vector<command::Command>{build_command(o)};
+  std::uint8_t sequence = 0;
+  std::vector<float> audio;
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    const link::TransmitFrame f = link::plan_transmission(profile, commands[i], sequence).front();
+    const double t_ms = 1000.0 * static_cast<double>(audio.size()) / profile.sample_rate_hz;
+    const std::string bits = reliability::bit_string(f.bits, f.bit_count);
+    const std::string what = command::describe(command::quantised_payload(commands[i]));
+    if (o.json) {
+      nlohmann::json json{{"index", i}, {"sequence", *f.sequence}, {"frame", bits}, {"tones_hz", f.tones_hz},
+                          {"command", what}};
+      if (!o.wav.empty()) json["t_ms"] = t_ms;
+      std::cout << json.dump() << '\n';
+    } else {
+      std::printf("frame %zu/%zu  seq %2u  %s  %s\n", i + 1, commands.size(), static_cast<unsigned>(*f.sequence),
+                  bits.c_str(), what.c_str());
+    }
+    audio.insert(audio.end(), f.audio.begin(), f.audio.end());
+    audio.resize(audio.size() + static_cast<std::size_t>(profile.samples_for_ms(kAnswerWaitMs)), 0.0f);
+  }
+  if (!o.json) std::cout << "encodes: " << commands.size() << " command" << (commands.size() == 1 ? "" : "s")
+                         << ", one 48-bit frame each (profile " << profile.name << ")\n";
+  if (!o.wav.empty()) {
+    physical::write_wav_file(o.wav, audio, profile.sample_rate_hz);
+    if (!o.json) std::printf("wrote %s: %.2f s at %d Hz\n", o.wav.c_str(),
+                             static_cast<double>(audio.size()) / profile.sample_rate_hz, profile.sample_rate_hz);
+  }
+  return 0;
+}
+
 int run_encode(const EncodeOptions& o) {
   const LinkProfile& profile = profile_by_name(o.profile);
-  require_frame_format(profile, FrameFormat::Word16, "dtmfctl");
+  if (profile.frame_format == FrameFormat::Command48) return run_encode_command_frames(o, profile);
   std::vector<link::PlannedFrame> frames;
   std::string what;
   if (o.word) {
@@ -91,7 +132,7 @@ void add_encode_command(CLI::App& app, Action& run) {
       "encode", "Print the frames of a command (word, frame bits, CRC, tones); --wav renders them");
   encode->fallthrough();
   encode->add_flag("--json", o->json, "one JSON object per frame: word, frame, crc, tones_hz, index");
-  encode->add_option("--wav", o->wav, "also write the chords to this WAV file (profile timing)");
+  encode->add_option("--wav", o->wav, "also write the chords to this WAV file (profile timing; fast: each frame then 100 ms for its answer)");
   encode->add_option("--profile", o->profile, "link profile: " + profile_names())->capture_default_str();
   encode->add_option("--word", o->word, "encode one raw 12-bit word instead of a command")
       ->check(CLI::Range(0, 4095));

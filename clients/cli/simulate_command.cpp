@@ -27,7 +27,6 @@ struct SimulateOptions {
 
 int run_simulate(const SimulateOptions& o) {
   const LinkProfile& profile = profile_by_name(o.profile);
-  require_frame_format(profile, FrameFormat::Word16, "dtmfctl");
   physical::ChannelConfig config;
   config.noise = physical::parse_noise(o.noise, o.noise_dbfs);
   config.reverb.rt60_s = o.reverb_rt60_s;

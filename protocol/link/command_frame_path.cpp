@@ -35,7 +35,10 @@ CommandFramePath::CommandFramePath(const LinkProfile& profile)
       // and for a few hops more its last chord and its echo in a room pair up with what
       // follows; the next frame's come a whole frame (ten hops) after its own. So after an
       // accept, seven hops are the frame's; a cluster ends after two and a half quiet hops.
-      gate_(7 * hop_ms_, 2.5 * hop_ms_) {
+      // A failed cluster waits a chord and three hops before its NACK: the pair of the last
+      // frame's tail (in a room) and the next frame's first chord comes one chord (five hops)
+      // before that frame's own pair, and its accept must be able to close the cluster.
+      gate_(7 * hop_ms_, 2.5 * hop_ms_, 8 * hop_ms_) {
   received_.reserve(16);
 }
 

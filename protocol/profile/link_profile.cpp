@@ -106,13 +106,6 @@ LinkProfile make_fast_profile() {
 
 }  // namespace
 
-void require_frame_format(const LinkProfile& profile, FrameFormat format, std::string_view program) {
-  if (profile.frame_format == format) return;
-  throw std::invalid_argument("profile '" + profile.name + "' is not supported by " + std::string(program) +
-                              " yet: its 48-bit frames are decoded by the link layer and the benchmarks "
-                              "(scripts/bench) only; use --profile seed");
-}
-
 int LinkProfile::hop_samples() const {
   return static_cast<int>(std::lround(sample_rate_hz / analysis.analyses_per_s));
 }

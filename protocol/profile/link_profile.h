@@ -130,9 +130,6 @@ const std::vector<const LinkProfile*>& all_profiles();
 // The profile called `name`; throws std::invalid_argument naming the known profiles.
 const LinkProfile& profile_by_name(std::string_view name);
 
-// Throws std::invalid_argument when `profile` does not use `format`, naming `program`.
-void require_frame_format(const LinkProfile& profile, FrameFormat format, std::string_view program);
-
 // "seed, fast" — for help texts and error messages.
 std::string profile_names();
 

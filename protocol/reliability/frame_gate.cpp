@@ -2,8 +2,8 @@
 
 namespace dtmf::reliability {
 
-FrameGate::FrameGate(double lockout_ms, double cluster_gap_ms)
-    : lockout_ms_(lockout_ms), cluster_gap_ms_(cluster_gap_ms) {}
+FrameGate::FrameGate(double lockout_ms, double cluster_gap_ms, double settle_ms)
+    : lockout_ms_(lockout_ms), cluster_gap_ms_(cluster_gap_ms), settle_ms_(settle_ms) {}
 
 void FrameGate::reset() {
   locked_until_ms_ = -1e300;
@@ -21,6 +21,7 @@ std::optional<Verdict> FrameGate::on_candidate(double start_ms, double heard_ms,
   if (!cluster_open_) {
     cluster_open_ = true;
     cluster_start_ms_ = start_ms;
+    cluster_first_ms_ = heard_ms;
     cluster_bits_ = read_bits;
   }
   cluster_last_ms_ = heard_ms;
@@ -28,7 +29,9 @@ std::optional<Verdict> FrameGate::on_candidate(double start_ms, double heard_ms,
 }
 
 std::optional<Verdict> FrameGate::on_time(double now_ms) {
-  if (!cluster_open_ || now_ms - cluster_last_ms_ < cluster_gap_ms_) return std::nullopt;
+  if (!cluster_open_ || now_ms - cluster_last_ms_ < cluster_gap_ms_ || now_ms - cluster_first_ms_ < settle_ms_) {
+    return std::nullopt;
+  }
   cluster_open_ = false;
   return Verdict{cluster_start_ms_, now_ms, std::nullopt, cluster_bits_};
 }

@@ -5,7 +5,10 @@
 // turns a run of such candidates into one verdict. A candidate whose frame passed the
 // check is accepted, and every candidate within `lockout_ms` after it is dropped (they are
 // the same frame seen again). Candidates that all fail form a cluster; once no candidate
-// has come for `cluster_gap_ms`, the cluster ends in one NACK, so the sender retransmits.
+// has come for `cluster_gap_ms`, and `settle_ms` has passed since its first candidate, the
+// cluster ends in one NACK, so the sender retransmits. A frame accepted before then closes
+// the cluster silently: in a room, the tail of one frame pairs with the first chord of the
+// next (sent right after the ACK) a chord before that frame's own pair is heard.
 // A frame that passes again later (an echo, or the sender's retransmission after a lost
 // ACK) is accepted again: telling those apart is the sequence number's job
 // (sequence_filter.h), and the ACK for it names its sequence number so no other frame can
@@ -28,7 +31,7 @@ struct Verdict {
 
 class FrameGate {
  public:
-  FrameGate(double lockout_ms, double cluster_gap_ms);
+  FrameGate(double lockout_ms, double cluster_gap_ms, double settle_ms = 0);
 
   // A candidate heard at `heard_ms` reading `read_bits`, and what the chase made of it.
   std::optional<Verdict> on_candidate(double start_ms, double heard_ms, const std::optional<ChasedFrame>& frame,
@@ -40,9 +43,11 @@ class FrameGate {
  private:
   double lockout_ms_;
   double cluster_gap_ms_;
+  double settle_ms_;
   double locked_until_ms_ = -1e300;
   bool cluster_open_ = false;
   double cluster_start_ms_ = 0;
+  double cluster_first_ms_ = 0;  // when its first candidate was heard
   double cluster_last_ms_ = 0;
   std::uint64_t cluster_bits_ = 0;
 };

@@ -59,6 +59,31 @@ TEST_F(Dtmfctl, EncodeThenDecodeGivesBackTheSameFramesInOrder) {
   EXPECT_EQ(heard[2]["event"]["command"], "drive_for_duration speed=50.0% duration=2.97s");
 }
 
+TEST_F(Dtmfctl, TheFastProfileEncodesAWholeCommandPerFrameAndDecodesItBackThroughARoom) {
+  const Result enc = run("encode --profile fast --json --wav " + path("f.wav") + " sequence");
+  ASSERT_EQ(enc.exit_code, 0) << enc.out;
+  const auto sent = json_lines(enc.out);
+  ASSERT_EQ(sent.size(), 27u) << "one frame per command of the seed's sequence";
+  EXPECT_EQ(sent[0]["frame"].get<std::string>().size(), 48u);
+  EXPECT_EQ(sent[0]["tones_hz"].size(), 8u);
+  const Result sim = run("simulate --profile fast " + path("f.wav") + " " + path("g.wav") +
+                         " --distance 5 --noise pink --noise-dbfs -45 --reverb-rt60 0.3");
+  ASSERT_EQ(sim.exit_code, 0) << sim.out;
+  const Result dec = run("decode --profile fast --json " + path("g.wav"));
+  ASSERT_EQ(dec.exit_code, 0) << dec.out;
+  const auto heard = json_lines(dec.out);
+  ASSERT_EQ(heard.size(), sent.size()) << dec.out;
+  for (std::size_t i = 0; i < sent.size(); ++i) {
+    EXPECT_TRUE(heard[i]["crc_ok"].get<bool>()) << i;
+    EXPECT_EQ(heard[i]["frame"], sent[i]["frame"]) << i;
+    EXPECT_EQ(heard[i]["sequence"], sent[i]["sequence"]) << i;
+    EXPECT_EQ(heard[i]["what"], sent[i]["command"]) << i;
+  }
+  const Result word = run("encode --profile fast --word 5");
+  EXPECT_EQ(word.exit_code, 2);
+  EXPECT_NE(word.out.find("sends whole commands, not words"), std::string::npos) << word.out;
+}
+
 TEST_F(Dtmfctl, SimulatedDistanceAndNoiseStillDecode) {
   ASSERT_EQ(run("encode --wav " + path("t.wav") + " turn --rotation -30").exit_code, 0);
   const Result sim = run("simulate " + path("t.wav") + " " + path("h.wav") +

@@ -122,3 +122,21 @@ TEST(SequenceFilter, ARetransmissionIsNotExecutedTwiceButANewCommandIs) {
   filter.reset();
   EXPECT_TRUE(filter.first_time({5, 101}));
 }
+
+TEST(FrameGate, AFailedClusterWaitsToSettleAndAnAcceptClosesItSilently) {
+  FrameGate gate(70, 25, 80);
+  ChasedFrame f;
+  f.bits = 1;
+  // A room's tail paired with the next frame's first chord, then that frame's own pair.
+  EXPECT_FALSE(gate.on_candidate(0, 100, std::nullopt));
+  EXPECT_FALSE(gate.on_time(130)) << "quiet for 30 ms, but not yet settled";
+  EXPECT_TRUE(gate.on_candidate(50, 150, f));
+  EXPECT_FALSE(gate.on_time(400)) << "the accept closed the cluster: no NACK";
+  // A broken frame alone still gets its one NACK, once settled.
+  EXPECT_FALSE(gate.on_candidate(1000, 1100, std::nullopt));
+  EXPECT_FALSE(gate.on_time(1150));
+  const auto nack = gate.on_time(1180);
+  ASSERT_TRUE(nack);
+  EXPECT_FALSE(nack->accepted);
+  EXPECT_FALSE(gate.on_time(1300));
+}
