@@ -21,27 +21,17 @@ struct DecodeOptions {
   std::string file;
 };
 
-// The fast profile: every verdict, with the command an intact frame carries.
-int run_decode_command_frames(const DecodeOptions& o, const LinkProfile& profile) {
+// The recording through `path` (either profile's receive path); `print` shows one verdict and
+// says whether it was intact. Ends with the count, unless --json.
+template <class Path, class Print>
+int decode_file(const DecodeOptions& o, const LinkProfile& profile, Path& path, Print print) {
   physical::WavFileSource source(o.file, profile.sample_rate_hz, profile.min_recording_rate_hz());
-  link::CommandFramePath path(profile);
   std::vector<float> block(static_cast<std::size_t>(profile.hop_samples()) * 8);
   int frames = 0, intact = 0;
   while (const std::size_t got = source.read(block)) {
-    for (const link::ReceivedCommandFrame& r : path.feed(std::span<const float>(block.data(), got))) {
+    for (const auto& r : path.feed(std::span<const float>(block.data(), got))) {
       ++frames;
-      intact += r.frame ? 1 : 0;
-      const std::string bits = reliability::bit_string(r.bits, reliability::kCommandFrameBits);
-      const std::string what = r.command ? command::describe(*r.command) : r.repeat ? "repeat, not executed again"
-                                                                           : r.error.empty() ? "(rejected)" : r.error;
-      if (o.json) {
-        nlohmann::json json{{"t_ms", std::lround(r.start_ms)}, {"heard_ms", std::lround(r.heard_ms)}, {"frame", bits},
-                            {"crc_ok", r.frame.has_value()}, {"what", what}};
-        if (r.frame) json["sequence"] = r.frame->sequence;
-        std::cout << json.dump() << '\n';
-      } else {
-        std::printf("%8.3f s  %s  CRC %s  %s\n", r.start_ms / 1000.0, bits.c_str(), r.frame ? "ok  " : "FAIL", what.c_str());
-      }
+      intact += print(r) ? 1 : 0;
     }
   }
   if (!o.json) {
@@ -51,38 +41,47 @@ int run_decode_command_frames(const DecodeOptions& o, const LinkProfile& profile
   return 0;
 }
 
+// The fast profile: every verdict, with the command an intact frame carries.
+bool print_command_frame(const DecodeOptions& o, const link::ReceivedCommandFrame& r) {
+  const std::string bits = reliability::bit_string(r.bits, reliability::kCommandFrameBits);
+  const std::string what = r.command ? command::describe(*r.command) : r.repeat ? "repeat, not executed again"
+                                                                       : r.error.empty() ? "(rejected)" : r.error;
+  if (o.json) {
+    nlohmann::json json{{"t_ms", std::lround(r.start_ms)}, {"heard_ms", std::lround(r.heard_ms)}, {"frame", bits},
+                        {"crc_ok", r.frame.has_value()}, {"what", what}};
+    if (r.frame) json["sequence"] = r.frame->sequence;
+    std::cout << json.dump() << '\n';
+  } else {
+    std::printf("%8.3f s  %s  CRC %s  %s\n", r.start_ms / 1000.0, bits.c_str(), r.frame ? "ok  " : "FAIL", what.c_str());
+  }
+  return r.frame.has_value();
+}
+
+// The seed profile: every frame, with what its word did to the command state.
+bool print_word_frame(const DecodeOptions& o, const LinkProfile& profile, const link::ReceivedFrame& r) {
+  const link::PlannedFrame as_planned{reliability::frame_word(r.frame), r.frame, signal::chord_for(profile.tones, r.frame)};
+  if (o.json) {
+    nlohmann::json json = frame_json(as_planned);
+    json["t_ms"] = std::lround(r.start_ms);
+    json["heard_ms"] = std::lround(r.heard_ms);
+    json["crc_ok"] = r.crc_ok;
+    if (r.event) json["event"] = event_json(*r.event);
+    std::cout << json.dump() << '\n';
+  } else {
+    std::printf("%8.3f s  %s  CRC %s  %s\n", r.start_ms / 1000.0, frame_line(as_planned).c_str(),
+                r.crc_ok ? "ok  " : "FAIL", r.event ? event_text(*r.event).c_str() : "(rejected)");
+  }
+  return r.crc_ok;
+}
+
 int run_decode(const DecodeOptions& o) {
   const LinkProfile& profile = profile_by_name(o.profile);
-  if (profile.frame_format == FrameFormat::Command48) return run_decode_command_frames(o, profile);
-  physical::WavFileSource source(o.file, profile.sample_rate_hz, profile.min_recording_rate_hz());
-  link::ReceiverPath receiver(profile);
-  std::vector<float> block(static_cast<std::size_t>(profile.hop_samples()) * 8);
-  int frames = 0, intact = 0;
-  while (const std::size_t got = source.read(block)) {
-    for (const link::ReceivedFrame& r : receiver.feed(std::span<const float>(block.data(), got))) {
-      ++frames;
-      intact += r.crc_ok ? 1 : 0;
-      const auto word = reliability::frame_word(r.frame);
-      const link::PlannedFrame as_planned{word, r.frame, signal::chord_for(profile.tones, r.frame)};
-      if (o.json) {
-        nlohmann::json json = frame_json(as_planned);
-        json["t_ms"] = std::lround(r.start_ms);
-        json["heard_ms"] = std::lround(r.heard_ms);
-        json["crc_ok"] = r.crc_ok;
-        if (r.event) json["event"] = event_json(*r.event);
-        std::cout << json.dump() << '\n';
-      } else {
-        std::printf("%8.3f s  %s  CRC %s  %s\n", r.start_ms / 1000.0, frame_line(as_planned).c_str(),
-                    r.crc_ok ? "ok  " : "FAIL", r.event ? event_text(*r.event).c_str() : "(rejected)");
-      }
-    }
+  if (profile.frame_format == FrameFormat::Command48) {
+    link::CommandFramePath path(profile);
+    return decode_file(o, profile, path, [&](const link::ReceivedCommandFrame& r) { return print_command_frame(o, r); });
   }
-  if (!o.json) {
-    std::printf("%s: %d frame%s heard, %d intact, %d failed the CRC (profile %s)\n",
-                source.describe().c_str(), frames, frames == 1 ? "" : "s", intact, frames - intact,
-                profile.name.c_str());
-  }
-  return 0;
+  link::ReceiverPath path(profile);
+  return decode_file(o, profile, path, [&](const link::ReceivedFrame& r) { return print_word_frame(o, profile, r); });
 }
 
 }  // namespace
