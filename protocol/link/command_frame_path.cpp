@@ -38,7 +38,8 @@ CommandFramePath::CommandFramePath(const LinkProfile& profile)
       // A failed cluster waits a chord and three hops before its NACK: the pair of the last
       // frame's tail (in a room) and the next frame's first chord comes one chord (five hops)
       // before that frame's own pair, and its accept must be able to close the cluster.
-      gate_(7 * hop_ms_, 2.5 * hop_ms_, 8 * hop_ms_) {
+      gate_(profile.bins.lockout_hops * hop_ms_, profile.bins.cluster_gap_hops * hop_ms_,
+            profile.bins.nack_settle_hops * hop_ms_) {
   received_.reserve(16);
 }
 

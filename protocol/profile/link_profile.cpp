@@ -78,6 +78,9 @@ LinkProfile make_fast_profile() {
   b.gone_db = 6;
   b.absent_bands = 1;
   b.chase_symbols = 2;
+  b.lockout_hops = 7;       // docs/protocol.md §10, "Hearing a frame"
+  b.cluster_gap_hops = 2.5;
+  b.nack_settle_hops = 8;
   b.reply_window_samples = 768;  // 16 ms; reply tones 62.5 Hz apart
   b.reply_hop_samples = 192;     // 4 ms; a reply is 768 + 2 * 48 + 2 * 192 = 1248 samples (26 ms)
   b.reply_edge_samples = 48;

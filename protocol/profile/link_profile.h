@@ -82,6 +82,10 @@ struct BinLink {
   double gone_db = 0;       // the other chord's tone must be this far below this chord's
   int absent_bands = 0;     // bands of a frame's eight that may fail presence_db (chased first)
   int chase_symbols = 0;    // least certain symbols whose runner-up is tried when the CRC fails
+  // One verdict per frame (reliability/frame_gate.h), in analysis hops.
+  double lockout_hops = 0;      // after an accept, candidates this long after are the same frame
+  double cluster_gap_hops = 0;  // failed candidates this far apart are separate clusters
+  double nack_settle_hops = 0;  // a failed cluster NACKs no earlier than this after its first
   // The sender's reply detector: two bands of 16 tones; ACK(seq) sounds tone seq in the
   // first and tone (5 seq + 3) mod 16 in the second, NACK tone 0 and tone 8.
   int reply_window_samples = 0;
