@@ -133,11 +133,7 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   EXPECT_EQ(report[0]["successfully_matched"], 65);  // the robot logged what it heard
   EXPECT_EQ(report[0]["dropped"], 0);
   EXPECT_EQ(report[0]["sender_confirmed"], 65);
-  // A chord is still heard twice now and then early in a run (the open defect in issue 7's
-  // closing note; tests/e2e checks that no frame is heard that was never sent): at most
-  // one such echo passes here, and it is printed.
-  std::printf("false positives %d, duplicates %d\n", report[0]["false_positives"].get<int>(), report[0]["duplicates"].get<int>());
-  EXPECT_LE(report[0]["false_positives"].get<int>(), 1);
+  EXPECT_EQ(report[0]["false_positives"], 0);
   EXPECT_EQ(report[0]["duplicates"], 0);
   std::printf("%s\n", run_command(ctl("report")).out.c_str());
 
