@@ -56,6 +56,16 @@ grpc::Status outcome_status(Job& job) {
   }
 }
 
+// Drive, Turn, Stop and Reset each stream their own response message around one Progress.
+template <typename Response>
+auto progress_to(grpc::ServerWriter<Response>* writer) {
+  return [writer](const v1::Progress& progress) {
+    Response response;
+    *response.mutable_progress() = progress;
+    return writer->Write(response);
+  };
+}
+
 }  // namespace
 
 TeleopService::TeleopService(Transmitter& transmitter, store::Store& store, ServiceOptions options)
@@ -120,11 +130,7 @@ grpc::Status TeleopService::Drive(grpc::ServerContext* context, const v1::DriveR
                                   grpc::ServerWriter<v1::DriveResponse>* writer) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
   try {
-    return run_command(context, drive_command(*request), request->options(), false, [&](const v1::Progress& p) {
-      v1::DriveResponse response;
-      *response.mutable_progress() = p;
-      return writer->Write(response);
-    });
+    return run_command(context, drive_command(*request), request->options(), false, progress_to(writer));
   } catch (const RequestError& e) {
     return e.status();
   }
@@ -134,11 +140,7 @@ grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnReq
                                  grpc::ServerWriter<v1::TurnResponse>* writer) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
   try {
-    return run_command(context, turn_command(*request), request->options(), false, [&](const v1::Progress& p) {
-      v1::TurnResponse response;
-      *response.mutable_progress() = p;
-      return writer->Write(response);
-    });
+    return run_command(context, turn_command(*request), request->options(), false, progress_to(writer));
   } catch (const RequestError& e) {
     return e.status();
   }
@@ -147,21 +149,13 @@ grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnReq
 grpc::Status TeleopService::Stop(grpc::ServerContext* context, const v1::StopRequest* request,
                                  grpc::ServerWriter<v1::StopResponse>* writer) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
-  return run_command(context, command::Stop{}, request->options(), true, [&](const v1::Progress& p) {
-    v1::StopResponse response;
-    *response.mutable_progress() = p;
-    return writer->Write(response);
-  });
+  return run_command(context, command::Stop{}, request->options(), true, progress_to(writer));
 }
 
 grpc::Status TeleopService::Reset(grpc::ServerContext* context, const v1::ResetRequest* request,
                                   grpc::ServerWriter<v1::ResetResponse>* writer) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
-  return run_command(context, command::Reset{}, request->options(), false, [&](const v1::Progress& p) {
-    v1::ResetResponse response;
-    *response.mutable_progress() = p;
-    return writer->Write(response);
-  });
+  return run_command(context, command::Reset{}, request->options(), false, progress_to(writer));
 }
 
 grpc::Status TeleopService::Decide(grpc::ServerContext* context, const v1::DecideRequest* request, v1::DecideResponse*) {
