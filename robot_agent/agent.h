@@ -38,6 +38,9 @@ namespace dtmf::agent {
 class Timeline {
  public:
   explicit Timeline(bool live) : live_(live), start_(std::chrono::system_clock::now()) {}
+  // A recording's audio time 0 is now: called as its first block is read, so that the
+  // stamps of a recording heard in real time (--realtime) are publish times.
+  void start_now() { start_ = std::chrono::system_clock::now(); }
   // The block ending at `block_end_ms` of audio was read `queued_ms` of audio behind the
   // microphone: its end was captured that long before now.
   void block_read(double block_end_ms, double queued_ms = 0) {

@@ -27,6 +27,9 @@
 
 namespace {
 
+// Silence played into a new answer stream before listening starts (see reply_player.h).
+constexpr std::chrono::milliseconds kAnswerWarmup{1000};
+
 std::atomic<bool> g_stop{false};
 extern "C" void on_signal(int) { g_stop = true; }
 
@@ -83,7 +86,11 @@ int run(const Flags& f) {
   else if (physical::is_file_spec(ack_out) || offline)
     replies = std::make_unique<agent::ReplyTimeline>(profile, physical::open_audio_sink(ack_out, profile.sample_rate_hz));
   else
-    replies = std::make_unique<agent::LiveReplyPlayer>(physical::open_audio_sink(ack_out, profile.sample_rate_hz));
+    // Before the microphone opens: the agent is deaf while its answer stream warms up, and a
+    // frame missed then is retransmitted, where an ACK lost then made the seed sender repeat
+    // a frame the robot had already executed (reply_player.h).
+    replies = std::make_unique<agent::LiveReplyPlayer>(physical::open_audio_sink(ack_out, profile.sample_rate_hz),
+                                                       kAnswerWarmup);
   spdlog::info("answering through {}", ack_out);
 
   std::vector<std::unique_ptr<agent::CmdVelOutput>> owned;
@@ -134,6 +141,7 @@ int run(const Flags& f) {
   std::vector<float> block(static_cast<std::size_t>(agent.block_samples()));
   int exit_code = 0;
   const auto started = std::chrono::steady_clock::now();
+  timeline.start_now();
   // A recording played back as if it were being heard now.
   const auto pace = [&] {
     if (f.realtime && offline) std::this_thread::sleep_until(started + std::chrono::duration<double, std::milli>(agent.audio_ms()));

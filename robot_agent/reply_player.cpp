@@ -40,8 +40,14 @@ void ReplyTimeline::finish(double audio_ms) {
   sink_->drain();
 }
 
-LiveReplyPlayer::LiveReplyPlayer(std::unique_ptr<physical::AudioSink> sink)
-    : sink_(std::move(sink)), thread_([this] { run(); }) {}
+LiveReplyPlayer::LiveReplyPlayer(std::unique_ptr<physical::AudioSink> sink, std::chrono::milliseconds warmup)
+    : sink_(std::move(sink)) {
+  if (warmup.count() > 0) {
+    sink_->write(std::vector<float>(static_cast<std::size_t>(sink_->sample_rate_hz() * warmup.count() / 1000), 0.0f));
+    sink_->drain();
+  }
+  thread_ = std::thread([this] { run(); });
+}
 
 LiveReplyPlayer::~LiveReplyPlayer() {
   {

@@ -5,9 +5,14 @@
 // ReplyTimeline writes a file: each chord at the audio time of the frame it answers, with
 // silence between, so an offline run leaves a recording aligned with its input.
 // LiveReplyPlayer plays on a device from its own thread, so answering never holds up
-// listening; a chord asked for while another plays follows it.
+// listening; a chord asked for while another plays follows it. It first plays a stretch of
+// silence (`warmup`) and only then returns from its constructor: a new PulseAudio stream
+// delivers its first sounds late or not at all, and a restarted agent's first ACK was lost
+// that way (the seed sender then retransmitted a frame the robot had executed, which the
+// robot, without sequence numbers, executed again).
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <memory>
@@ -49,7 +54,7 @@ class ReplyTimeline : public ReplyPlayer {
 
 class LiveReplyPlayer : public ReplyPlayer {
  public:
-  explicit LiveReplyPlayer(std::unique_ptr<physical::AudioSink> sink);
+  LiveReplyPlayer(std::unique_ptr<physical::AudioSink> sink, std::chrono::milliseconds warmup);
   ~LiveReplyPlayer() override;
   void play(std::vector<float> audio, double audio_ms) override;
   void finish(double audio_ms) override;

@@ -38,7 +38,7 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   no_db.database = std::string();
   robot_store_ = std::make_unique<store::Store>(no_db);
   robot_microphone_ = std::move(robot.microphone);
-  if (options_.robot_answers) robot_replies_ = std::make_unique<agent::LiveReplyPlayer>(std::move(robot.speaker));
+  if (options_.robot_answers) robot_replies_ = std::make_unique<agent::LiveReplyPlayer>(std::move(robot.speaker), std::chrono::milliseconds(0));
   else robot_replies_ = std::make_unique<Mute>();
   recorder_ = std::make_unique<Recorder>();
   timeline_ = std::make_unique<agent::Timeline>(true);
