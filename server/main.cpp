@@ -18,11 +18,13 @@
 #include <spdlog/spdlog.h>
 #include <thread>
 
+#include "grpc/health/v1/health.pb.h"
 #include "physical/audio_spec.h"
 #include "program_main.h"
 #include "physical/portaudio_device.h"
 #include "physical/wav_file.h"
 #include "teleop_service.h"
+#include "utf8_refusal.h"
 
 namespace {
 
@@ -113,19 +115,25 @@ int run(const Flags& f) {
     tls.pem_key_cert_pairs.push_back({read_file(f.tls_key, "TLS key"), read_file(f.tls_cert, "TLS certificate")});
     credentials = grpc::SslServerCredentials(tls);
   }
+  // gRPC's built-in health service carries no protobuf descriptors; touching one links
+  // grpc.health.v1 into the generated pool, so that reflection can describe and call it.
+  (void)grpc::health::v1::HealthCheckRequest::descriptor();
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   int port = 0;
   builder.AddListeningPort(f.address + ":" + std::to_string(f.port), credentials, &port);
   builder.RegisterService(&service);
+  std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
+  interceptors.push_back(server::utf8_refusal_interceptor());
+  builder.experimental().SetInterceptorCreators(std::move(interceptors));
   std::unique_ptr<grpc::Server> grpc_server = builder.BuildAndStart();
   if (!grpc_server || port == 0) {
     throw std::runtime_error("cannot listen on " + f.address + ":" + std::to_string(f.port) +
                              " (is another server using the port? choose one with --port)");
   }
   grpc_server->GetHealthCheckService()->SetServingStatus(true);
-  spdlog::info("serving dtmf.v1.Teleop on {}:{} ({}{}), default profile {}", f.address, port,
+  spdlog::info("serving dtmf.v1.TeleopService on {}:{} ({}{}), default profile {}", f.address, port,
                f.tls_cert.empty() ? "plaintext" : "TLS", options.auth_token.empty() ? "" : ", bearer token", profile.name);
 
   std::signal(SIGINT, on_signal);

@@ -1,6 +1,9 @@
 #include "request_validation.h"
 
+#include <utf8cpp/utf8.h>
+
 #include <cmath>
+#include <cstdio>
 
 #include "command/word_codec.h"
 
@@ -30,7 +33,36 @@ command::Command turn_command(const v1::TurnRequest& r) {
   return checked(command::Turn{r.rotation_percent()});
 }
 
+void check_text(std::string_view field, std::string_view text, TextLimit limit) {
+  const std::string name(field);
+  if (!utf8::is_valid(text.begin(), text.end())) {
+    throw RequestError(name + ": not valid UTF-8 (send text as UTF-8)");
+  }
+  std::size_t chars = 0;
+  for (auto it = text.begin(); it != text.end(); ++chars) {
+    const std::uint32_t c = utf8::unchecked::next(it);
+    if (c == 0) throw RequestError(name + ": holds a NUL character (U+0000), which cannot be stored; remove it");
+    const bool line_control = c == '\t' || c == '\n' || c == '\r';
+    if ((c < 0x20 && !(limit.multiline && line_control)) || (c >= 0x7f && c < 0xa0)) {
+      char code[16];
+      std::snprintf(code, sizeof code, "U+%04X", static_cast<unsigned>(c));
+      throw RequestError(name + ": holds the control character " + code + (limit.multiline ? "" : " (one line only)") +
+                         "; remove it");
+    }
+  }
+  if (chars > limit.max_chars) {
+    throw RequestError(name + ": " + std::to_string(chars) + " characters, at most " + std::to_string(limit.max_chars) +
+                       " allowed");
+  }
+}
+
+void check_label(std::string_view field, std::string_view label) {
+  if (label.empty()) throw RequestError(std::string(field) + ": name the run, e.g. general, noise or 4 m");
+  check_text(field, label, kLabelLimit);
+}
+
 CommandSettings command_settings(const v1::CommandOptions& options, const CommandSettings& defaults) {
+  check_text("options.profile", options.profile(), kProfileLimit);
   CommandSettings settings = defaults;
   if (options.has_on_unconfirmed()) {
     switch (options.on_unconfirmed()) {
@@ -60,6 +92,7 @@ CommandSettings command_settings(const v1::CommandOptions& options, const Comman
 
 reliability::Decision decision_of(const v1::DecideRequest& r) {
   if (r.command_id().empty()) throw RequestError("command_id: required (from the AWAITING_DECISION progress)");
+  check_text("command_id", r.command_id(), kIdLimit);
   switch (r.decision()) {
     case v1::DECISION_CONTINUE: return reliability::Decision::Continue;
     case v1::DECISION_RETRANSMIT: return reliability::Decision::Retransmit;

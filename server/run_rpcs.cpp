@@ -93,7 +93,12 @@ grpc::Status TeleopService::end_run(const std::string& run_id) {
 grpc::Status TeleopService::StartRun(grpc::ServerContext* context, const v1::StartRunRequest* request,
                                      v1::StartRunResponse* response) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
-  if (request->label().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "label: name the run, e.g. general, noise or 4 m"};
+  try {
+    check_label("label", request->label());
+    check_text("notes", request->notes(), kNotesLimit);
+  } catch (const RequestError& e) {
+    return e.status();
+  }
   std::string run_id;
   auto status = start_run(request->label(), request->notes(), transmitter_.profile(), run_id);
   response->set_run_id(run_id);
@@ -103,6 +108,11 @@ grpc::Status TeleopService::StartRun(grpc::ServerContext* context, const v1::Sta
 grpc::Status TeleopService::EndRun(grpc::ServerContext* context, const v1::EndRunRequest* request, v1::EndRunResponse*) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
   if (request->run_id().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "run_id: required (from StartRun)"};
+  try {
+    check_text("run_id", request->run_id(), kIdLimit);
+  } catch (const RequestError& e) {
+    return e.status();
+  }
   return end_run(request->run_id());
 }
 
@@ -126,6 +136,11 @@ grpc::Status TeleopService::ListRuns(grpc::ServerContext* context, const v1::Lis
 grpc::Status TeleopService::GetReport(grpc::ServerContext* context, const v1::GetReportRequest* request,
                                       v1::GetReportResponse* response) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
+  try {
+    check_text("run_id", request->run_id(), kIdLimit);
+  } catch (const RequestError& e) {
+    return e.status();
+  }
   if (store::database_disabled(options_.database)) return no_database();
   store_.flush(std::chrono::seconds(5));  // the run's last rows first
   try {

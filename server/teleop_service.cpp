@@ -174,9 +174,10 @@ grpc::Status TeleopService::Decide(grpc::ServerContext* context, const v1::Decid
 grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const v1::RunTestSequenceRequest* request,
                                             grpc::ServerWriter<v1::RunTestSequenceResponse>* writer) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
-  if (request->label().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "label: name the run, e.g. general, noise or 4 m"};
   const LinkProfile* profile = nullptr;
   try {
+    check_label("label", request->label());
+    check_text("notes", request->notes(), kNotesLimit);
     profile = settings_of(request->options()).profile;
   } catch (const RequestError& e) {
     return e.status();

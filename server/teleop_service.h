@@ -1,4 +1,4 @@
-// The gRPC service dtmf.v1.Teleop: validates requests, queues commands on the transmitter
+// The gRPC service dtmf.v1.TeleopService: validates requests, queues commands on the transmitter
 // and streams their progress; keeps labelled test runs and reads their reports from the
 // database. With an auth token set, every call must carry "authorization: Bearer <token>".
 #pragma once
@@ -23,7 +23,7 @@ struct ServiceOptions {
   std::string host;
 };
 
-class TeleopService final : public v1::Teleop::Service {
+class TeleopService final : public v1::TeleopService::Service {
  public:
   TeleopService(Transmitter& transmitter, store::Store& store, ServiceOptions options);
 

@@ -36,7 +36,7 @@ ServerConnection::ServerConnection(const ServerOptions& options) {
     throw Unreachable("cannot reach dtmf-server at " + options.address +
                       ": is it running? (start it, or point --server / DTMF_SERVER at it)");
   }
-  stub_ = v1::Teleop::NewStub(channel_);
+  stub_ = v1::TeleopService::NewStub(channel_);
 }
 
 std::unique_ptr<grpc::ClientContext> ServerConnection::context() const {

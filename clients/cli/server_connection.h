@@ -35,14 +35,14 @@ class ServerConnection {
  public:
   // Connects within a few seconds or throws Unreachable with one clear line.
   explicit ServerConnection(const ServerOptions& options);
-  v1::Teleop::Stub& teleop() { return *stub_; }
+  v1::TeleopService::Stub& teleop() { return *stub_; }
   std::shared_ptr<grpc::Channel> channel() const { return channel_; }
   // A context carrying the token, if any.
   std::unique_ptr<grpc::ClientContext> context() const;
 
  private:
   std::shared_ptr<grpc::Channel> channel_;
-  std::unique_ptr<v1::Teleop::Stub> stub_;
+  std::unique_ptr<v1::TeleopService::Stub> stub_;
   std::string token_;
 };
 

@@ -5,7 +5,7 @@
 # Everything the build, the tests and the demo use (Debian 12 names).
 DTMF_PACKAGES=(
   build-essential cmake ninja-build pkg-config
-  libfftw3-dev libsndfile1-dev libsamplerate0-dev portaudio19-dev libasound2-dev libjack-jackd2-dev
+  libfftw3-dev libsndfile1-dev libutfcpp-dev libsamplerate0-dev portaudio19-dev libasound2-dev libjack-jackd2-dev
   libspdlog-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   pulseaudio pulseaudio-utils libasound2-plugins alsa-utils
   postgresql libpqxx-dev cyclonedds-dev cyclonedds-tools
@@ -44,4 +44,24 @@ build_all() {
     cmake -G Ninja -B "$dir" -S . -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
   fi
   if [ $# -gt 0 ]; then cmake --build "$dir" --target "$@"; else cmake --build "$dir"; fi
+}
+
+# Third-party clients from npm for the interop tests, into DIR/npm (default build/npm):
+# buf (@bufbuild/buf, pinned), a reflection-driven gRPC client like grpcurl, and its linter.
+# Node and npm come from Debian when the machine has none.
+DTMF_BUF_VERSION=1.75.0
+ensure_npm_tools() {
+  local dir=${1:-build}/npm
+  if ! command -v npm >/dev/null; then
+    if [ "$(id -u)" -ne 0 ]; then
+      echo "npm is missing: sudo apt-get install -y nodejs npm" >&2
+      return 1
+    fi
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+  fi
+  local buf=$dir/node_modules/.bin/buf
+  [ -x "$buf" ] && [ "$("$buf" --version 2>/dev/null)" = "$DTMF_BUF_VERSION" ] && return 0
+  echo "installing @bufbuild/buf@$DTMF_BUF_VERSION into $dir"
+  mkdir -p "$dir"
+  npm install --prefix "$dir" --no-save --no-audit --no-fund --loglevel=error "@bufbuild/buf@$DTMF_BUF_VERSION" >/dev/null
 }

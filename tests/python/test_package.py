@@ -31,7 +31,7 @@ def test_the_generated_stubs_match_proto_exactly(tmp_path):
 
 
 def test_every_rpc_has_a_stub_method():
-    service = teleop_pb2.DESCRIPTOR.services_by_name["Teleop"]
-    stub_methods = {name for name in dir(teleop_pb2_grpc.TeleopServicer) if not name.startswith("_")}
+    service = teleop_pb2.DESCRIPTOR.services_by_name["TeleopService"]
+    stub_methods = {name for name in dir(teleop_pb2_grpc.TeleopServiceServicer) if not name.startswith("_")}
     assert {m.name for m in service.methods} == stub_methods
     assert len(service.methods) >= 10

@@ -89,7 +89,7 @@ LiveSystem::~LiveSystem() {
   robot_.join();
 }
 
-std::unique_ptr<v1::Teleop::Stub> LiveSystem::client() const { return v1::Teleop::NewStub(channel_); }
+std::unique_ptr<v1::TeleopService::Stub> LiveSystem::client() const { return v1::TeleopService::NewStub(channel_); }
 
 std::vector<int> LiveSystem::words_heard() {
   std::lock_guard lock(heard_.mutex);

@@ -41,7 +41,7 @@ class LiveSystem {
   explicit LiveSystem(LiveSystemOptions options = {});
   ~LiveSystem();
 
-  std::unique_ptr<v1::Teleop::Stub> client() const;
+  std::unique_ptr<v1::TeleopService::Stub> client() const;
   std::shared_ptr<grpc::Channel> channel() const { return channel_; }
   int port() const { return port_; }
   std::vector<int> words_heard();

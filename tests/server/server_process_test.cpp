@@ -86,11 +86,11 @@ TEST_F(ServerProcess, HealthAndReflectionAnswer) {
   ASSERT_TRUE(stream->Read(&listed));
   std::set<std::string> services;
   for (const auto& s : listed.list_services_response().service()) services.insert(s.name());
-  EXPECT_TRUE(services.count("dtmf.v1.Teleop"));
+  EXPECT_TRUE(services.count("dtmf.v1.TeleopService"));
   EXPECT_TRUE(services.count("grpc.health.v1.Health"));
   // The RPCs, as grpcurl describe shows them.
   grpc::reflection::v1alpha::ServerReflectionRequest describe;
-  describe.set_file_containing_symbol("dtmf.v1.Teleop");
+  describe.set_file_containing_symbol("dtmf.v1.TeleopService");
   ASSERT_TRUE(stream->Write(describe));
   grpc::reflection::v1alpha::ServerReflectionResponse described;
   ASSERT_TRUE(stream->Read(&described));
@@ -99,12 +99,25 @@ TEST_F(ServerProcess, HealthAndReflectionAnswer) {
   for (const char* rpc : {"Drive", "Turn", "Stop", "Reset", "RunTestSequence", "Decide", "StartRun", "GetReport"}) {
     EXPECT_NE(file.find(rpc), std::string::npos) << rpc;
   }
+  // Health is described too: grpcurl and buf curl call it through reflection alone.
+  grpc::reflection::v1alpha::ServerReflectionRequest describe_health;
+  describe_health.set_file_containing_symbol("grpc.health.v1.Health");
+  ASSERT_TRUE(stream->Write(describe_health));
+  grpc::reflection::v1alpha::ServerReflectionResponse health_described;
+  ASSERT_TRUE(stream->Read(&health_described));
+  ASSERT_GT(health_described.file_descriptor_response().file_descriptor_proto_size(), 0)
+      << health_described.error_response().error_message();
+  std::string health_file;  // the file and what it imports
+  for (const auto& proto : health_described.file_descriptor_response().file_descriptor_proto()) health_file += proto;
+  for (const char* rpc : {"Check", "Watch", "HealthCheckResponse"}) {
+    EXPECT_NE(health_file.find(rpc), std::string::npos) << rpc;
+  }
   stream->WritesDone();
   stream->Finish();
 }
 
 TEST_F(ServerProcess, WithoutARobotFramesGoUnansweredAndTheFileHoldsThem) {
-  auto client = v1::Teleop::NewStub(channel_);
+  auto client = v1::TeleopService::NewStub(channel_);
   grpc::ClientContext context;
   v1::ResetRequest request;
   request.mutable_options()->set_on_unconfirmed(v1::UNCONFIRMED_POLICY_CONTINUE);
@@ -126,7 +139,7 @@ TEST_F(ServerProcess, WithoutARobotFramesGoUnansweredAndTheFileHoldsThem) {
 
 TEST_F(ServerProcess, SigtermFinishesTheChordOnAirAndEndsQueuedCallsUnavailable) {
   auto drive = std::async(std::launch::async, [this] {
-    auto client = v1::Teleop::NewStub(channel_);
+    auto client = v1::TeleopService::NewStub(channel_);
     grpc::ClientContext context;
     v1::DriveRequest request;
     request.set_speed_percent(10);
@@ -168,7 +181,7 @@ class SecuredServerProcess : public ServerProcess {
 };
 
 TEST_F(SecuredServerProcess, ServesTlsAndDemandsTheToken) {
-  auto client = v1::Teleop::NewStub(channel_);
+  auto client = v1::TeleopService::NewStub(channel_);
   v1::ResetRequest request;
   request.mutable_options()->set_on_unconfirmed(v1::UNCONFIRMED_POLICY_CONTINUE);
   {

@@ -1,4 +1,4 @@
-"""Client: the dtmf-teleop gRPC API (dtmf.v1.Teleop) as plain Python.
+"""Client: the dtmf-teleop gRPC API (dtmf.v1.TeleopService) as plain Python.
 
     from dtmf_teleop import Client
     with Client("localhost:50051") as robot:
@@ -78,7 +78,7 @@ class Client:
         else:
             self._channel = grpc.insecure_channel(target)
         self._metadata = (("authorization", f"Bearer {token}"),) if token else ()
-        self._stub = teleop_pb2_grpc.TeleopStub(self._channel)
+        self._stub = teleop_pb2_grpc.TeleopServiceStub(self._channel)
         self._health = health_pb2_grpc.HealthStub(self._channel)
 
     def close(self) -> None:
