@@ -86,13 +86,17 @@ int run_decode(const DecodeOptions& o) {
 
 }  // namespace
 
-void add_decode_command(CLI::App& app, Action& run) {
+void add_decode_command(CLI::App& app, Action& run, const GlobalOptions& global) {
   auto o = std::make_shared<DecodeOptions>();
   CLI::App* decode = app.add_subcommand("decode", "Run the robot's receive path on a recording and print each frame heard");
-  decode->add_flag("--json", o->json, "one JSON object per frame: t_ms, heard_ms, word, frame, crc, crc_ok, tones_hz, event");
   decode->add_option("--profile", o->profile, "link profile: " + profile_names())->capture_default_str();
   decode->add_option("file", o->file, "recording (WAV, FLAC, AIFF; any rate of at least twice the top tone)")->required();
-  decode->callback([o, &run] { run = [o] { return run_decode(*o); }; });
+  decode->callback([o, &global, &run] {
+    run = [o, &global] {
+      o->json = global.json;  // one JSON object per frame: t_ms, heard_ms, word, frame, crc, crc_ok, tones_hz, event
+      return run_decode(*o);
+    };
+  });
 }
 
 }  // namespace dtmf::cli

@@ -126,12 +126,10 @@ int run_encode(const EncodeOptions& o) {
 
 }  // namespace
 
-void add_encode_command(CLI::App& app, Action& run) {
+void add_encode_command(CLI::App& app, Action& run, const GlobalOptions& global) {
   auto o = std::make_shared<EncodeOptions>();
   CLI::App* encode = app.add_subcommand(
       "encode", "Print the frames of a command (word, frame bits, CRC, tones); --wav renders them");
-  encode->fallthrough();
-  encode->add_flag("--json", o->json, "one JSON object per frame: word, frame, crc, tones_hz, index");
   encode->add_option("--wav", o->wav, "also write the chords to this WAV file (profile timing; fast: each frame then 100 ms for its answer)");
   encode->add_option("--profile", o->profile, "link profile: " + profile_names())->capture_default_str();
   encode->add_option("--word", o->word, "encode one raw 12-bit word instead of a command")
@@ -146,15 +144,17 @@ void add_encode_command(CLI::App& app, Action& run) {
   CLI::App* stop = encode->add_subcommand("stop", "stop the robot (RESET, STOP)");
   CLI::App* reset = encode->add_subcommand("reset", "return the robot to MODE_SELECT (RESET)");
   CLI::App* sequence = encode->add_subcommand("sequence", "the seed's 65-frame system test sequence (its section 10)");
-  for (CLI::App* sub : {drive, turn, stop, reset, sequence}) sub->fallthrough();
   encode->require_subcommand(0, 1);
-  encode->callback([o, encode, &run] {
+  encode->callback([o, encode, &global, &run] {
     const auto chosen = encode->get_subcommands();
     if (!chosen.empty()) o->kind = chosen.front()->get_name();
     if (chosen.empty() == !o->word.has_value()) {
       throw CLI::ValidationError("encode", "give either a command (drive, turn, stop, reset, sequence) or --word N");
     }
-    run = [o] { return run_encode(*o); };
+    run = [o, &global] {
+      o->json = global.json;  // one JSON object per frame: word, frame, crc, tones_hz, index
+      return run_encode(*o);
+    };
   });
 }
 

@@ -121,18 +121,22 @@ int run_live(const std::string& kind, const LiveOptions& o) {
 
 }  // namespace
 
-void add_live_commands(CLI::App& app, Action& run) {
+void add_live_commands(CLI::App& app, Action& run, const GlobalOptions& global) {
   auto o = std::make_shared<LiveOptions>();
   const auto common = [&](CLI::App* command) {
-    add_server_options(*command, o->server);
-    command->add_flag("--json", o->json, "one JSON object per progress event");
     command->add_option("--on-unconfirmed", o->on_unconfirmed,
                         "without a terminal to ask: fail or continue when a frame stays unconfirmed")
         ->check(CLI::IsMember({"fail", "continue"}))->capture_default_str();
     command->add_option("--profile", o->profile,
                         "link profile to send with: " + profile_names() + " (default: the server's --profile)")
         ->envname("DTMF_PROFILE");
-    command->callback([o, command, &run] { run = [o, kind = command->get_name()] { return run_live(kind, *o); }; });
+    command->callback([o, command, &global, &run] {
+      run = [o, &global, kind = command->get_name()] {
+        o->server = global.server;
+        o->json = global.json;  // one JSON object per progress event
+        return run_live(kind, *o);
+      };
+    });
   };
   CLI::App* drive = app.add_subcommand("drive", "drive forward (DRIVE_FOR_DURATION with --duration, else DRIVE_FORWARD)");
   drive->add_option("--speed", o->speed, "percent of the robot's top speed, 0..100")->required();

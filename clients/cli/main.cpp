@@ -28,11 +28,13 @@ int main(int argc, char** argv) {
       "  dtmfctl report --json");
 
   dtmf::cli::Action run;
-  dtmf::cli::add_encode_command(app, run);
-  dtmf::cli::add_decode_command(app, run);
+  dtmf::cli::GlobalOptions global;
+  dtmf::cli::add_global_options(app, global);  // before the subcommands, which fall through to it
+  dtmf::cli::add_encode_command(app, run, global);
+  dtmf::cli::add_decode_command(app, run, global);
   dtmf::cli::add_simulate_command(app, run);
-  dtmf::cli::add_live_commands(app, run);
-  dtmf::cli::add_run_commands(app, run);
+  dtmf::cli::add_live_commands(app, run, global);
+  dtmf::cli::add_run_commands(app, run, global);
 
   if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
   const auto report = [](const std::string& error) { std::fprintf(stderr, "dtmfctl: %s\n", error.c_str()); };

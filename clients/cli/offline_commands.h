@@ -5,23 +5,25 @@
 //   simulate  WAV -> the simulated acoustic channel (distance, noise, room, clock) -> WAV
 //
 // Each add_* function registers its subcommand on `app` and sets `run` to the action that
-// executes it after parsing.
+// executes it after parsing; the action reads `global` (--json, the server) when it runs.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <functional>
 
+#include "global_options.h"
+
 namespace dtmf::cli {
 
 using Action = std::function<int()>;
 
-void add_encode_command(CLI::App& app, Action& run);
-void add_decode_command(CLI::App& app, Action& run);
+void add_encode_command(CLI::App& app, Action& run, const GlobalOptions& global);
+void add_decode_command(CLI::App& app, Action& run, const GlobalOptions& global);
 void add_simulate_command(CLI::App& app, Action& run);
 
 // Live subcommands (through dtmf-server): drive, turn, stop, reset, sequence (live_commands.cpp);
 // runs, report, health (report_view.cpp).
-void add_live_commands(CLI::App& app, Action& run);
-void add_run_commands(CLI::App& app, Action& run);
+void add_live_commands(CLI::App& app, Action& run, const GlobalOptions& global);
+void add_run_commands(CLI::App& app, Action& run, const GlobalOptions& global);
 
 }  // namespace dtmf::cli

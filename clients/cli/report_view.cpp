@@ -174,24 +174,30 @@ void print_report_of(ServerConnection& connection, const std::string& run_id) {
   else std::printf("(no report: %s)\n", describe_status(status).c_str());
 }
 
-void add_run_commands(CLI::App& app, Action& run) {
+void add_run_commands(CLI::App& app, Action& run, const GlobalOptions& global) {
   auto o = std::make_shared<ReportOptions>();
+  // The connection and --json are global options, read when the subcommand runs.
+  const auto with_global = [o, &global](int (*body)(const ReportOptions&)) {
+    return [o, &global, body] {
+      o->server = global.server;
+      o->json = global.json;
+      return body(*o);
+    };
+  };
   CLI::App* runs = app.add_subcommand("runs", "list the test runs, newest first");
-  add_server_options(*runs, o->server);
-  runs->add_flag("--json", o->json, "one JSON object per run");
   runs->add_option("--limit", o->limit, "how many, 0 for all")->capture_default_str();
-  runs->callback([o, &run] { run = [o] { return run_runs(*o); }; });
+  runs->callback([with_global, &run] { run = with_global(run_runs); });
 
   CLI::App* report = app.add_subcommand("report", "a run's report in the layout of the seed's Appendix A tables");
-  add_server_options(*report, o->server);
   report->add_option("run", o->run, "run number or id (default: the latest run)");
-  auto* json = report->add_flag("--json", o->json, "as one JSON object");
-  report->add_flag("--csv", o->csv, "as CSV: a header line and a value line")->excludes(json);
-  report->callback([o, &run] { run = [o] { return run_report(*o); }; });
+  report->add_flag("--csv", o->csv, "as CSV: a header line and a value line (--json: as one JSON object)");
+  report->callback([o, with_global, &global, &run] {
+    if (o->csv && global.json) throw CLI::ValidationError("report", "--csv and --json exclude each other: choose one");
+    run = with_global(run_report);
+  });
 
   CLI::App* health = app.add_subcommand("health", "is the server up and serving?");
-  add_server_options(*health, o->server);
-  health->callback([o, &run] { run = [o] { return run_health(*o); }; });
+  health->callback([with_global, &run] { run = with_global(run_health); });
 }
 
 }  // namespace dtmf::cli

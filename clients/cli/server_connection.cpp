@@ -16,13 +16,6 @@ std::string read_text(const std::string& path, const char* what) {
 }
 }  // namespace
 
-void add_server_options(CLI::App& command, ServerOptions& options) {
-  command.add_option("--server", options.address, "dtmf-server address host:port")
-      ->envname("DTMF_SERVER")->capture_default_str();
-  command.add_option("--tls-ca", options.tls_ca, "connect with TLS, trusting this PEM certificate (the server's or its CA's)");
-  command.add_option("--token-file", options.token_file, "send the bearer token in this file (dtmf-server --auth-token-file)");
-}
-
 ServerConnection::ServerConnection(const ServerOptions& options) {
   std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
   if (!options.tls_ca.empty()) {

@@ -9,21 +9,13 @@
 #include <string>
 
 #include "dtmf/v1/teleop.grpc.pb.h"
+#include "global_options.h"
 
 namespace dtmf::cli {
 
 // 0 confirmed, 2 bad usage (common/program_main.h), and:
 inline constexpr int kExitUnconfirmed = 3;  // the robot did not confirm, or the command failed
 inline constexpr int kExitUnreachable = 4;  // no server answered
-
-struct ServerOptions {
-  std::string address = "localhost:50051";
-  std::string tls_ca;      // PEM of the CA (or the server's own certificate): use TLS
-  std::string token_file;  // bearer token
-};
-
-// Adds --server, --tls-ca and --token-file to a subcommand.
-void add_server_options(CLI::App& command, ServerOptions& options);
 
 // Thrown when the server cannot be reached; main() turns it into exit code 4.
 class Unreachable : public std::runtime_error {

@@ -115,6 +115,9 @@ TEST_F(DtmfctlLive, BadValuesAreUsageErrorsAndAMissingServerIsOneLine) {
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
   EXPECT_NE(r.out.find("cannot reach dtmf-server at 127.0.0.1:1"), std::string::npos) << r.out;
   EXPECT_EQ(run_command(ctl("health")).exit_code, 0);
+  // Connection flags before the subcommand, as kubectl and grpcurl users write them.
+  r = run_command(std::string(DTMFCTL_PATH) + " --server 127.0.0.1:" + std::to_string(port_) + " --json runs --limit 1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
 }
 
 TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {

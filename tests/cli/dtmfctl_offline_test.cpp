@@ -142,4 +142,30 @@ TEST_F(Dtmfctl, HelpListsSubcommandsAndExitCodes) {
   for (const char* word : {"encode", "decode", "simulate", "Exit codes"}) {
     EXPECT_NE(r.out.find(word), std::string::npos) << word;
   }
+  // The connection and output flags are the top level's, listed once.
+  for (const std::string flag : {"--server", "--tls-ca", "--token-file", "--json"}) {
+    int listed = 0;  // option lines: "  --flag ..."
+    for (std::size_t at = r.out.find("\n  " + flag); at != std::string::npos; at = r.out.find("\n  " + flag, at + 1)) ++listed;
+    EXPECT_EQ(listed, 1) << flag << "\n" << r.out;
+  }
+}
+
+TEST_F(Dtmfctl, GlobalFlagsWorkBeforeOrAfterTheSubcommand) {
+  // --json anywhere gives the same output.
+  const Result before = run("--json encode --word 2861"), after = run("encode --word 2861 --json");
+  ASSERT_EQ(before.exit_code, 0) << before.out;
+  EXPECT_EQ(before.out, after.out);
+  EXPECT_EQ(json_lines(before.out).size(), 1u);
+  const Result nested = run("encode drive --speed 10 --json");
+  EXPECT_EQ(json_lines(nested.out).size(), 3u) << nested.out;
+  // --server before the subcommand is no usage error: it tries that server (nothing there: 4).
+  for (const std::string args : {"--server 127.0.0.1:1 health", "--token-file /dev/null stop --server=127.0.0.1:1"}) {
+    const Result r = run(args + " < /dev/null");
+    EXPECT_EQ(r.exit_code, 4) << args << ": " << r.out;
+    EXPECT_NE(r.out.find("cannot reach dtmf-server at 127.0.0.1:1"), std::string::npos) << args << ": " << r.out;
+  }
+  // A flag nobody knows is still a usage error, wherever it stands.
+  EXPECT_EQ(run("--bogus health").exit_code, 2);
+  EXPECT_EQ(run("health --bogus").exit_code, 2);
+  EXPECT_EQ(run("report --csv --json --server 127.0.0.1:1").exit_code, 2);
 }
