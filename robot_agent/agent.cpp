@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "command/word_codec.h"
+#include "reliability/crc4.h"
 
 namespace dtmf::agent {
 
@@ -19,15 +20,15 @@ Agent::Agent(AgentOptions options, ReplyPlayer& replies, std::vector<CmdVelOutpu
       provider_(options_.model, options_.continuous_limit_s) {
   if (options_.profiles.empty()) throw std::invalid_argument("the agent needs a profile to listen with");
   sample_rate_hz_ = options_.profiles.front()->sample_rate_hz;
-  block_samples_ = options_.profiles.front()->hop_samples();
+  block_samples_ = link::link_for(*options_.profiles.front()).receiver_block_samples();
   for (const LinkProfile* p : options_.profiles) {
     if (p->sample_rate_hz != sample_rate_hz_) {
       throw std::invalid_argument("profiles " + options_.profiles.front()->name + " and " + p->name +
                                   " use different sample rates and cannot share a microphone");
     }
-    block_samples_ = std::min(block_samples_, p->hop_samples());
-    if (p->frame_format == FrameFormat::Command48) command_paths_.emplace_back(p, std::make_unique<link::CommandFramePath>(*p));
-    else word_paths_.emplace_back(p, std::make_unique<link::ReceiverPath>(*p));
+    const link::Link& l = link::link_for(*p);
+    block_samples_ = std::min(block_samples_, l.receiver_block_samples());
+    receivers_.emplace_back(&l, l.receiver());
   }
 }
 
@@ -38,24 +39,10 @@ void Agent::process(std::span<const float> samples, double queued_ms) {
   timeline_.block_read(audio_ms(), queued_ms);
   // Frames first: a command heard in this block takes effect from its own time, so the
   // publish ticks of this block already carry it.
-  for (auto& [profile, path] : word_paths_) {
-    for (const link::ReceivedFrame& frame : path->feed(samples)) on_word_frame(*profile, frame);
-  }
-  for (auto& [profile, path] : command_paths_) {
-    for (const link::ReceivedCommandFrame& frame : path->feed(samples)) on_command_frame(*profile, frame);
+  for (auto& [link, receiver] : receivers_) {
+    for (const link::Reception& reception : receiver->feed(samples)) on_reception(*link, reception);
   }
   publish_until(audio_ms());
-}
-
-store::ReceptionRow Agent::reception_row(const LinkProfile& profile, double start_ms, double heard_ms, bool intact) const {
-  store::ReceptionRow row;
-  row.host = options_.host;
-  row.profile = profile.name;
-  row.started_at = timeline_.wall(start_ms);
-  row.heard_at = timeline_.wall(heard_ms);
-  row.crc_ok = intact;
-  row.reply = intact ? "ack" : "nack";
-  return row;
 }
 
 void Agent::execute(const command::Command& command, double heard_ms, store::ReceptionRow& row) {
@@ -71,69 +58,39 @@ void Agent::told(const HeardFrame& frame) const {
   if (options_.on_frame_heard) options_.on_frame_heard(frame);
 }
 
-void Agent::on_word_frame(const LinkProfile& profile, const link::ReceivedFrame& frame) {
+void Agent::on_reception(const link::Link& link, const link::Reception& r) {
   ++frames_heard_;
-  replies_.play(reply_audio(profile, frame.crc_ok, std::nullopt), frame.heard_ms);
-  store::ReceptionRow row = reception_row(profile, frame.start_ms, frame.heard_ms, frame.crc_ok);
-  row.frame = frame.frame;
-  row.frame_width = reliability::kFrameBits;
-  HeardFrame heard{&profile, frame.start_ms, frame.heard_ms, frame.frame, frame.crc_ok, std::nullopt, std::nullopt};
+  const LinkProfile& profile = link.profile();
+  replies_.play(link.answer_audio(r), r.heard_ms);
+  store::ReceptionRow row;
+  row.host = options_.host;
+  row.profile = profile.name;
+  row.started_at = timeline_.wall(r.start_ms);
+  row.heard_at = timeline_.wall(r.heard_ms);
+  row.crc_ok = r.intact;
+  row.reply = r.intact ? "ack" : "nack";
+  row.frame = static_cast<std::int64_t>(r.bits);
+  row.frame_width = r.bit_count;
+  row.event = r.event;
+  if (r.word) row.word = *r.word;
+  if (!r.state_after.empty()) row.command_state = r.state_after;
+  HeardFrame heard{&profile, r.start_ms, r.heard_ms, r.bits, r.intact, r.word, std::nullopt};
 
-  const std::string bits = reliability::bit_string(frame.frame);
-  if (!frame.crc_ok) {
-    spdlog::warn("t={:.3f}s frame {} failed the CRC: NACK", frame.heard_ms / 1000.0, bits);
+  const std::string bits = reliability::bit_string(r.bits, r.bit_count);
+  const std::string seq = r.sequence ? " seq " + std::to_string(*r.sequence) : "";
+  if (!r.intact) {
+    spdlog::warn("t={:.3f}s {} frame {} failed the check{}: NACK", r.heard_ms / 1000.0, profile.name, bits,
+                 r.detail.empty() ? "" : " (" + r.detail + ")");
     store_.write(row);
     told(heard);
     return;
   }
-  const command::ReceiverEvent& event = *frame.event;
-  row.word = reliability::frame_word(frame.frame);
-  heard.word = static_cast<command::Word>(*row.word);
-  row.event = command::event_kind_name(event.kind);
-  row.command_state = command::state_name(event.state_after);
-  std::string what = row.event;
-  if (event.kind == command::ReceiverEvent::Kind::ModeSelected) what += " " + command::mode_name(*event.mode);
-  if (event.kind == command::ReceiverEvent::Kind::Ignored) what += " (" + event.reason + ")";
-  if (event.command) {
-    execute(*event.command, frame.heard_ms, row);
-    heard.command = event.command;
-    what = "command " + row.command;
+  if (r.command) {
+    execute(*r.command, r.heard_ms, row);
+    heard.command = r.command;
   }
-  spdlog::info("t={:.3f}s frame {} word {}: ACK, {}", frame.heard_ms / 1000.0, bits, *row.word, what);
-  store_.write(row);
-  told(heard);
-}
-
-void Agent::on_command_frame(const LinkProfile& profile, const link::ReceivedCommandFrame& frame) {
-  ++frames_heard_;
-  const bool intact = frame.frame.has_value();
-  replies_.play(reply_audio(profile, intact, intact ? std::optional(frame.frame->sequence) : std::nullopt), frame.heard_ms);
-  store::ReceptionRow row = reception_row(profile, frame.start_ms, frame.heard_ms, intact);
-  row.frame = static_cast<std::int64_t>(frame.bits);
-  row.frame_width = reliability::kCommandFrameBits;
-  HeardFrame heard{&profile, frame.start_ms, frame.heard_ms, frame.bits, intact, std::nullopt, std::nullopt};
-
-  const std::string bits = reliability::bit_string(frame.bits, reliability::kCommandFrameBits);
-  if (!intact) {
-    spdlog::warn("t={:.3f}s {} frame {} failed the CRC{}: NACK", frame.heard_ms / 1000.0, profile.name, bits,
-                 frame.error.empty() ? "" : " (" + frame.error + ")");
-    row.event = frame.error.empty() ? "" : "refused";
-    store_.write(row);
-    told(heard);
-    return;
-  }
-  if (frame.repeat) {
-    // The sender did not hear our ACK and sent the frame again: answer, do not execute.
-    row.event = "repeat";
-    spdlog::info("t={:.3f}s {} frame {} seq {}: ACK, a repeat of the last command, not executed again",
-                 frame.heard_ms / 1000.0, profile.name, bits, frame.frame->sequence);
-  } else {
-    row.event = "command";
-    execute(*frame.command, frame.heard_ms, row);
-    heard.command = frame.command;
-    spdlog::info("t={:.3f}s {} frame {} seq {}: ACK, command {}", frame.heard_ms / 1000.0, profile.name, bits,
-                 frame.frame->sequence, row.command);
-  }
+  spdlog::info("t={:.3f}s {} frame {}{}{}: ACK, {}", r.heard_ms / 1000.0, profile.name, bits, seq,
+               r.word ? " word " + std::to_string(*r.word) : "", r.detail);
   store_.write(row);
   told(heard);
 }

@@ -1,9 +1,8 @@
 // The robot agent's core: the receive paths wired to its answers, its logs and the wheels.
 //
-//   audio block -> ReceiverPath (seed: spectrum, chord, debouncer, CRC-4, word state machine)
-//               -> CommandFramePath (fast: bin bands, chase, CRC-16, sequence filter)
-//      each heard frame -> ACK if intact (naming its sequence number under fast), NACK if
-//                          not, in the frame's own profile (ReplyPlayer)
+//   audio block -> every listened-with link's FrameReceiver (link/link.h)
+//      each verdict -> its link's answer: ACK if intact (naming the frame where the format
+//                      does), NACK if not (ReplyPlayer)
 //                       -> a receptions row (store)
 //                       -> a complete, new command -> VelocityProvider
 //   every publish period -> VelocityProvider::update -> every cmd_vel output
@@ -24,8 +23,7 @@
 #include <vector>
 
 #include "cmd_vel/velocity.h"
-#include "link/command_frame_path.h"
-#include "link/receiver_path.h"
+#include "link/link.h"
 #include "profile/link_profile.h"
 #include "reply_player.h"
 #include "store.h"
@@ -108,9 +106,7 @@ class Agent {
   std::size_t frames_heard() const { return frames_heard_; }
 
  private:
-  void on_word_frame(const LinkProfile& profile, const link::ReceivedFrame& frame);
-  void on_command_frame(const LinkProfile& profile, const link::ReceivedCommandFrame& frame);
-  store::ReceptionRow reception_row(const LinkProfile& profile, double start_ms, double heard_ms, bool intact) const;
+  void on_reception(const link::Link& link, const link::Reception& reception);
   // The command takes effect from `heard_ms`; the row gets the velocity it set.
   void execute(const command::Command& command, double heard_ms, store::ReceptionRow& row);
   void told(const HeardFrame& frame) const;
@@ -126,8 +122,7 @@ class Agent {
   int sample_rate_hz_;
   int block_samples_;
   // One receive path per profile listened with.
-  std::vector<std::pair<const LinkProfile*, std::unique_ptr<link::ReceiverPath>>> word_paths_;
-  std::vector<std::pair<const LinkProfile*, std::unique_ptr<link::CommandFramePath>>> command_paths_;
+  std::vector<std::pair<const link::Link*, std::unique_ptr<link::FrameReceiver>>> receivers_;
   VelocityProvider provider_;
   long long samples_ = 0;
   double next_publish_ms_ = 0;

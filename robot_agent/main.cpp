@@ -24,6 +24,7 @@
 #include "physical/audio_spec.h"
 #include "program_main.h"
 #include "physical/portaudio_device.h"
+#include "physical/realtime_priority.h"
 
 namespace {
 
@@ -90,7 +91,7 @@ int run(const Flags& f) {
     // frame missed then is retransmitted, where an ACK lost then made the seed sender repeat
     // a frame the robot had already executed (reply_player.h).
     replies = std::make_unique<agent::LiveReplyPlayer>(physical::open_audio_sink(ack_out, profile.sample_rate_hz),
-                                                       kAnswerWarmup);
+                                                       kAnswerWarmup, /*realtime=*/true);
   spdlog::info("answering through {}", ack_out);
 
   std::vector<std::unique_ptr<agent::CmdVelOutput>> owned;
@@ -146,6 +147,12 @@ int run(const Flags& f) {
   const auto pace = [&] {
     if (f.realtime && offline) std::this_thread::sleep_until(started + std::chrono::duration<double, std::milli>(agent.audio_ms()));
   };
+  if (!offline) {
+    // This thread drains the microphone and decodes; starved, it would drop samples.
+    std::string how;
+    physical::raise_audio_thread_priority(&how);
+    spdlog::info("audio threads: {}", how);
+  }
   try {
     // Audio that piled up while the agent started is the past: answering it now would put
     // late ACKs on the air, which the sender could take for its next frame's.

@@ -4,17 +4,9 @@
 
 #include <vector>
 
-#include "signal/bin_synthesizer.h"
-#include "signal/synthesizer.h"
+#include "physical/realtime_priority.h"
 
 namespace dtmf::agent {
-
-std::vector<float> reply_audio(const LinkProfile& profile, bool ack, std::optional<std::uint8_t> sequence) {
-  if (profile.frame_format == FrameFormat::Command48) {
-    return signal::synthesize_named_reply(profile, signal::NamedReply{ack, ack ? sequence.value_or(0) : std::uint8_t{0}});
-  }
-  return signal::synthesize_reply(profile, ack ? signal::Reply::Ack : signal::Reply::Nack);
-}
 
 ReplyTimeline::ReplyTimeline(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> sink)
     : profile_(profile), sink_(std::move(sink)) {}
@@ -40,13 +32,17 @@ void ReplyTimeline::finish(double audio_ms) {
   sink_->drain();
 }
 
-LiveReplyPlayer::LiveReplyPlayer(std::unique_ptr<physical::AudioSink> sink, std::chrono::milliseconds warmup)
+LiveReplyPlayer::LiveReplyPlayer(std::unique_ptr<physical::AudioSink> sink, std::chrono::milliseconds warmup,
+                                 bool realtime)
     : sink_(std::move(sink)) {
   if (warmup.count() > 0) {
     sink_->write(std::vector<float>(static_cast<std::size_t>(sink_->sample_rate_hz() * warmup.count() / 1000), 0.0f));
     sink_->drain();
   }
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this, realtime] {
+    if (realtime) physical::raise_audio_thread_priority();
+    run();
+  });
 }
 
 LiveReplyPlayer::~LiveReplyPlayer() {

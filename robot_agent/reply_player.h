@@ -1,8 +1,6 @@
 // How the robot answers: ACK or NACK chords through its loudspeaker (physical layer sink).
 //
-// reply_audio() renders an answer in a frame's own profile: the seed's two-tone ACK / NACK
-// chords, or the fast profile's 16 ms reply whose ACK names the frame's sequence number.
-// ReplyTimeline writes a file: each chord at the audio time of the frame it answers, with
+// The answers themselves are each link's (link::Link::answer_audio). ReplyTimeline writes a file: each chord at the audio time of the frame it answers, with
 // silence between, so an offline run leaves a recording aligned with its input.
 // LiveReplyPlayer plays on a device from its own thread, so answering never holds up
 // listening; a chord asked for while another plays follows it. It first plays a stretch of
@@ -26,13 +24,10 @@
 
 namespace dtmf::agent {
 
-// An ACK (naming `sequence` under the fast profile) or a NACK, as audio.
-std::vector<float> reply_audio(const LinkProfile& profile, bool ack, std::optional<std::uint8_t> sequence);
-
 class ReplyPlayer {
  public:
   virtual ~ReplyPlayer() = default;
-  // Plays `audio` (from reply_audio) as the answer to a frame heard at `audio_ms`.
+  // Plays `audio` (a link's answer_audio) as the answer to a frame heard at `audio_ms`.
   virtual void play(std::vector<float> audio, double audio_ms) = 0;
   // The input ended at `audio_ms`: finish what is playing or being written.
   virtual void finish(double audio_ms) = 0;
@@ -54,7 +49,8 @@ class ReplyTimeline : public ReplyPlayer {
 
 class LiveReplyPlayer : public ReplyPlayer {
  public:
-  LiveReplyPlayer(std::unique_ptr<physical::AudioSink> sink, std::chrono::milliseconds warmup);
+  // `realtime`: its thread asks for real-time scheduling (physical/realtime_priority.h).
+  LiveReplyPlayer(std::unique_ptr<physical::AudioSink> sink, std::chrono::milliseconds warmup, bool realtime = false);
   ~LiveReplyPlayer() override;
   void play(std::vector<float> audio, double audio_ms) override;
   void finish(double audio_ms) override;

@@ -1,7 +1,5 @@
 #include "job.h"
 
-#include "command/command_payload.h"
-#include "command/word_codec.h"
 
 namespace dtmf::server {
 
@@ -17,16 +15,15 @@ std::string outcome_name(Outcome outcome) {
   return "failed";
 }
 
-Job::Job(const LinkProfile& profile, command::Command command, std::vector<link::TransmitFrame> frames, Policy policy,
+Job::Job(const link::Link& link, command::Command command, std::vector<link::TransmitFrame> frames, Policy policy,
          std::chrono::milliseconds decision_timeout, std::optional<std::string> run_id)
-    : profile_(profile),
+    : link_(link),
       command_(std::move(command)), frames_(std::move(frames)), policy_(policy), decision_timeout_(decision_timeout),
       run_id_(std::move(run_id)) {}
 
 // What the robot will execute: the command as its parameter fields carry it.
 std::string Job::description() const {
-  return command::describe(profile_.frame_format == FrameFormat::Command48 ? command::quantised_payload(command_)
-                                                                            : command::quantised(command_));
+  return command::describe(link_.as_received(command_));
 }
 
 std::optional<ProgressEvent> Job::next_event(std::chrono::milliseconds timeout) {

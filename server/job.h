@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "command/command.h"
-#include "link/transmit_plan.h"
+#include "link/link.h"
 #include "profile/link_profile.h"
 #include "reliability/retry_controller.h"
 #include "rows.h"
@@ -38,12 +38,13 @@ struct ProgressEvent {
 
 class Job {
  public:
-  Job(const LinkProfile& profile, command::Command command, std::vector<link::TransmitFrame> frames, Policy policy,
+  Job(const link::Link& link, command::Command command, std::vector<link::TransmitFrame> frames, Policy policy,
       std::chrono::milliseconds decision_timeout, std::optional<std::string> run_id);
 
   const std::string& id() const { return id_; }
   const command::Command& command() const { return command_; }
-  const LinkProfile& profile() const { return profile_; }
+  const link::Link& link() const { return link_; }
+  const LinkProfile& profile() const { return link_.profile(); }
   const std::vector<link::TransmitFrame>& frames() const { return frames_; }
   Policy policy() const { return policy_; }
   const std::optional<std::string>& run_id() const { return run_id_; }
@@ -69,7 +70,7 @@ class Job {
 
  private:
   std::string id_ = store::new_id();
-  const LinkProfile& profile_;
+  const link::Link& link_;
   command::Command command_;
   std::vector<link::TransmitFrame> frames_;
   Policy policy_;

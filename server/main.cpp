@@ -97,7 +97,8 @@ int run(const Flags& f) {
   store::Store store(store_options);
   char hostname[256] = {};
   ::gethostname(hostname, sizeof hostname - 1);
-  server::Transmitter transmitter(profile, std::move(speaker), std::move(microphone), store, {f.max_queue, hostname});
+  server::Transmitter transmitter(profile, std::move(speaker), std::move(microphone), store,
+                                  {.max_queue = f.max_queue, .host = hostname, .realtime_audio = true});
 
   server::ServiceOptions options;
   options.database = db;

@@ -186,9 +186,9 @@ grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const 
   std::string run_id;
   if (auto started = start_run(request->label(), request->notes(), *profile, run_id); !started.ok()) return started;
   const auto commands = command::seed_test_sequence();
-  // Fast frames carry a whole command each.
-  const auto total = static_cast<std::uint32_t>(profile->frame_format == FrameFormat::Command48
-                                                    ? commands.size() : command::frame_count(commands));
+  // Frames per command are the link's business (a fast frame carries a whole command).
+  std::uint32_t total = 0;
+  for (const auto& c : commands) total += static_cast<std::uint32_t>(link::link_for(*profile).frame_count(c));
   std::uint32_t before = 0, done = 0;  // frames of the commands already through, and in all
   grpc::Status status = grpc::Status::OK;
   for (std::size_t k = 0; k < commands.size() && status.ok(); ++k) {

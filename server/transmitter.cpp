@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <random>
 
-#include "reliability/command_frame.h"
+#include "physical/realtime_priority.h"
 
 namespace dtmf::server {
 
@@ -37,12 +37,12 @@ Transmitter::Transmitter(const LinkProfile& profile, std::unique_ptr<physical::A
                          std::unique_ptr<physical::AudioSource> microphone, store::Store& store, TransmitterOptions options)
     : profile_(profile), speaker_(std::move(speaker)), microphone_(std::move(microphone)), store_(store),
       options_(std::move(options)) {
-  for (const LinkProfile* p : all_profiles()) {
-    if (p->sample_rate_hz == profile_.sample_rate_hz) profiles_.push_back(p);
+  for (const link::Link* l : link::all_links()) {
+    if (l->profile().sample_rate_hz == profile_.sample_rate_hz) links_.push_back(l);
   }
   // A robot that heard frame n of a former run of this server must not take this run's
   // first frame for a retransmission of it: start the numbering anywhere.
-  next_sequence_ = static_cast<std::uint8_t>(std::random_device{}() & reliability::kSequenceMask);
+  next_sequence_ = static_cast<std::uint8_t>(std::random_device{}());
   worker_ = std::thread([this] { run(); });
   listener_ = std::thread([this] { listen(); });
 }
@@ -55,7 +55,7 @@ double Transmitter::now_ms() const {
 
 const LinkProfile& Transmitter::usable_profile(std::string_view name) const {
   const LinkProfile& p = profile_by_name(name);
-  if (std::find(profiles_.begin(), profiles_.end(), &p) == profiles_.end()) {
+  if (std::find_if(links_.begin(), links_.end(), [&](const link::Link* l) { return &l->profile() == &p; }) == links_.end()) {
     throw std::invalid_argument("profile " + p.name + " needs " + std::to_string(p.sample_rate_hz) +
                                 " Hz audio and this server's devices run at " + std::to_string(profile_.sample_rate_hz) + " Hz");
   }
@@ -71,8 +71,8 @@ std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy
   int position = 0;
   {
     std::lock_guard lock(mutex_);
-    job = std::make_shared<Job>(chosen, command, link::plan_transmission(chosen, command, next_sequence_), policy,
-                                decision_timeout, run_id_);
+    const link::Link& link = link::link_for(chosen);
+    job = std::make_shared<Job>(link, command, link.plan(command, next_sequence_), policy, decision_timeout, run_id_);
     job->log_row() = command_row(*job, options_.host);
     first_row = job->log_row();  // the worker may update the job's row once it is queued
     if (stopping_) throw TransmitterUnavailable("the server is shutting down");
@@ -121,7 +121,12 @@ void Transmitter::shutdown() {
 }
 
 void Transmitter::listen() {
-  ReplyListeners listener(profiles_);
+  if (options_.realtime_audio) {
+    std::string how;
+    physical::raise_audio_thread_priority(&how);
+    spdlog::info("audio threads: {}", how);
+  }
+  ReplyListeners listener(links_);
   std::vector<float> block(static_cast<std::size_t>(listener.block_samples()));
   double audio_ms = 0;
   while (true) {
@@ -145,22 +150,23 @@ void Transmitter::listen() {
     for (const HeardAnswer& heard : listener.feed(std::span<const float>(block.data(), got))) {
       std::lock_guard lock(mutex_);
       // The block just read ends now; the reply was heard a little earlier.
-      replies_.push_back({heard, now - (audio_ms - heard.heard_ms)});
+      replies_.push_back({heard, now - (audio_ms - heard.answer.heard_ms)});
       changed_.notify_all();
     }
   }
 }
 
-std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const LinkProfile& profile, const link::TransmitFrame& frame,
+std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const link::Link& link, const link::TransmitFrame& frame,
                                                                double since_ms, double until_ms) {
   std::unique_lock lock(mutex_);
   while (true) {
     while (!replies_.empty()) {
       const HeardReply reply = replies_.front();
       replies_.pop_front();
-      if (reply.steady_ms < since_ms || reply.answer.profile != &profile) continue;  // not an answer to this frame
-      if (reply.answer.sequence && reply.answer.sequence != frame.sequence) {
-        spdlog::debug("an ACK naming frame {} while frame {} waits: late, ignored", *reply.answer.sequence, *frame.sequence);
+      if (reply.steady_ms < since_ms || reply.answer.link != &link) continue;  // not an answer to this frame
+      if (!link.answers(reply.answer.answer, frame)) {
+        spdlog::debug("an ACK naming frame {} while frame {} waits: late, ignored", reply.answer.answer.sequence.value_or(0),
+                      frame.sequence.value_or(0));
         continue;
       }
       return reply;
@@ -178,6 +184,7 @@ void Transmitter::play(const link::TransmitFrame& frame, double start_ms) {
 }
 
 void Transmitter::run() {
+  if (options_.realtime_audio) physical::raise_audio_thread_priority();
   while (true) {
     std::shared_ptr<Job> job;
     {

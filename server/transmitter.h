@@ -6,7 +6,7 @@
 // the frame started (under the fast profile, an ACK must name the frame's sequence number),
 // or for the ACK timeout, retransmits by itself, and then follows the command's policy (ask
 // the caller, continue, or fail). A second thread listens to the microphone with every
-// profile's reply detector (ReplyListeners). Each command goes out under the profile its
+// link's answer listener (ReplyListeners). Each command goes out under the profile its
 // caller chose, or the transmitter's default. Frames of a command
 // go out in order with nothing between them but other frames of the same command; a
 // cancelled command's queued frames never play, a chord already on air completes.
@@ -42,6 +42,9 @@ class TransmitterUnavailable : public std::runtime_error {
 struct TransmitterOptions {
   std::size_t max_queue = 32;
   std::string host;
+  // Run the loudspeaker and microphone threads at real-time priority (physical/realtime_priority.h):
+  // the program does, in-process tests need not.
+  bool realtime_audio = false;
 };
 
 class Transmitter {
@@ -80,12 +83,12 @@ class Transmitter {
   store::WallTime wall(double steady_ms) const;
   double now_ms() const;
   void play(const link::TransmitFrame& frame, double start_ms);
-  // The first answer to `frame` of `profile` heard after `since_ms`, or nothing by `until_ms`.
-  std::optional<HeardReply> wait_reply(const LinkProfile& profile, const link::TransmitFrame& frame, double since_ms,
+  // The first answer to `frame` of `link` heard after `since_ms`, or nothing by `until_ms`.
+  std::optional<HeardReply> wait_reply(const link::Link& link, const link::TransmitFrame& frame, double since_ms,
                                        double until_ms);
 
   const LinkProfile& profile_;
-  std::vector<const LinkProfile*> profiles_;  // what this transmitter can send and hear
+  std::vector<const link::Link*> links_;  // what this transmitter can send and hear
   std::unique_ptr<physical::AudioSink> speaker_;
   std::unique_ptr<physical::AudioSource> microphone_;
   store::Store& store_;
@@ -101,7 +104,7 @@ class Transmitter {
   std::string unavailable_;  // why the audio path failed, once it did
   bool stopping_ = false;
   double channel_free_ms_ = 0;
-  std::uint8_t next_sequence_ = 0;  // Command48: the number of the next new frame
+  std::uint8_t next_sequence_ = 0;  // the number of the next new frame, where frames are numbered
 
   std::thread worker_;
   std::thread listener_;

@@ -99,12 +99,12 @@ void Transmitter::send(Job& job) {
           break;
         }
         case RetryState::AwaitingAnswer: {
-          const auto reply = wait_reply(profile, frame, chord_start, *retry.deadline_ms());
+          const auto reply = wait_reply(job.link(), frame, chord_start, *retry.deadline_ms());
           ProgressEvent answer{Kind::NoAnswer};
           answer.frame_index = index;
           answer.attempt = retry.attempt();
           if (reply) {
-            const auto kind = reply->answer.ack ? reliability::Answer::Ack : reliability::Answer::Nack;
+            const auto kind = reply->answer.answer.ack ? reliability::Answer::Ack : reliability::Answer::Nack;
             retry.on_answer(kind, reply->steady_ms);
             answer.kind = kind == reliability::Answer::Ack ? Kind::Ack : Kind::Nack;
             answer.response_time_ms = retry.response_time_ms();

@@ -45,13 +45,13 @@ std::vector<float> noise_only(const LinkProfile& profile, double audio_s) {
 
 // Random frames back to back, as many as fit in `audio_s` (at least one), in quiet noise.
 std::pair<std::vector<float>, std::size_t> back_to_back_frames(const LinkProfile& profile, double audio_s) {
-  FrameTrials trials(profile);
+  FrameTrials trials(link::link_for(profile));
   const std::size_t count = std::max<std::size_t>(
       1, static_cast<std::size_t>(audio_s * profile.sample_rate_hz) / trials.slot_samples());
   std::vector<float> audio(count * trials.slot_samples(), 0.0f);
   std::mt19937_64 rng(7);
   for (std::size_t i = 0; i < count; ++i) {
-    trials.add_frame(trials.random_frame(rng), std::span<float>(audio).subspan(i * trials.slot_samples()));
+    FrameTrials::add_frame(trials.random_frame(rng), std::span<float>(audio).subspan(i * trials.slot_samples()));
   }
   physical::NoiseSource(physical::parse_noise("pink", kUnderFramesDbfs), profile.sample_rate_hz, 2).add_to(audio);
   return {audio, count};
@@ -64,7 +64,7 @@ struct Measurement {
 };
 
 Measurement decode(const LinkProfile& profile, const std::vector<float>& audio) {
-  FrameReceiver receiver(profile);
+  FrameReceiver receiver(link::link_for(profile));
   std::vector<Accepted> accepted;
   accepted.reserve(audio.size() / 1000);
   const double start = thread_cpu_s();

@@ -25,7 +25,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/bench_report.h"
-#include "link/frame_trials.h"
+#include "link/link.h"
 #include "live_system.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
   return program::run([&] {
     const LinkProfile& profile = profile_by_name(profile_name);
-    const int bits_per_frame = frame_data_bits(profile);
+    const link::Link& link = link::link_for(profile);
     spdlog::set_level(spdlog::level::warn);  // the agent's and server's per-frame lines would drown the summary
     test_support::LiveSystemOptions options;
     options.profile = &profile;
@@ -118,7 +118,9 @@ int main(int argc, char** argv) {
       first_acked += static_cast<std::uint64_t>(std::count(acked_first.begin(), acked_first.end(), true));
       if (latency_ms && status.ok()) {
         ++confirmed;
-        payload_bits += static_cast<std::uint64_t>(frames) * bits_per_frame;
+        // The command as sent: its payload bits whatever its frames (checks excluded).
+        payload_bits += static_cast<std::uint64_t>(
+            link.payload_bits(command::DriveForDuration{request.speed_percent(), request.duration_s()}));
         latencies_ms.push_back(*latency_ms);
       }
       per_command.push_back({{"speed_percent", request.speed_percent()}, {"duration_s", request.duration_s()},
@@ -152,7 +154,6 @@ int main(int argc, char** argv) {
                            {"latencies_ms", latencies_ms},
                            {"response_times_ms", response_ms},
                            {"payload_bits", payload_bits},
-                           {"payload_bits_per_frame", bits_per_frame},
                            {"wall_s", wall_s},
                            {"throughput_bps", throughput},
                            {"frames_first_attempt", first_tx},

@@ -81,8 +81,9 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   to_sender.add_transmitter(0.1);  // its own loudspeaker
   to_sender.add_transmitter(o.distance_m);
 
-  Responder robot(profile);
-  AnswerListener sender_ear(profile);
+  const link::Link& link = link::link_for(profile);
+  Responder robot(link);
+  const auto sender_ear = link.answer_listener();
   Speaker sender_speaker, robot_speaker;
   const double ms_per_sample = 1000.0 / profile.sample_rate_hz;
   const std::vector<command::Command> commands = {command::DriveForDuration{50, 2}, command::TurnForDuration{-30, 1.5},
@@ -92,7 +93,7 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   std::vector<double> latencies_ms;
   long frames_sent = 0, frames_first_time = 0, retransmissions = 0, failed_commands = 0, payload_bits = 0;
   int command_index = -1;
-  std::vector<Transmission> frames;
+  std::vector<link::TransmitFrame> frames;
   std::size_t frame = 0;
   int attempt = 0;
   double handed_over_ms = 0, frame_started_ms = 0, channel_free_ms = 0;
@@ -100,7 +101,7 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
 
   auto next_command = [&](double now_ms) {
     if (++command_index >= o.commands) return;
-    frames = command_transmissions(profile, commands[static_cast<std::size_t>(command_index) % commands.size()], next_sequence);
+    frames = link.plan(commands[static_cast<std::size_t>(command_index) % commands.size()], next_sequence);
     frame = 0;
     attempt = 0;
     handed_over_ms = now_ms;
@@ -135,9 +136,9 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
     heard.clear();
     const std::array<std::span<const float>, 2> both{std::span<const float>(speaker_block), std::span<const float>(robot_block)};
     to_sender.process(both, heard);
-    for (const Answer& a : sender_ear.feed(heard)) {
+    for (const link::Answer& a : sender_ear->feed(heard)) {
       if (!awaiting) continue;
-      if (a.ack && a.sequence != frames[frame].sequence) continue;  // names another frame
+      if (!link.answers(a, frames[frame])) continue;  // names another frame
       if (!a.ack) {
         want_send = attempt <= profile.timing.auto_retransmissions;
         awaiting = false;
@@ -150,7 +151,7 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
         want_send = true;
       } else {
         latencies_ms.push_back(end_ms - handed_over_ms);
-        payload_bits += command_payload_bits(profile, commands[static_cast<std::size_t>(command_index) % commands.size()]);
+        payload_bits += link.payload_bits(commands[static_cast<std::size_t>(command_index) % commands.size()]);
         next_command(end_ms);
       }
     }

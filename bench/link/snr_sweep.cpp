@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
       for (double s = from_db; s <= to_db + 1e-9; s += step_db) snrs_db.push_back(std::round(s * 1000) / 1000);
     }
     std::sort(snrs_db.begin(), snrs_db.end());
-    FrameTrials trials(profile);
+    FrameTrials trials(link::link_for(profile));
     const double signal_power = mean_sound_power(trials, 256, options.seed);
     std::printf("dtmf-bench-snr: profile %s, seed %llu, %zu frames per point (up to %zu near the thresholds), "
                 "%u threads\n  signal power over the chords %.4f (%.2f dBFS RMS, a full-scale sine = -3.01)\n",

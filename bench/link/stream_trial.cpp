@@ -1,6 +1,8 @@
 #include "link/stream_trial.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 
 namespace dtmf::bench {
@@ -19,23 +21,30 @@ TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const 
   const LinkProfile& profile = trials.profile();
   const std::size_t slot = trials.slot_samples();
   const double slot_ms = 1000.0 * static_cast<double>(slot) / profile.sample_rate_hz;
-  const double guard_ms = 500.0 * profile.analysis.fft_size / profile.sample_rate_hz;
 
   std::mt19937_64 rng(options.seed);
   std::vector<FrameBits> sent(options.frames);
   std::vector<std::uint32_t> right(options.frames, 0);  // right-bit acceptances per slot
   std::vector<float> clean(slot), heard, pending;
   std::vector<Accepted> accepted;
-  FrameReceiver receiver(profile);
+  FrameReceiver receiver(trials.link());
   TrialCounts counts;
   counts.frames = options.frames;
 
   auto score = [&] {
     for (const Accepted& a : accepted) {
-      const double at = std::floor((a.start_ms + guard_ms) / slot_ms);
+      // A frame starts its slot, and its estimated start is within a few hops of that.
+      const double at = std::round(a.start_ms / slot_ms);
       const auto k = static_cast<std::size_t>(std::max(at, 0.0));
       if (at >= 0 && k < sent.size() && a.bits == sent[k]) ++right[k];
-      else ++counts.wrong_accepts;
+      else {
+        ++counts.wrong_accepts;
+        if (std::getenv("DTMF_DEBUG_WRONG")) {
+          std::fprintf(stderr, "wrong: start %.1f ms slot %.0f bits %llx; sent there %llx, before %llx\n", a.start_ms, at,
+                       (unsigned long long)a.bits, k < sent.size() ? (unsigned long long)sent[k] : 0ull,
+                       k > 0 && k <= sent.size() ? (unsigned long long)sent[k - 1] : 0ull);
+        }
+      }
     }
     accepted.clear();
   };
@@ -44,8 +53,9 @@ TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const 
   for (std::size_t k = 0; k <= options.frames; ++k) {
     std::fill(clean.begin(), clean.end(), 0.0f);
     if (k < options.frames) {
-      sent[k] = trials.random_frame(rng);
-      trials.add_frame(sent[k], clean);
+      const link::TransmitFrame frame = trials.random_frame(rng);
+      sent[k] = frame.bits;
+      FrameTrials::add_frame(frame, clean);
     }
     heard.clear();
     channel(clean, heard);
@@ -75,7 +85,7 @@ double mean_sound_power(FrameTrials& trials, std::size_t count, std::uint64_t se
   double sum = 0;
   for (std::size_t i = 0; i < count; ++i) {
     std::fill(slot.begin(), slot.end(), 0.0f);
-    trials.add_frame(trials.random_frame(rng), slot);
+    FrameTrials::add_frame(trials.random_frame(rng), slot);
     for (std::size_t j = 0; j < trials.sound_samples(); ++j) sum += static_cast<double>(slot[j]) * slot[j];
   }
   return sum / static_cast<double>(count * trials.sound_samples());

@@ -45,7 +45,7 @@ std::vector<SweepPoint> run_sweep(const LinkProfile& profile, const std::vector<
     run_parallel(jobs.size(), options.threads, [&](std::size_t i) {
       const Job& job = jobs[i];
       const auto started = std::chrono::steady_clock::now();
-      FrameTrials trials(profile);
+      FrameTrials trials(link::link_for(profile));
       StreamOptions stream{job.frames, mix(options.seed, job.point, job.chunk, 1), options.block_samples};
       const TrialCounts counts =
           run_stream(trials, stream, channel(points[job.point].x, mix(options.seed, job.point, job.chunk, 2)));

@@ -78,7 +78,7 @@ TEST_P(BenchSmokeProfile, RoundTripConfirmsEveryCommand) {
   const double median = doc["latency_ms"]["median"].get<double>();
   if (GetParam() == "fast") {
     EXPECT_LT(median, 200.0) << "one 102.5 ms frame and its answer";
-    EXPECT_EQ(doc["payload_bits"], 4 * 28);
+    EXPECT_EQ(doc["payload_bits"], 4 * 27);
   } else {
     EXPECT_GT(median, 1000.0) << "up to three 0.8 s chords";
   }
@@ -99,7 +99,7 @@ TEST(BenchSmoke, EndToEndConfirmsFastCommandsInOneFrameEach) {
   const auto doc = run(std::string(E2E_PATH) + " --profile fast --commands 3", "e2e");
   EXPECT_EQ(doc["confirmed"], 3);
   EXPECT_EQ(doc["frames_first_attempt"], 3);
-  EXPECT_EQ(doc["payload_bits"], 3 * 28);
+  EXPECT_EQ(doc["payload_bits"], 3 * 27);
   EXPECT_LT(doc["latency_ms_median"].get<double>(), 1000.0);  // one 0.1 s frame and its answer
 }
 

@@ -53,8 +53,8 @@ int main(int argc, char** argv) {
     if (!wav_path.empty()) wav = std::make_unique<physical::WavFileSource>(wav_path, profile.sample_rate_hz);
     const auto max_samples = static_cast<std::uint64_t>(max_seconds * profile.sample_rate_hz);
 
-    FrameReceiver robot(profile);
-    ReplyReceiver replies(profile);
+    FrameReceiver robot(link::link_for(profile));
+    ReplyReceiver replies(link::link_for(profile));
     std::vector<Accepted> accepted;
     std::uint64_t samples = 0;
     double sum_squares = 0, peak = 0;

@@ -7,12 +7,8 @@
 #include <string>
 
 #include "command/test_sequence.h"
-#include "command/command_payload.h"
-#include "command/word_codec.h"
 #include "frame_output.h"
-#include "link/sender_path.h"
-#include "link/transmit_plan.h"
-#include "reliability/crc4.h"
+#include "link/link.h"
 #include "offline_commands.h"
 #include "physical/wav_file.h"
 
@@ -44,81 +40,52 @@ command::Command build_command(const EncodeOptions& o) {
   return command::Reset{};
 }
 
-// The fast profile: one frame per command, numbered from 0, each followed by the time its
-// answer takes (kAnswerWaitMs), as a sender would space them.
-constexpr double kAnswerWaitMs = 100;
-
-int run_encode_command_frames(const EncodeOptions& o, const LinkProfile& profile) {
-  if (o.word) throw std::invalid_argument("--word: the " + profile.name + " profile sends whole commands, not words; "
-                                          "give a command (drive, turn, stop, reset, sequence)");
-  const std::vector<command::Command> commands =
-      o.kind == "sequence" ? command::seed_test_sequence() : std::vector<command::Command>{build_command(o)};
-  std::uint8_t sequence = 0;
-  std::vector<float> audio;
-  for (std::size_t i = 0; i < commands.size(); ++i) {
-    const link::TransmitFrame f = link::plan_transmission(profile, commands[i], sequence).front();
-    const double t_ms = 1000.0 * static_cast<double>(audio.size()) / profile.sample_rate_hz;
-    const std::string bits = reliability::bit_string(f.bits, f.bit_count);
-    const std::string what = command::describe(command::quantised_payload(commands[i]));
-    if (o.json) {
-      nlohmann::json json{{"index", i}, {"sequence", *f.sequence}, {"frame", bits}, {"tones_hz", f.tones_hz},
-                          {"command", what}};
-      if (!o.wav.empty()) json["t_ms"] = t_ms;
-      std::cout << json.dump() << '\n';
-    } else {
-      std::printf("frame %zu/%zu  seq %2u  %s  %s\n", i + 1, commands.size(), static_cast<unsigned>(*f.sequence),
-                  bits.c_str(), what.c_str());
-    }
-    audio.insert(audio.end(), f.audio.begin(), f.audio.end());
-    audio.resize(audio.size() + static_cast<std::size_t>(profile.samples_for_ms(kAnswerWaitMs)), 0.0f);
-  }
-  if (!o.json) std::cout << "encodes: " << commands.size() << " command" << (commands.size() == 1 ? "" : "s")
-                         << ", one 48-bit frame each (profile " << profile.name << ")\n";
-  if (!o.wav.empty()) {
-    physical::write_wav_file(o.wav, audio, profile.sample_rate_hz);
-    if (!o.json) std::printf("wrote %s: %.2f s at %d Hz\n", o.wav.c_str(),
-                             static_cast<double>(audio.size()) / profile.sample_rate_hz, profile.sample_rate_hz);
-  }
-  return 0;
-}
-
 int run_encode(const EncodeOptions& o) {
-  const LinkProfile& profile = profile_by_name(o.profile);
-  if (profile.frame_format == FrameFormat::Command48) return run_encode_command_frames(o, profile);
-  std::vector<link::PlannedFrame> frames;
+  const link::Link& link = link::link_by_name(o.profile);
+  std::vector<link::TransmitFrame> frames;
+  std::vector<std::string> commands_of;  // what each frame's command does, as the robot will execute it
   std::string what;
   if (o.word) {
-    frames.push_back(link::plan_word(profile, static_cast<command::Word>(*o.word)));
-    what = "word " + std::to_string(*o.word);
-  } else if (o.kind == "sequence") {
-    const auto commands = command::seed_test_sequence();
-    for (const auto& c : commands) {
-      const auto planned = link::plan_command(profile, c);
-      frames.insert(frames.end(), planned.begin(), planned.end());
+    const auto frame = link.plan_word(static_cast<std::uint32_t>(*o.word));
+    if (!frame) {
+      throw std::invalid_argument("--word: the " + link.name() + " profile sends whole commands, not words; "
+                                  "give a command (drive, turn, stop, reset, sequence)");
     }
-    what = "the seed's test sequence, " + std::to_string(commands.size()) + " commands";
+    frames.push_back(*frame);
+    commands_of.emplace_back();
+    what = "word " + std::to_string(*o.word);
   } else {
-    const command::Command command = build_command(o);
-    frames = link::plan_command(profile, command);
-    what = command::describe(command::quantised(command));
+    const std::vector<command::Command> commands =
+        o.kind == "sequence" ? command::seed_test_sequence() : std::vector<command::Command>{build_command(o)};
+    std::uint8_t sequence = 0;  // frames are numbered from 0, where the format numbers them
+    for (const command::Command& c : commands) {
+      for (link::TransmitFrame& f : link.plan(c, sequence)) {
+        frames.push_back(std::move(f));
+        commands_of.push_back(command::describe(link.as_received(c)));
+      }
+    }
+    what = o.kind == "sequence" ? "the seed's test sequence, " + std::to_string(commands.size()) + " commands"
+                                : commands_of.front();
   }
   for (std::size_t i = 0; i < frames.size(); ++i) {
     if (o.json) {
       nlohmann::json json = frame_json(frames[i]);
       json["index"] = i;
-      if (!o.wav.empty()) json["t_ms"] = link::frame_start_ms(profile, i);
+      if (!commands_of[i].empty()) json["command"] = commands_of[i];
+      if (!o.wav.empty()) json["t_ms"] = link.frame_start_ms(i);
       std::cout << json.dump() << '\n';
     } else {
       std::cout << "frame " << i + 1 << '/' << frames.size() << "  " << frame_line(frames[i]) << '\n';
     }
   }
-  if (!o.json) std::cout << "encodes: " << what << " (profile " << profile.name << ")\n";
+  if (!o.json) std::cout << "encodes: " << what << ", " << frames.size() << " frame" << (frames.size() == 1 ? "" : "s")
+                         << " (profile " << link.name() << ")\n";
   if (!o.wav.empty()) {
-    const std::vector<float> audio = link::render_frames(profile, frames);
-    physical::write_wav_file(o.wav, audio, profile.sample_rate_hz);
+    const std::vector<float> audio = link.render(frames);
+    physical::write_wav_file(o.wav, audio, link.profile().sample_rate_hz);
     if (!o.json) {
       std::printf("wrote %s: %.2f s at %d Hz\n", o.wav.c_str(),
-                  static_cast<double>(audio.size()) / profile.sample_rate_hz, profile.sample_rate_hz);
+                  static_cast<double>(audio.size()) / link.profile().sample_rate_hz, link.profile().sample_rate_hz);
     }
   }
   return 0;
@@ -141,9 +108,9 @@ void add_encode_command(CLI::App& app, Action& run, const GlobalOptions& global)
   CLI::App* turn = encode->add_subcommand("turn", "turn on the spot: TURN_FOR_DURATION, or TURN without --duration");
   turn->add_option("--rotation", o->rotation, "rotation, percent of the maximum; positive turns left (-100..100)")->required();
   turn->add_option("--duration", o->duration, "seconds (0..8); omit to turn until the next command");
-  CLI::App* stop = encode->add_subcommand("stop", "stop the robot (RESET, STOP)");
-  CLI::App* reset = encode->add_subcommand("reset", "return the robot to MODE_SELECT (RESET)");
-  CLI::App* sequence = encode->add_subcommand("sequence", "the seed's 65-frame system test sequence (its section 10)");
+  encode->add_subcommand("stop", "stop the robot (RESET, STOP)");
+  encode->add_subcommand("reset", "return the robot to MODE_SELECT (RESET)");
+  encode->add_subcommand("sequence", "the seed's 65-frame system test sequence (its section 10)");
   encode->require_subcommand(0, 1);
   encode->callback([o, encode, &global, &run] {
     const auto chosen = encode->get_subcommands();

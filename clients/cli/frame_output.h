@@ -1,20 +1,20 @@
-// How dtmfctl prints a frame: a readable line on a terminal, one JSON object per line with
-// --json (fields: word, frame, crc, tones_hz, and t_ms / crc_ok / event when decoding).
+// How dtmfctl prints a frame, whatever its profile: a readable line on a terminal, or one
+// JSON object per line with --json. Frames as planned: index, frame, crc, tones_hz, and
+// word / sequence where the format has them. Frames as heard: t_ms, heard_ms, frame,
+// crc_ok, and what the frame did (event; what).
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "link/receiver_path.h"
-#include "link/sender_path.h"
+#include "link/link.h"
 
 namespace dtmf::cli {
 
-nlohmann::json frame_json(const link::PlannedFrame& frame);
-std::string frame_line(const link::PlannedFrame& frame);
+nlohmann::json frame_json(const link::TransmitFrame& frame);
+std::string frame_line(const link::TransmitFrame& frame);
 
-// What an intact frame did to the robot's command state, e.g. "reset -> mode_select".
-std::string event_text(const command::ReceiverEvent& event);
-nlohmann::json event_json(const command::ReceiverEvent& event);
+nlohmann::json reception_json(const link::Reception& reception);
+std::string reception_line(const link::Reception& reception);
 
 }  // namespace dtmf::cli

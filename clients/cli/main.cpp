@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
       "  dtmfctl encode --wav drive.wav drive --speed 50 --duration 3\n"
       "  dtmfctl simulate drive.wav heard.wav --distance 4 --noise white --noise-dbfs -40\n"
       "  dtmfctl decode --json heard.wav\n"
+      "  dtmfctl decode --replies --profile fast answers.wav   (the ACKs and NACKs a sender would hear)\n"
       "  dtmfctl drive --speed 50 --duration 2          (through dtmf-server: --server, DTMF_SERVER)\n"
       "  dtmfctl sequence --label general\n"
       "  dtmfctl report --json");

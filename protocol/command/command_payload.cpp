@@ -9,8 +9,9 @@ namespace {
 
 constexpr int kFieldBits = 12;
 constexpr std::uint32_t kFieldMask = (1u << kFieldBits) - 1;
+constexpr std::uint32_t kKindMask = 0x7;
 
-std::uint32_t pack(Word kind, Word a, Word b) {
+std::uint32_t pack(PayloadKind kind, Word a, Word b) {
   return (static_cast<std::uint32_t>(kind) << (2 * kFieldBits)) | (static_cast<std::uint32_t>(a) << kFieldBits) | b;
 }
 
@@ -21,26 +22,26 @@ std::uint32_t encode_payload(const Command& command) {
       [](const auto& c) -> std::uint32_t {
         using T = std::decay_t<decltype(c)>;
         if constexpr (std::is_same_v<T, Reset>) {
-          return pack(kResetWord, 0, 0);
+          return pack(PayloadKind::Reset, 0, 0);
         } else if constexpr (std::is_same_v<T, Stop>) {
-          return pack(static_cast<Word>(Mode::Stop), 0, 0);
+          return pack(PayloadKind::Stop, 0, 0);
         } else if constexpr (std::is_same_v<T, DriveForDuration>) {
-          return pack(static_cast<Word>(Mode::DriveForDuration), encode_field(kSpeedField12, c.speed_percent),
+          return pack(PayloadKind::DriveForDuration, encode_field(kSpeedField12, c.speed_percent),
                       encode_field(kDurationField12, c.duration_s));
         } else if constexpr (std::is_same_v<T, TurnForDuration>) {
-          return pack(static_cast<Word>(Mode::TurnForDuration), encode_field(kRotationField12, c.rotation_percent),
+          return pack(PayloadKind::TurnForDuration, encode_field(kRotationField12, c.rotation_percent),
                       encode_field(kDurationField12, c.duration_s));
         } else if constexpr (std::is_same_v<T, DriveForward>) {
-          return pack(static_cast<Word>(Mode::DriveForward), encode_field(kSpeedField12, c.speed_percent), 0);
+          return pack(PayloadKind::DriveForward, encode_field(kSpeedField12, c.speed_percent), 0);
         } else {
-          return pack(static_cast<Word>(Mode::Turn), encode_field(kRotationField12, c.rotation_percent), 0);
+          return pack(PayloadKind::Turn, encode_field(kRotationField12, c.rotation_percent), 0);
         }
       },
       command);
 }
 
 ParameterDecode decode_payload(std::uint32_t payload) {
-  const Word kind = static_cast<Word>((payload >> (2 * kFieldBits)) & 0xF);
+  const auto kind = static_cast<PayloadKind>((payload >> (2 * kFieldBits)) & kKindMask);
   const Word a = static_cast<Word>((payload >> kFieldBits) & kFieldMask);
   const Word b = static_cast<Word>(payload & kFieldMask);
   auto refuse = [&](const char* what) {
@@ -48,32 +49,29 @@ ParameterDecode decode_payload(std::uint32_t payload) {
     std::snprintf(buf, sizeof buf, "payload 0x%07X: %s", payload, what);
     return ParameterDecode{std::nullopt, buf};
   };
-  const bool b_unused = b == 0;
-  if (kind == kResetWord) return a == 0 && b_unused ? ParameterDecode{Reset{}, {}} : refuse("RESET with fields");
-  const auto mode = mode_from_word(kind);
-  if (!mode || *mode == Mode::ModeSelect) return refuse("kind is not a command");
-  switch (*mode) {
-    case Mode::Stop:
-      return a == 0 && b_unused ? ParameterDecode{Stop{}, {}} : refuse("STOP with fields");
-    case Mode::DriveForDuration:
-    case Mode::TurnForDuration: {
-      const bool drive = *mode == Mode::DriveForDuration;
+  if (payload >> kPayloadBits) return refuse("wider than a payload");
+  switch (kind) {
+    case PayloadKind::Reset: return a == 0 && b == 0 ? ParameterDecode{Reset{}, {}} : refuse("RESET with fields");
+    case PayloadKind::Stop: return a == 0 && b == 0 ? ParameterDecode{Stop{}, {}} : refuse("STOP with fields");
+    case PayloadKind::DriveForDuration:
+    case PayloadKind::TurnForDuration: {
+      const bool drive = kind == PayloadKind::DriveForDuration;
       const auto value = decode_field(drive ? kSpeedField12 : kRotationField12, a);
       const auto duration = decode_field(kDurationField12, b);
       if (!value || !duration) return refuse("no valid field A or duration");
       if (drive) return {DriveForDuration{*value, *duration}, {}};
       return {TurnForDuration{*value, *duration}, {}};
     }
-    case Mode::DriveForward:
-    case Mode::Turn: {
-      const bool drive = *mode == Mode::DriveForward;
+    case PayloadKind::DriveForward:
+    case PayloadKind::Turn: {
+      const bool drive = kind == PayloadKind::DriveForward;
       const auto value = decode_field(drive ? kSpeedField12 : kRotationField12, a);
-      if (!value || !b_unused) return refuse("no valid field A, or a field B");
+      if (!value || b != 0) return refuse("no valid field A, or a field B");
       if (drive) return {DriveForward{*value}, {}};
       return {Turn{*value}, {}};
     }
-    case Mode::ModeSelect:
-      break;
+    case PayloadKind::Velocity:
+    case PayloadKind::Extended: return refuse("a kind this robot does not know yet (reserved)");
   }
   return refuse("kind is not a command");
 }

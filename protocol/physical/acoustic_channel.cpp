@@ -1,9 +1,14 @@
 #include "physical/acoustic_channel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "physical/clock_drift.h"
+#include "physical/fft_convolver.h"
+#include "physical/real_fft.h"
 
 namespace dtmf::physical {
 
@@ -35,10 +40,12 @@ std::vector<float> absorption_fir(double distance_m, int sample_rate_hz) {
   return taps;
 }
 
-// Schroeder's comb and all-pass delays, in ms (mutually prime in samples at usual rates).
-constexpr double kCombMs[4] = {29.7, 37.1, 41.1, 43.7};
-constexpr double kAllpassMs[2] = {5.0, 1.7};
-constexpr double kAllpassGain = 0.7;
+void check_distance(double distance_m) {
+  if (!std::isfinite(distance_m) || distance_m <= 0) {
+    throw std::invalid_argument("transmitter distance must be a positive number of metres, got " +
+                                std::to_string(distance_m));
+  }
+}
 
 }  // namespace
 
@@ -48,106 +55,102 @@ double channel_loss_db(double frequency_hz, double distance_m) {
 
 struct AcousticChannel::Transmitter {
   float gain;
-  std::vector<float> taps;
-  std::vector<float> fifo;  // FIR history + propagation delay + pending input
+  bool free_field;
+  std::vector<float> taps;  // free field: absorption
+  std::vector<float> fifo;  // free field: FIR history + propagation delay + pending input
   std::size_t read = 0;     // first sample of the next FIR window
-};
-
-struct AcousticChannel::Room {
-  struct Line {
-    std::vector<float> buffer;
-    std::size_t pos = 0;
-    float feedback;
-  };
-  std::vector<Line> combs;
-  std::vector<Line> allpasses;
-  float wet;
-
-  Room(const ReverbConfig& config, int sample_rate_hz) : wet(static_cast<float>(config.wet)) {
-    for (double ms : kCombMs) {
-      const auto length = static_cast<std::size_t>(ms * sample_rate_hz / 1000.0);
-      // Feedback that decays by 60 dB in rt60_s.
-      const double g = std::pow(10.0, -3.0 * (ms / 1000.0) / config.rt60_s);
-      combs.push_back(Line{std::vector<float>(length, 0.0f), 0, static_cast<float>(g)});
-    }
-    for (double ms : kAllpassMs) {
-      const auto length = static_cast<std::size_t>(ms * sample_rate_hz / 1000.0);
-      allpasses.push_back(Line{std::vector<float>(length, 0.0f), 0, static_cast<float>(kAllpassGain)});
-    }
-  }
-
-  void process(std::span<float> x) {
-    for (float& sample : x) {
-      float reverberant = 0;
-      for (Line& comb : combs) {
-        const float delayed = comb.buffer[comb.pos];
-        comb.buffer[comb.pos] = sample + comb.feedback * delayed;
-        comb.pos = (comb.pos + 1) % comb.buffer.size();
-        reverberant += delayed;
-      }
-      reverberant *= 0.25f;
-      for (Line& ap : allpasses) {
-        const float delayed = ap.buffer[ap.pos];
-        const float in = reverberant + ap.feedback * delayed;
-        ap.buffer[ap.pos] = in;
-        ap.pos = (ap.pos + 1) % ap.buffer.size();
-        reverberant = delayed - ap.feedback * in;
-      }
-      sample += wet * reverberant;
-    }
-  }
-};
-
-struct AcousticChannel::ClockDrift {
-  double step;                  // room samples per microphone sample
-  double position = 1.0;        // next read position, relative to history[0]
-  std::vector<float> history;   // room samples not yet fully consumed
-
-  explicit ClockDrift(double ppm) : step(1.0 / (1.0 + ppm * 1e-6)), history(1, 0.0f) {}
-
-  void process(std::span<const float> room, std::vector<float>& out) {
-    history.insert(history.end(), room.begin(), room.end());
-    // Cubic (Catmull-Rom) interpolation needs one sample before and two after.
-    while (position + 2.0 < static_cast<double>(history.size())) {
-      const auto i = static_cast<std::size_t>(position);
-      const float t = static_cast<float>(position - static_cast<double>(i));
-      const float y0 = history[i - 1], y1 = history[i], y2 = history[i + 1], y3 = history[i + 2];
-      const float a = -0.5f * y0 + 1.5f * y1 - 1.5f * y2 + 0.5f * y3;
-      const float b = y0 - 2.5f * y1 + 2.0f * y2 - 0.5f * y3;
-      const float c = -0.5f * y0 + 0.5f * y2;
-      out.push_back(((a * t + b) * t + c) * t + y1);
-      position += step;
-    }
-    const auto consumed = static_cast<std::size_t>(position) - 1;
-    history.erase(history.begin(), history.begin() + static_cast<std::ptrdiff_t>(consumed));
-    position -= static_cast<double>(consumed);
-  }
+  std::unique_ptr<MovingDelay> motion;
+  std::unique_ptr<FftConvolver> convolver;  // room response and device responses, if any
+  std::size_t delay_samples = 0;
+  std::size_t response_samples = 0;
+  double max_motion_delay_s = 0;
 };
 
 AcousticChannel::AcousticChannel(int sample_rate_hz, ChannelConfig config)
+    : AcousticChannel(sample_rate_hz, config,
+                      config.room.enabled() ? std::make_shared<const RoomModel>(config.room, sample_rate_hz) : nullptr) {}
+
+AcousticChannel::AcousticChannel(int sample_rate_hz, ChannelConfig config, std::shared_ptr<const RoomModel> room)
     : sample_rate_hz_(sample_rate_hz),
       config_(std::move(config)),
-      noise_(config_.noise, sample_rate_hz, config_.seed) {
-  if (config_.reverb.rt60_s > 0) room_ = std::make_unique<Room>(config_.reverb, sample_rate_hz);
+      room_(std::move(room)),
+      noise_(config_.noise, sample_rate_hz, config_.seed),
+      whines_(config_.whines, sample_rate_hz, config_.seed) {
+  if (config_.reverb.rt60_s > 0 && room_) {
+    throw std::invalid_argument("a room already reverberates: give either a room or the diffuse reverberator's RT60, not both");
+  }
+  if (config_.reverb.rt60_s > 0) reverb_ = std::make_unique<SchroederReverb>(config_.reverb, sample_rate_hz);
   if (config_.clock_offset_ppm != 0) drift_ = std::make_unique<ClockDrift>(config_.clock_offset_ppm);
+  if (!config_.speaker_response.flat()) speaker_fir_ = response_fir(config_.speaker_response, sample_rate_hz);
+  if (!config_.mic_response.flat()) mic_fir_ = response_fir(config_.mic_response, sample_rate_hz);
 }
 
 AcousticChannel::~AcousticChannel() = default;
 
-std::size_t AcousticChannel::add_transmitter(double distance_m) {
-  if (!std::isfinite(distance_m) || distance_m <= 0) {
-    throw std::invalid_argument("transmitter distance must be a positive number of metres, got " +
-                                std::to_string(distance_m));
+std::size_t AcousticChannel::add_transmitter(double distance_m, bool moves) {
+  check_distance(distance_m);
+  if (!room_) return add_path({distance_m, nullptr, 1, moves});
+  if (room_->kind() == RoomModel::Kind::Measured) return add_path({distance_m, room_->measured(), 1 / distance_m, moves});
+  return add_transmitter_at(room_->speaker_at_distance(distance_m), moves);
+}
+
+std::size_t AcousticChannel::add_transmitter_at(const Point3& speaker, bool moves) {
+  if (!room_ || room_->kind() != RoomModel::Kind::ImageSource) {
+    throw std::invalid_argument("a loudspeaker position needs an image-source room (a shoebox); give a distance otherwise");
   }
+  const Point3 mic = room_->microphone();
+  return add_path({distance_m(speaker, mic), room_->between(speaker, mic), 1, moves});
+}
+
+std::size_t AcousticChannel::add_path(const PathSpec& path) {
+  check_distance(path.distance_m);
   auto tx = std::make_unique<Transmitter>();
-  tx->gain = static_cast<float>(1.0 / distance_m);
-  tx->taps = absorption_fir(distance_m, sample_rate_hz_);
-  // The FIR's own delay of kFirHalf samples is part of the propagation delay where possible.
-  const auto delay = static_cast<long>(std::lround(distance_m / kSpeedOfSoundMps * sample_rate_hz_));
-  const auto padding = static_cast<std::size_t>(std::max(delay, static_cast<long>(kFirHalf)) + kFirHalf);
-  tx->fifo.assign(padding, 0.0f);
+  tx->free_field = !path.response;
+  const bool moving = path.moves && config_.motion.speed_mps != 0;
+  const double samples_per_m = sample_rate_hz_ / kSpeedOfSoundMps;
+  if (tx->free_field) {
+    tx->gain = static_cast<float>(1.0 / path.distance_m);
+    tx->taps = absorption_fir(path.distance_m, sample_rate_hz_);
+    // Standing: the whole delay here. Moving: the part every position shares, leaving the
+    // moving delay line at least its look-ahead (it supplies the rest, fractionally).
+    const double fixed = moving ? std::floor(config_.motion.min_distance_m * samples_per_m) - kMovingDelayHalfTaps
+                                : std::round(path.distance_m * samples_per_m);
+    tx->delay_samples = static_cast<std::size_t>(std::max(fixed, 0.0));
+    // The FIR's own delay of kFirHalf samples is part of the propagation delay where possible.
+    const auto padding = std::max(tx->delay_samples, static_cast<std::size_t>(kFirHalf)) + kFirHalf;
+    tx->fifo.assign(padding, 0.0f);
+    if (moving) {
+      tx->motion = std::make_unique<MovingDelay>(config_.motion, path.distance_m,
+                                                 static_cast<double>(std::max<std::size_t>(tx->delay_samples, kFirHalf)), sample_rate_hz_);
+    }
+  } else {
+    tx->gain = static_cast<float>(path.gain);
+    if (moving) {
+      // A room's response is that of the starting position; the motion moves all of it.
+      tx->motion = std::make_unique<MovingDelay>(config_.motion, path.distance_m,
+                                                 config_.motion.min_distance_m * samples_per_m - kMovingDelayHalfTaps, sample_rate_hz_);
+    }
+  }
+  if (moving) tx->max_motion_delay_s = (config_.motion.max_distance_m - config_.motion.min_distance_m) / kSpeedOfSoundMps;
+  // One convolution for the loudspeaker, the room and the microphone together.
+  std::vector<float> response = path.response ? *path.response : std::vector<float>{};
+  if (!speaker_fir_.empty()) response = response.empty() ? speaker_fir_ : convolve(speaker_fir_, response);
+  if (!mic_fir_.empty()) response = response.empty() ? mic_fir_ : convolve(response, mic_fir_);
+  if (!response.empty()) {
+    tx->response_samples = response.size();
+    tx->convolver = std::make_unique<FftConvolver>(response);
+  }
   transmitters_.push_back(std::move(tx));
   return transmitters_.size() - 1;
+}
+
+double AcousticChannel::ring_out_s() const {
+  double longest = 0;
+  for (const auto& tx : transmitters_) {
+    longest = std::max(longest, static_cast<double>(tx->delay_samples + tx->response_samples + kFirTaps) / sample_rate_hz_ +
+                                    tx->max_motion_delay_s);
+  }
+  return longest;
 }
 
 void AcousticChannel::process(std::span<const float> block, std::vector<float>& out) {
@@ -166,22 +169,40 @@ void AcousticChannel::process(std::span<const std::span<const float>> blocks, st
   for (std::size_t t = 0; t < transmitters_.size(); ++t) {
     if (blocks[t].size() != n) throw std::invalid_argument("process() blocks differ in length");
     Transmitter& tx = *transmitters_[t];
-    tx.fifo.insert(tx.fifo.end(), blocks[t].begin(), blocks[t].end());
-    const float* window = tx.fifo.data() + tx.read;
-    for (std::size_t i = 0; i < n; ++i) {
-      float acc = 0;
-      for (int k = 0; k < kFirTaps; ++k) acc += tx.taps[static_cast<std::size_t>(k)] * window[i + static_cast<std::size_t>(k)];
-      mix_[i] += tx.gain * acc;
+    std::span<const float> in = blocks[t];
+    if (tx.motion) {
+      moved_.resize(n);
+      tx.motion->process(in, moved_);
+      in = moved_;
     }
-    tx.read += n;
-    // Drop what no future window needs, in large steps so the copy stays cheap.
-    if (tx.read > (1u << 16)) {
-      tx.fifo.erase(tx.fifo.begin(), tx.fifo.begin() + static_cast<std::ptrdiff_t>(tx.read));
-      tx.read = 0;
+    // What reaches the microphone before the responses (into scratch_ if they follow).
+    std::span<float> target = mix_;
+    if (tx.convolver) {
+      scratch_.assign(n, 0.0f);
+      target = scratch_;
     }
+    if (tx.free_field) {
+      tx.fifo.insert(tx.fifo.end(), in.begin(), in.end());
+      const float* window = tx.fifo.data() + tx.read;
+      for (std::size_t i = 0; i < n; ++i) {
+        float acc = 0;
+        for (int k = 0; k < kFirTaps; ++k) acc += tx.taps[static_cast<std::size_t>(k)] * window[i + static_cast<std::size_t>(k)];
+        target[i] += tx.gain * acc;
+      }
+      tx.read += n;
+      // Drop what no future window needs, in large steps so the copy stays cheap.
+      if (tx.read > (1u << 16)) {
+        tx.fifo.erase(tx.fifo.begin(), tx.fifo.begin() + static_cast<std::ptrdiff_t>(tx.read));
+        tx.read = 0;
+      }
+    } else {
+      for (std::size_t i = 0; i < n; ++i) target[i] += tx.gain * in[i];
+    }
+    if (tx.convolver) tx.convolver->process_add(scratch_, mix_);
   }
-  if (room_) room_->process(mix_);
+  if (reverb_) reverb_->process(mix_);
   noise_.add_to(mix_);
+  whines_.add_to(mix_);
   if (drift_) drift_->process(mix_, out);
   else out.insert(out.end(), mix_.begin(), mix_.end());
 }

@@ -5,6 +5,7 @@
 #include <condition_variable>
 #include <deque>
 #include <mutex>
+#include <stdexcept>
 
 namespace dtmf::physical {
 
@@ -14,6 +15,7 @@ constexpr double kMaxRecordingBacklogS = 10;  // a microphone nobody reads drops
 }  // namespace
 
 struct SimulatedAir::Shared {
+  std::shared_ptr<const RoomModel> room;  // one room for every path, both ways
   struct StationState {
     std::string name;
     double position_m;
@@ -86,6 +88,7 @@ SimulatedAir::SimulatedAir(int sample_rate_hz, ChannelConfig config, double bloc
     : shared_(std::make_shared<Shared>()) {
   shared_->sample_rate_hz = sample_rate_hz;
   shared_->config = std::move(config);
+  if (shared_->config.room.enabled()) shared_->room = std::make_shared<const RoomModel>(shared_->config.room, sample_rate_hz);
   shared_->block = static_cast<std::size_t>(std::lround(block_ms * sample_rate_hz / 1000.0));
 }
 
@@ -103,14 +106,38 @@ void SimulatedAir::start() {
   {
     std::lock_guard lock(shared_->mutex);
     auto& stations = shared_->stations;
+    const auto& room = shared_->room;
+    const bool shoebox = room && room->kind() == RoomModel::Kind::ImageSource;
+    // In a shoebox, station p stands at the microphone position moved p metres along x;
+    // its own loudspeaker 0.1 m beside its microphone (towards the room's middle).
+    std::vector<Point3> at(stations.size()), own_speaker(stations.size());
+    if (shoebox) {
+      const ShoeboxRoom box = room->shoebox();
+      for (std::size_t s = 0; s < stations.size(); ++s) {
+        at[s] = room->microphone();
+        at[s].x += stations[s].position_m;
+        check_inside(box, at[s], "station '" + stations[s].name + "'");
+        own_speaker[s] = at[s];
+        own_speaker[s].y += at[s].y < box.size_m.y / 2 ? kOwnSpeakerDistanceM : -kOwnSpeakerDistanceM;
+      }
+    }
     for (std::size_t listener = 0; listener < stations.size(); ++listener) {
       ChannelConfig config = shared_->config;
       config.seed += listener;  // independent noise at each microphone
-      stations[listener].channel = std::make_unique<AcousticChannel>(shared_->sample_rate_hz, config);
-      for (const auto& speaker : stations) {
-        const double d = std::abs(speaker.position_m - stations[listener].position_m);
-        stations[listener].channel->add_transmitter(std::max(d, kOwnSpeakerDistanceM));
+      auto channel = std::make_unique<AcousticChannel>(shared_->sample_rate_hz, config, room);
+      for (std::size_t s = 0; s < stations.size(); ++s) {
+        const bool own = s == listener;
+        const double d = own ? kOwnSpeakerDistanceM
+                             : std::max(std::abs(stations[s].position_m - stations[listener].position_m), kOwnSpeakerDistanceM);
+        if (shoebox) {
+          // Reciprocity: between stations A and B the room's one response serves both ways.
+          const Point3 from = own ? own_speaker[s] : at[s];
+          channel->add_path({distance_m(from, at[listener]), room->between(from, at[listener]), 1, !own});
+        } else {
+          channel->add_transmitter(d, !own);  // a measured room: its response at 1/d
+        }
       }
+      stations[listener].channel = std::move(channel);
     }
     shared_->running = true;
   }

@@ -8,6 +8,17 @@
 // write() returns once the samples are queued close to playing, drain() once they played,
 // read() blocks until the samples have been "recorded". So a server and an agent in one
 // process talk through it exactly as through a real room, only without a sound card.
+//
+// A room in the configuration (room_model.h) is prepared once and serves every path, both
+// ways. Reciprocity: the response from station A's loudspeaker to B's microphone is the one
+// from B's loudspeaker to A's microphone (a station's loudspeaker and microphone stand at
+// one point for the paths between stations), so the robot's ACK crosses the same room as
+// the command did. In a measured room every path hears the one response at 1/d — a
+// station's own loudspeaker, 0.1 m away, too: its reverberation then comes 20 dB louder
+// as well, since one measured response cannot tell its direct part from the room's. In a
+// shoebox, station p stands at the room's microphone position moved p metres along x (its
+// own loudspeaker 0.1 m beside its microphone). Radial motion (config.motion) moves the
+// paths between stations, not a station's own.
 #pragma once
 
 #include <memory>

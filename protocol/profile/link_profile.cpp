@@ -1,5 +1,6 @@
 #include "profile/link_profile.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -39,6 +40,13 @@ LinkProfile make_seed_profile() {
   p.robot_detector.noise_gate_dbfs = -60;
   p.robot_detector.tone_tolerance_hz = 25;
   p.robot_detector.dominance_db = 8;  // spandsp's DTMF relative-peak test
+  // Receiver choices of ours (docs/protocol.md §10.6): a moving robot and two sound cards
+  // put 16 kHz tones up to 48 Hz off at 3000 ppm, twice the tolerance; a fast profile's
+  // sixteen-tone chords must not read as seed chords; a fan's whine on a plan tone must
+  // not win its band. A 0.8 s chord lifts its bins' background by 8 dB at most; a whine 50 dB over the floor is learnt in 5 s.
+  p.robot_detector.max_offset_ppm = 3000;
+  p.robot_detector.crowding_peaks = 3;
+  p.robot_detector.background_rise_db_per_s = 10;
 
   p.sender_detector.bandpass_low_hz = 1500;
   p.sender_detector.bandpass_high_hz = 4000;
@@ -46,6 +54,8 @@ LinkProfile make_seed_profile() {
   p.sender_detector.noise_gate_dbfs = -60;
   p.sender_detector.tone_tolerance_hz = 25;
   p.sender_detector.dominance_db = 8;
+  // ACK tones sit below 3.5 kHz: 3000 ppm moves them 10.5 Hz, within the tolerance.
+  p.sender_detector.background_rise_db_per_s = 10;
 
   p.debounce.min_detections = 2;   // seed section 8
   p.debounce.window_ms = 300;
@@ -54,56 +64,64 @@ LinkProfile make_seed_profile() {
   return p;
 }
 
-// The fast profile. Its sizes follow from two budgets, worked out in docs/protocol.md:
-// energy (a 64-ary symbol needs Es/N0 of about 24 to be right 99.98 % of the time at
-// -10 dB SNR, hence a 40 ms window for four tones at once) and compute (one 1920-point FFT
-// per 10.25 ms hop is about 1.3 us here).
+// The fast profile, built for real rooms (docs/protocol.md §10 has the reasons and the
+// figures): a 40 ms rectangular window on a 25 Hz bin grid, sixteen 32-ary tones per frame
+// in two chords of eight on disjoint band sets, Reed-Solomon coded, and one FFT per hop.
 LinkProfile make_fast_profile() {
   LinkProfile p;
   p.name = "fast";
-  p.description = "a whole command per 48-bit frame in 102.5 ms, named ACKs, CRC-16, about 250 bit/s";
+  p.description = "a whole command per frame in 102.5 ms, hopped 32-ary tones, Reed-Solomon, named ACKs";
   p.sample_rate_hz = 48000;
-  p.frame_format = FrameFormat::Command48;
+  p.frame_format = FrameFormat::HoppedCommand;
 
-  BinLink& b = p.bins;
-  b.window_samples = 1920;  // 40 ms; tones 25 Hz apart
-  b.edge_samples = 24;      // 0.5 ms fades: the chord switch stays out of the other chord's bins
-  b.hop_samples = 492;      // 10.25 ms; chord = 1920 + 2 * 24 + 492 = 2460 = 5 hops (51.25 ms)
-  b.band_first_bin = {200, 268, 336, 404};  // 5000, 6700, 8400, 10100 Hz; 64 tones + 4 guard bins
-  b.tones_per_band = 64;
-  b.chords_per_frame = 2;
-  b.tone_amplitude = 0.2;  // four tones sum to at most 0.8 full scale, as in the seed
-  b.presence_db = 8;       // pure noise passes this in a band 1 window in 50 (best of 64 bins)
-  b.dominance_db = 2;
-  b.gone_db = 6;
-  b.absent_bands = 1;
-  b.chase_symbols = 2;
-  b.lockout_hops = 7;       // docs/protocol.md §10, "Hearing a frame"
-  b.cluster_gap_hops = 2.5;
-  b.nack_settle_hops = 8;
-  b.reply_window_samples = 768;  // 16 ms; reply tones 62.5 Hz apart
-  b.reply_hop_samples = 192;     // 4 ms; a reply is 768 + 2 * 48 + 2 * 192 = 1248 samples (26 ms)
-  b.reply_edge_samples = 48;
-  b.reply_band_first_bin = {32, 50};  // 2000-2937.5 Hz and 3125-4062.5 Hz, below the chords
-  b.reply_tones_per_band = 16;
-  b.reply_amplitude = 0.4;
-  b.reply_presence_db = 11;  // noise passes it in both bands once in 300 million windows
-  b.reply_dominance_db = 6;  // speech's harmonics share a band at like levels
+  HopLink& h = p.hops;
+  h.window_samples = 1920;  // 40 ms; tones 25 Hz apart
+  h.edge_samples = 24;      // 0.5 ms fades
+  h.hop_samples = 492;      // 10.25 ms; chord = 1920 + 2 * 24 + 492 = 2460 = 5 hops (51.25 ms)
+  h.chords_per_frame = 2;
+  h.tones_per_band = 32;
+  // Sixteen bands of 32 tones and 2 guard bins from 4 kHz: band k starts at bin 160 + 34 k;
+  // the first chord sends on the even bands, the second on the odd ones (4.0-17.5 kHz).
+  for (int c = 0; c < 2; ++c) {
+    for (int b = 0; b < HopLink::kBandsPerChord; ++b) h.band_first_bin[c][b] = 160 + 34 * (2 * b + c);
+  }
+  h.tone_amplitude = 0.1;    // eight tones sum to at most 0.8 full scale
+  h.gate_db = 7.5;           // noise bands pass 1 in 5, a frame's at -10 dB SNR 24 in 25
+  h.gate_bands = 5;          // of 8: noise passes both chords 1 window in 20 000, a frame at -10 dB 999 in 1000
+  h.presence_db = 6;
+  h.onset_db = 3;
+  h.clear_certainty = 3;     // 4.8 dB: a noise band's best beats its second by this 1 time in 30
+  h.background_rise_db_per_s = 10;
+  h.max_erasures = 4;        // RS(16, 10) keeps 2 of its 6 parity symbols for detection
+  h.max_offset_ppm = 3000;
+  h.lockout_hops = 7;
+  h.cluster_gap_hops = 2.5;
+  h.nack_settle_hops = 8;
+  h.repeat_guard_ms = 400;   // a retransmission comes no sooner than the 500 ms ACK timeout
+  h.reply_window_samples = 768;  // 16 ms; reply tones 62.5 Hz apart
+  h.reply_hop_samples = 192;     // 4 ms; a reply is 768 + 2 * 48 + 2 * 192 = 1248 samples (26 ms)
+  h.reply_edge_samples = 48;
+  h.reply_band_first_bin = {32, 40, 48, 56};  // 2000-3937.5 Hz, below the chords
+  h.reply_tones_per_band = 8;
+  h.reply_amplitude = 0.2;       // four tones sum to at most 0.8 full scale
+  h.reply_presence_db = 6;
+  h.reply_onset_db = 1.5;
+  h.reply_bands_needed = 3;
 
   // The shared fields, in the units the rest of the code base reads them in.
   const double ms_per_sample = 1000.0 / p.sample_rate_hz;
-  p.tones.step_hz = static_cast<double>(p.sample_rate_hz) / b.window_samples;
-  for (int i = 0; i < 4; ++i) p.tones.band_low_hz[i] = b.band_first_bin[i] * p.tones.step_hz;
-  p.tones.tones_per_band = b.tones_per_band;
-  p.tones.tone_amplitude = b.tone_amplitude;
-  p.tones.edge_ms = b.edge_samples * ms_per_sample;
-  p.timing.chord_ms = b.chord_samples() * ms_per_sample;
+  p.tones.step_hz = static_cast<double>(p.sample_rate_hz) / h.window_samples;
+  for (int i = 0; i < 4; ++i) p.tones.band_low_hz[i] = h.band_first_bin[0][2 * i] * p.tones.step_hz;
+  p.tones.tones_per_band = h.tones_per_band;
+  p.tones.tone_amplitude = h.tone_amplitude;
+  p.tones.edge_ms = h.edge_samples * ms_per_sample;
+  p.timing.chord_ms = h.chord_samples() * ms_per_sample;
   p.timing.gap_ms = 0;
-  p.timing.ack_ms = b.reply_samples() * ms_per_sample;
-  p.timing.ack_timeout_ms = 500;  // an answer comes about 135 ms after the frame starts
+  p.timing.ack_ms = h.reply_samples() * ms_per_sample;
+  p.timing.ack_timeout_ms = 500;  // an answer comes about 130 ms after the frame starts
   p.timing.auto_retransmissions = 2;
-  p.analysis.fft_size = b.window_samples;
-  p.analysis.analyses_per_s = static_cast<double>(p.sample_rate_hz) / b.hop_samples;
+  p.analysis.fft_size = h.window_samples;
+  p.analysis.analyses_per_s = static_cast<double>(p.sample_rate_hz) / h.hop_samples;
   return p;
 }
 
@@ -118,7 +136,10 @@ int LinkProfile::samples_for_ms(double ms) const {
 }
 
 int LinkProfile::min_recording_rate_hz() const {
-  const double top_hz = tones.band_low_hz[3] + (tones.tones_per_band - 1) * tones.step_hz;
+  double top_hz = tones.band_low_hz[3] + (tones.tones_per_band - 1) * tones.step_hz;
+  for (const auto& chord : hops.band_first_bin) {
+    for (int first_bin : chord) top_hz = std::max(top_hz, (first_bin + hops.tones_per_band - 1) * tones.step_hz);
+  }
   return static_cast<int>(2 * top_hz) + 1;
 }
 

@@ -49,6 +49,16 @@ struct DetectorParams {
   double noise_gate_dbfs = 0;   // peaks below this (as a sine amplitude) are ignored
   double tone_tolerance_hz = 0; // how far a peak may sit from a plan tone and still match it
   double dominance_db = 0;      // a band's tone must stand this far above its other plan tones
+  // The sender's and the robot's clocks differ and the robot moves: every tone of a chord is
+  // off by the same factor. The decoder tries factors within this many ppm and keeps the
+  // one under which the peaks sit closest to plan tones (0: none tried).
+  double max_offset_ppm = 0;
+  // A chord is refused when at least this many other peaks are as loud as its weakest tone:
+  // a crowded spectrum is another link's chords or music, not ours (0: no limit).
+  int crowding_peaks = 0;
+  // Each bin's steady level (a whine) is learnt and taken off before peaks are sought; it
+  // may rise at most this fast, so a chord's tone never becomes background (0: off).
+  double background_rise_db_per_s = 0;
 };
 
 // When a detected chord becomes a frame.
@@ -60,42 +70,53 @@ struct DebounceParams {
 };
 
 // How a command travels. Word16: the seed's — RESET, mode and parameter words, one 16-bit
-// CRC-4 frame each, one four-tone chord per frame. Command48: the fast profile's — a whole
-// command in one 48-bit frame (sequence number, command, CRC-16) sent as two chords of
-// 64-ary tones on the bins of a rectangular analysis window, answered by an ACK that names
-// the frame's sequence number. Layouts in docs/protocol.md.
-enum class FrameFormat { Word16, Command48 };
+// CRC-4 frame each, one four-tone chord per frame. HoppedCommand: the fast profile's — a whole
+// command in one 50-bit frame (address, sequence number, command, CRC-16) coded as a
+// Reed–Solomon codeword of sixteen 32-ary tones on two chords with disjoint tone sets,
+// answered by an ACK that names the frame's sequence number. Layouts in docs/protocol.md.
+// Only protocol/link reads this: it picks the link that implements the format.
+enum class FrameFormat { Word16, HoppedCommand };
 
-// The bin-centred tone plan of the Command48 format. Every tone sits on a bin of the
+// The fast profile's plan (FrameFormat::HoppedCommand). Every tone sits on a bin of a
 // rectangular analysis window (frequency = bin * rate / window_samples), so a window lying
-// wholly inside a chord sees each tone in exactly one bin and nothing of its neighbours.
-struct BinLink {
+// wholly inside a chord sees each tone in one bin. The two chords of a frame use disjoint
+// sets of bands (frequency hopping, as NATO's JANUS does): one chord's reverberant tail
+// lies in bands the next chord's symbols are not read from.
+struct HopLink {
+  static constexpr int kBandsPerChord = 8;
   int window_samples = 0;  // W; also the tone spacing: rate / W
   int hop_samples = 0;     // one analysis every hop; a chord lasts W + 2 * edge + hop
   int edge_samples = 0;    // raised-cosine fade at both ends of every chord
-  std::array<int, 4> band_first_bin{};  // band b carries symbol values at first_bin + v
-  int tones_per_band = 0;               // 64: six bits per band and chord
-  int chords_per_frame = 0;             // 2: 48 bits
-  double tone_amplitude = 0;            // linear, per tone
-  double presence_db = 0;   // a band sounds when its best bin is this far above its floor
-  double dominance_db = 0;  // ... and this far above the band's second-best bin
-  double gone_db = 0;       // the other chord's tone must be this far below this chord's
-  int absent_bands = 0;     // bands of a frame's eight that may fail presence_db (chased first)
-  int chase_symbols = 0;    // least certain symbols whose runner-up is tried when the CRC fails
+  int chords_per_frame = 0;
+  int tones_per_band = 0;  // 32: one 5-bit Reed-Solomon symbol per band and chord
+  // band_first_bin[c][b]: chord c's band b carries symbol values at first_bin + v.
+  std::array<std::array<int, kBandsPerChord>, 2> band_first_bin{};
+  double tone_amplitude = 0;  // linear, per tone
+  double gate_db = 0;         // a candidate when gate_bands of each chord's bands have a bin this far over the band's mean
+  int gate_bands = 0;
+  double presence_db = 0;     // a band is heard when its best bin stands this far over the band's median
+  double onset_db = 0;        // ... and rose this much since the window a chord earlier (no tail)
+  float clear_certainty = 0;  // a tone over its band's runner-up by this much is clearly heard:
+                              // a cluster that fails to decode NACKs only with 16 - max_erasures such
+  double background_rise_db_per_s = 0;  // how fast a bin's steady background may rise (whines)
+  int max_erasures = 0;       // tones the decoder may erase (unheard, or least certain first)
+  int max_offset_ppm = 0;     // the frequency offsets (clocks, Doppler) searched for
   // One verdict per frame (reliability/frame_gate.h), in analysis hops.
-  double lockout_hops = 0;      // after an accept, candidates this long after are the same frame
-  double cluster_gap_hops = 0;  // failed candidates this far apart are separate clusters
-  double nack_settle_hops = 0;  // a failed cluster NACKs no earlier than this after its first
-  // The sender's reply detector: two bands of 16 tones; ACK(seq) sounds tone seq in the
-  // first and tone (5 seq + 3) mod 16 in the second, NACK tone 0 and tone 8.
+  double lockout_hops = 0;
+  double cluster_gap_hops = 0;
+  double nack_settle_hops = 0;
+  double repeat_guard_ms = 0;  // the same frame accepted again this soon is the same sound
+  // The sender's reply detector: four bands of 8 tones, one tone each; a reply is a codeword
+  // of RS(4, 2) over GF(8) (signal/hop_reply.h), heard when `reply_bands_needed` agree.
   int reply_window_samples = 0;
   int reply_hop_samples = 0;
   int reply_edge_samples = 0;
-  std::array<int, 2> reply_band_first_bin{};
+  std::array<int, 4> reply_band_first_bin{};
   int reply_tones_per_band = 0;
-  double reply_amplitude = 0;     // linear, per tone
-  double reply_presence_db = 0;   // stricter than presence_db: 16 tones, one window, no CRC
-  double reply_dominance_db = 0;  // stricter than dominance_db: speech has harmonics here
+  double reply_amplitude = 0;  // linear, per tone
+  double reply_presence_db = 0;
+  double reply_onset_db = 0;
+  int reply_bands_needed = 0;
 
   int chord_samples() const { return window_samples + 2 * edge_samples + hop_samples; }
   int frame_samples() const { return chords_per_frame * chord_samples(); }
@@ -114,7 +135,7 @@ struct LinkProfile {
   DetectorParams sender_detector;  // hears ACK / NACK chords
   DebounceParams debounce;
   FrameFormat frame_format = FrameFormat::Word16;
-  BinLink bins;  // Command48 only
+  HopLink hops;  // HoppedCommand only
 
   int hop_samples() const;
   int samples_for_ms(double ms) const;
@@ -125,7 +146,7 @@ struct LinkProfile {
 // The seed report's link.
 const LinkProfile& seed_profile();
 
-// A whole command per 48-bit frame in about 0.1 s: docs/protocol.md, "The fast profile".
+// A whole command per frame in about 0.1 s, built for rooms: docs/protocol.md §10.
 const LinkProfile& fast_profile();
 
 // Every profile this build knows, in the order `--profile` help lists them.

@@ -11,7 +11,7 @@ void FrameGate::reset() {
 }
 
 std::optional<Verdict> FrameGate::on_candidate(double start_ms, double heard_ms,
-                                               const std::optional<ChasedFrame>& frame, std::uint64_t read_bits) {
+                                               const std::optional<DecodedFrame>& frame, std::uint64_t read_bits) {
   if (heard_ms <= locked_until_ms_) return std::nullopt;
   if (frame) {
     cluster_open_ = false;

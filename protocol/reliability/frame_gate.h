@@ -1,4 +1,4 @@
-// Reliability layer, part 5: one verdict per frame heard — accepted once, or one NACK.
+// Reliability layer: one verdict per frame heard — accepted once, or one NACK.
 //
 // The listener offers a candidate in every window that looks like a frame: the window
 // wholly inside it and, at lower certainty, its neighbours a hop either side. The gate
@@ -18,14 +18,14 @@
 #include <cstdint>
 #include <optional>
 
-#include "reliability/chase_decoder.h"
+#include "reliability/frame_code.h"
 
 namespace dtmf::reliability {
 
 struct Verdict {
   double start_ms = 0;  // when the frame began sounding
   double heard_ms = 0;  // when the verdict was reached
-  std::optional<ChasedFrame> accepted;  // nullopt: NACK
+  std::optional<DecodedFrame> accepted;  // nullopt: NACK
   std::uint64_t read_bits = 0;          // NACK: what the cluster's first candidate read (for logs)
 };
 
@@ -33,8 +33,8 @@ class FrameGate {
  public:
   FrameGate(double lockout_ms, double cluster_gap_ms, double settle_ms = 0);
 
-  // A candidate heard at `heard_ms` reading `read_bits`, and what the chase made of it.
-  std::optional<Verdict> on_candidate(double start_ms, double heard_ms, const std::optional<ChasedFrame>& frame,
+  // A candidate heard at `heard_ms` reading `read_bits`, and what decoding made of it.
+  std::optional<Verdict> on_candidate(double start_ms, double heard_ms, const std::optional<DecodedFrame>& frame,
                                       std::uint64_t read_bits = 0);
   // Time has reached `now_ms` (after every window): a failed cluster may end in a NACK.
   std::optional<Verdict> on_time(double now_ms);

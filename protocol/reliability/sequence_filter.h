@@ -1,4 +1,4 @@
-// Reliability layer, part 6: the robot's memory of the last frame it executed.
+// Reliability layer: the robot's memory of the last frame it executed.
 //
 // The sender gives every new command the next sequence number (mod 16) and repeats the
 // number only when it retransmits the same frame after a lost ACK. So a frame whose

@@ -6,13 +6,63 @@
 
 namespace dtmf::signal {
 
-std::optional<ChordMatch> decode_chord(const TonePlan& plan, std::span<const Peak> peaks, double tolerance_hz,
-                                       double dominance_db) {
-  const double ratio = std::pow(10.0, -dominance_db / 20.0);
+namespace {
+
+// The amplitude of the loudest peak within tolerance of `frequency_hz`, or 0.
+double heard(std::span<const Peak> peaks, double frequency_hz, double tolerance_hz) {
+  double level = 0;
+  for (const Peak& peak : peaks) {
+    if (std::abs(peak.frequency_hz - frequency_hz) <= tolerance_hz) level = std::max(level, peak.amplitude);
+  }
+  return level;
+}
+
+constexpr double kOffsetStepPpm = 100;  // 1.6 Hz at 16 kHz: fine beside a 25 Hz tolerance
+
+double plan_tone_hz(const TonePlan& plan, const PlanTone& tone) {
+  return plan.band_low_hz[static_cast<std::size_t>(tone.band)] + tone.nibble * plan.step_hz;
+}
+
+// How well the peaks, read through `scale`, sit on plan tones: each matching peak counts
+// its amplitude, less the further it lies from its tone.
+double plan_fit(const TonePlan& plan, std::span<const Peak> peaks, double scale, double tolerance_hz) {
+  double fit = 0;
+  for (const Peak& peak : peaks) {
+    const double hz = peak.frequency_hz / scale;
+    if (const auto tone = match_plan_tone(plan, hz, tolerance_hz)) {
+      fit += peak.amplitude * (1.0 - std::abs(hz - plan_tone_hz(plan, *tone)) / tolerance_hz);
+    }
+  }
+  return fit;
+}
+
+// The offset in ppm (0, +step, -step, +2 step, ...: the smallest wins a tie) under which
+// the peaks fit the plan best.
+double common_offset_ppm(const TonePlan& plan, std::span<const Peak> peaks, const DetectorParams& rules) {
+  double best_ppm = 0;
+  double best_fit = plan_fit(plan, peaks, 1.0, rules.tone_tolerance_hz);
+  for (double ppm = kOffsetStepPpm; ppm <= rules.max_offset_ppm; ppm += kOffsetStepPpm) {
+    for (const double signed_ppm : {ppm, -ppm}) {
+      const double fit = plan_fit(plan, peaks, 1.0 + signed_ppm * 1e-6, rules.tone_tolerance_hz);
+      if (fit > best_fit) {
+        best_fit = fit;
+        best_ppm = signed_ppm;
+      }
+    }
+  }
+  return best_ppm;
+}
+
+}  // namespace
+
+std::optional<ChordMatch> decode_chord(const TonePlan& plan, std::span<const Peak> peaks, const DetectorParams& rules) {
+  const double offset_ppm = rules.max_offset_ppm > 0 ? common_offset_ppm(plan, peaks, rules) : 0.0;
+  const double scale = 1.0 + offset_ppm * 1e-6;
+  const double ratio = std::pow(10.0, -rules.dominance_db / 20.0);
   std::array<int, 4> nibble{-1, -1, -1, -1};
   std::array<double, 4> level{}, other{};  // the band's strongest tone, and its strongest other tone
   for (const Peak& peak : peaks) {
-    const auto tone = match_plan_tone(plan, peak.frequency_hz, tolerance_hz);
+    const auto tone = match_plan_tone(plan, peak.frequency_hz / scale, rules.tone_tolerance_hz);
     if (!tone) continue;
     const auto band = static_cast<std::size_t>(tone->band);
     if (nibble[band] == tone->nibble || nibble[band] < 0) {
@@ -32,21 +82,18 @@ std::optional<ChordMatch> decode_chord(const TonePlan& plan, std::span<const Pea
     if (other[band] > level[band] * ratio) return std::nullopt;  // two tones in one band
     frame = static_cast<std::uint16_t>(frame | (nibble[band] << (12 - 4 * band)));
   }
-  return ChordMatch{frame, *std::min_element(level.begin(), level.end())};
-}
-
-namespace {
-
-// The amplitude of the loudest peak within tolerance of `frequency_hz`, or 0.
-double heard(std::span<const Peak> peaks, double frequency_hz, double tolerance_hz) {
-  double level = 0;
-  for (const Peak& peak : peaks) {
-    if (std::abs(peak.frequency_hz - frequency_hz) <= tolerance_hz) level = std::max(level, peak.amplitude);
+  const double weakest = *std::min_element(level.begin(), level.end());
+  if (rules.crowding_peaks > 0) {
+    int crowd = 0;
+    for (const Peak& peak : peaks) {
+      const auto tone = match_plan_tone(plan, peak.frequency_hz / scale, rules.tone_tolerance_hz);
+      const bool own = tone && nibble[static_cast<std::size_t>(tone->band)] == tone->nibble;
+      if (!own && peak.amplitude >= weakest) ++crowd;
+    }
+    if (crowd >= rules.crowding_peaks) return std::nullopt;
   }
-  return level;
+  return ChordMatch{frame, weakest, offset_ppm};
 }
-
-}  // namespace
 
 std::optional<ReplyMatch> decode_reply(const TonePlan& plan, std::span<const Peak> peaks, double tolerance_hz,
                                        double dominance_db) {

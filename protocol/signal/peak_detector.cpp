@@ -5,6 +5,10 @@
 
 namespace dtmf::signal {
 
+namespace {
+constexpr double kHannScallopingGain = 1.178;  // +1.42 dB: a Hann window's worst-case loss, made good
+}  // namespace
+
 double dbfs(double amplitude) { return 20.0 * std::log10(std::max(amplitude, 1e-12)); }
 double amplitude_from_dbfs(double level_dbfs) { return std::pow(10.0, level_dbfs / 20.0); }
 
@@ -26,8 +30,12 @@ std::span<const Peak> PeakDetector::detect(std::span<const float> m) {
     const double b = std::log(m[k]);
     const double c = std::log(std::max(m[k + 1], 1e-20f));
     const double denominator = a - 2 * b + c;
-    const double delta = denominator < 0 ? 0.5 * (a - c) / denominator : 0.0;
-    const double level = std::exp(b - 0.25 * (a - c) * delta);
+    // Both clamped to what a Hann window can do: a tone lies within half a bin of its
+    // peak bin and reads at most 1.42 dB low there (its scalloping loss). Without the
+    // clamp, a neighbour near zero (a bin wholly taken off as steady background) threw
+    // the parabola and read a -25 dBFS peak as -3 dBFS.
+    const double delta = denominator < 0 ? std::clamp(0.5 * (a - c) / denominator, -0.5, 0.5) : 0.0;
+    const double level = std::min(std::exp(b - 0.25 * (a - c) * delta), static_cast<double>(m[k]) * kHannScallopingGain);
     candidates_.push_back(Peak{(static_cast<double>(k) + delta) * bin_hz_, level});
   }
   const std::size_t keep = std::min(peak_count_, candidates_.size());

@@ -9,6 +9,8 @@ ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& det
     : sample_rate_hz_(profile.sample_rate_hz),
       fft_size_(profile.analysis.fft_size),
       analyzer_(profile.analysis.fft_size, profile.sample_rate_hz),
+      background_(static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1), detector.background_rise_db_per_s,
+                  static_cast<double>(profile.sample_rate_hz) / profile.hop_samples(), static_cast<float>(amplitude_from_dbfs(detector.noise_gate_dbfs))),
       peaks_(detector, analyzer_.bin_hz(), static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1)),
       decode_(std::move(decode)),
       debouncer_(profile.debounce),
@@ -20,6 +22,7 @@ ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& det
 void ToneListener::reset() {
   window_.clear();
   debouncer_.reset();
+  background_.reset();
   last_peaks_ = {};
 }
 
@@ -30,7 +33,7 @@ std::span<const Heard> ToneListener::feed(std::span<const float> samples) {
 }
 
 void ToneListener::analyze_window() {
-  last_peaks_ = peaks_.detect(analyzer_.analyze(window_.window()));
+  last_peaks_ = peaks_.detect(background_.remove(analyzer_.analyze(window_.window())));
   const double end_ms = static_cast<double>(window_.samples_fed()) * 1000.0 / sample_rate_hz_;
   if (const auto pass = debouncer_.on_window(end_ms, decode_(last_peaks_))) {
     const double half_window_ms = 500.0 * fft_size_ / sample_rate_hz_;
@@ -41,13 +44,12 @@ void ToneListener::analyze_window() {
 
 ToneListener chord_listener(const LinkProfile& profile) {
   return ToneListener(profile, profile.robot_detector,
-                [plan = profile.tones, tolerance = profile.robot_detector.tone_tolerance_hz,
-                 dominance = profile.robot_detector.dominance_db](
-                    std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
-                  const auto chord = decode_chord(plan, peaks, tolerance, dominance);
-                  if (!chord) return std::nullopt;
-                  return Debouncer::Detection{chord->frame, chord->level};
-                });
+                      [plan = profile.tones, rules = profile.robot_detector](
+                          std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
+                        const auto chord = decode_chord(plan, peaks, rules);
+                        if (!chord) return std::nullopt;
+                        return Debouncer::Detection{chord->frame, chord->level};
+                      });
 }
 
 ToneListener reply_listener(const LinkProfile& profile) {

@@ -1,7 +1,8 @@
-// Signal layer, part 7: the listening side put together — audio in, debounced symbols out.
+// Signal layer: the listening side put together — audio in, debounced symbols out.
 //
 //   samples -> sliding window (fft_size, hop = rate / analyses_per_s) -> spectrum
-//           -> band-pass, gate, N loudest peaks -> chord or reply -> debouncer
+//           -> less each bin's steady background -> band-pass, gate, N loudest peaks
+//           -> chord or reply -> debouncer
 //
 // chord_listener() makes the robot's (command chords, robot detector), reply_listener()
 // the sender's (ACK / NACK, sender detector). Times are milliseconds since the first sample
@@ -21,6 +22,7 @@
 #include "signal/peak_detector.h"
 #include "signal/sliding_window.h"
 #include "signal/spectrum.h"
+#include "signal/steady_background.h"
 #include "signal/tone_plan.h"
 
 namespace dtmf::signal {
@@ -52,6 +54,7 @@ class ToneListener {
   int sample_rate_hz_;
   int fft_size_;
   SpectrumAnalyzer analyzer_;
+  SteadyBackground background_;
   PeakDetector peaks_;
   Decode decode_;
   Debouncer debouncer_;

@@ -9,6 +9,7 @@ DTMF_PACKAGES=(
   libspdlog-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   pulseaudio pulseaudio-utils libasound2-plugins alsa-utils
   postgresql libpqxx-dev cyclonedds-dev cyclonedds-tools
+  libfec-dev  # Reed-Solomon codecs (protocol/reliability/reed_solomon.h)
   libfastrtps-dev fastddsgen  # tests/interop/fastdds: ROS 2 Jazzy's default middleware as the subscriber
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
   espeak-ng sox openssl

@@ -165,3 +165,33 @@ TEST_F(AgentOffline, NoAudioDeviceStopsTheAgentWithWhatToDo) {
   EXPECT_NE(r.out.find("no audio device found"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("wav:FILE"), std::string::npos) << r.out;
 }
+
+// The sender's ear offline: the agent's answers to a fast sequence, written to a WAV, read
+// back by `dtmfctl decode --replies`: one ACK per frame, each naming that frame's sequence
+// number, in order; and a seed drive's three ACKs.
+TEST_F(AgentOffline, DecodeRepliesHearsTheAgentsAnswersNamingEachFrame) {
+  const auto sent = json_lines(
+      run_command(std::string(DTMFCTL_PATH) + " encode --json --profile fast --wav " + path("f.wav") + " sequence").out);
+  ASSERT_EQ(sent.size(), 27u);
+  ASSERT_EQ(agent(path("f.wav"), "--profile fast --ack-out wav:" + path("f_acks.wav")).exit_code, 0);
+  const auto r = run_command(std::string(DTMFCTL_PATH) + " decode --json --replies --profile fast " + path("f_acks.wav"));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto replies = json_lines(r.out);
+  ASSERT_EQ(replies.size(), sent.size()) << r.out;
+  for (std::size_t i = 0; i < sent.size(); ++i) {
+    EXPECT_EQ(replies[i]["reply"], "ack") << i;
+    EXPECT_EQ(replies[i]["sequence"], sent[i]["sequence"]) << i;
+    if (i > 0) {
+      EXPECT_GT(replies[i]["t_ms"].get<double>(), replies[i - 1]["t_ms"].get<double>());
+    }
+  }
+
+  encode("drive --speed 50 --duration 2", path("s.wav"));
+  ASSERT_EQ(agent(path("s.wav"), "--profile seed --ack-out wav:" + path("s_acks.wav")).exit_code, 0);
+  const auto human = run_command(std::string(DTMFCTL_PATH) + " decode --replies " + path("s_acks.wav"));
+  ASSERT_EQ(human.exit_code, 0) << human.out;
+  EXPECT_NE(human.out.find("3 ACKs, 0 NACKs heard (profile seed)"), std::string::npos) << human.out;
+  // The frames themselves are no replies: decoding the commands' recording as replies hears none.
+  const auto none = run_command(std::string(DTMFCTL_PATH) + " decode --replies " + path("s.wav"));
+  EXPECT_NE(none.out.find("0 ACKs, 0 NACKs heard"), std::string::npos) << none.out;
+}

@@ -4,7 +4,7 @@
 #include "agent.h"
 #include "command/word_codec.h"
 #include "link/sender_path.h"
-#include "link/transmit_plan.h"
+#include "link/link.h"
 #include "physical/wav_file.h"
 #include "signal/tone_listener.h"
 
@@ -26,10 +26,18 @@ class RecordingOutput : public CmdVelOutput {
   std::vector<Published> published;
 };
 
+// What the agent plays for an intact (ACK) or broken (NACK) frame of `profile`.
+std::vector<float> answer(const LinkProfile& profile, bool intact, std::optional<std::uint8_t> sequence = std::nullopt) {
+  link::Reception r;
+  r.intact = intact;
+  r.sequence = sequence;
+  return link::link_for(profile).answer_audio(r);
+}
+
 class RecordingReplies : public ReplyPlayer {
  public:
   void play(std::vector<float> audio, double audio_ms) override {
-    const bool ack = audio == reply_audio(seed_profile(), true, std::nullopt);
+    const bool ack = audio == answer(seed_profile(), true);
     replies.emplace_back(ack ? signal::Reply::Ack : signal::Reply::Nack, audio_ms);
   }
   void finish(double) override {}
@@ -111,8 +119,8 @@ TEST(Agent, TheReplyTimelinePutsEachChordWhereItsFrameWasHeard) {
   const auto audio = link::render_frames(p, link::plan_command(p, command::Stop{}));
   {
     ReplyTimeline timeline(p, std::make_unique<physical::WavFileSink>(path, p.sample_rate_hz));
-    timeline.play(reply_audio(seed_profile(), true, std::nullopt), 100);
-    timeline.play(reply_audio(seed_profile(), false, std::nullopt), 1100);
+    timeline.play(answer(seed_profile(), true), 100);
+    timeline.play(answer(seed_profile(), false), 1100);
     timeline.finish(2000);
   }
   const auto written = physical::read_audio_file(path, p.sample_rate_hz);
@@ -132,7 +140,7 @@ TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) 
   const LinkProfile& fast = fast_profile();
   const LinkProfile& seed = seed_profile();
   std::uint8_t sequence = 5;
-  const auto frame = link::plan_transmission(fast, command::DriveForDuration{40, 1}, sequence).front();
+  const auto frame = link::link_for(fast).plan(command::DriveForDuration{40, 1}, sequence).front();
   std::vector<float> audio(static_cast<std::size_t>(fast.samples_for_ms(100)), 0.0f);
   const auto append = [&](const std::vector<float>& more, double silence_ms) {
     audio.insert(audio.end(), more.begin(), more.end());
@@ -164,7 +172,7 @@ TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) 
   }
 
   ASSERT_EQ(heard.size(), 5u);  // two fast frames, three seed words
-  const auto named_ack = reply_audio(fast, true, frame.sequence);
+  const auto named_ack = answer(fast, true, frame.sequence);
   for (int i : {0, 1}) {
     EXPECT_EQ(heard[i].profile, &fast);
     EXPECT_TRUE(heard[i].intact);
@@ -177,7 +185,7 @@ TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) 
   for (int i : {2, 3, 4}) {
     EXPECT_EQ(heard[i].profile, &seed);
     EXPECT_TRUE(heard[i].word.has_value());
-    EXPECT_EQ(replies.answers[i], reply_audio(seed, true, std::nullopt));
+    EXPECT_EQ(replies.answers[i], answer(seed, true));
   }
   EXPECT_TRUE(heard[4].command.has_value());
   EXPECT_GT(output.published.back().velocity.linear_mps, 0) << "the seed's DRIVE_FORWARD runs on";

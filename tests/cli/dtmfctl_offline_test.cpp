@@ -64,8 +64,8 @@ TEST_F(Dtmfctl, TheFastProfileEncodesAWholeCommandPerFrameAndDecodesItBackThroug
   ASSERT_EQ(enc.exit_code, 0) << enc.out;
   const auto sent = json_lines(enc.out);
   ASSERT_EQ(sent.size(), 27u) << "one frame per command of the seed's sequence";
-  EXPECT_EQ(sent[0]["frame"].get<std::string>().size(), 48u);
-  EXPECT_EQ(sent[0]["tones_hz"].size(), 8u);
+  EXPECT_EQ(sent[0]["frame"].get<std::string>().size(), 50u) << "address, sequence, command, CRC-16";
+  EXPECT_EQ(sent[0]["tones_hz"].size(), 16u) << "two chords of eight tones";
   const Result sim = run("simulate --profile fast " + path("f.wav") + " " + path("g.wav") +
                          " --distance 5 --noise pink --noise-dbfs -45 --reverb-rt60 0.3");
   ASSERT_EQ(sim.exit_code, 0) << sim.out;

@@ -37,9 +37,12 @@ TEST(CommandPayload, OutOfRangeValuesAreRefusedNamingTheField) {
 }
 
 TEST(CommandPayload, PayloadsThatNoSenderMakesAreRefused) {
-  EXPECT_FALSE(decode_payload(0x1000000).command) << "MODE_SELECT is not a command";
-  EXPECT_FALSE(decode_payload(0xF000000).command) << "kind 15 is no mode";
-  EXPECT_FALSE(decode_payload(0x6001000).command) << "STOP with a field";
+  // Kinds: 0 RESET, 1 STOP, 2 DRIVE_FOR_DURATION, 3 TURN_FOR_DURATION, 4 DRIVE_FORWARD,
+  // 5 TURN; 6 and 7 reserved.
+  EXPECT_FALSE(decode_payload(0x6000000).command) << "kind 6 is reserved (velocity)";
+  EXPECT_FALSE(decode_payload(0x7000000).command) << "kind 7 is reserved (extended frame)";
+  EXPECT_FALSE(decode_payload(0x8000000).command) << "wider than 27 bits";
+  EXPECT_FALSE(decode_payload(0x1001000).command) << "STOP with a field";
   EXPECT_FALSE(decode_payload(0x0000001).command) << "RESET with a field";
   EXPECT_FALSE(decode_payload(0x4800001).command) << "DRIVE_FORWARD with a duration";
   EXPECT_FALSE(decode_payload(0x2000800).command) << "a speed of code 0";

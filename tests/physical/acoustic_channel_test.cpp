@@ -132,7 +132,8 @@ TEST(AcousticChannel, ClockOffsetStretchesTheRecordingAndShiftsTones) {
   const auto in = tone(12000, 1.0);
   std::vector<float> out;
   for (std::size_t i = 0; i < in.size(); i += 480) channel.process(std::span(in).subspan(i, 480), out);
-  EXPECT_NEAR(static_cast<double>(out.size()), in.size() * 1.001, 3.0);
+  // The resampler's sinc looks ahead about 47 samples, which it holds back until more come.
+  EXPECT_NEAR(static_cast<double>(out.size()), in.size() * 1.001 - 47, 5.0);
   // A faster microphone clock hears every tone lower by the same fraction.
   signal::SpectrumAnalyzer analyzer(4096, kRate);
   signal::PeakDetector peaks(DetectorParams{4000, 17000, 1, -60, 25}, analyzer.bin_hz(), 2049);

@@ -39,7 +39,7 @@ def test_the_fast_profile_sends_a_whole_command_in_one_named_frame(robot):
     assert [e.event for e in events] == [FrameEvent.QUEUED, FrameEvent.TRANSMITTING, FrameEvent.ACK,
                                          FrameEvent.CONFIRMED]
     ack = events[2]
-    assert (ack.profile, ack.word, ack.frame_count, len(ack.frame_bits), len(ack.tones_hz)) == ("fast", None, 1, 48, 8)
+    assert (ack.profile, ack.word, ack.frame_count, len(ack.frame_bits), len(ack.tones_hz)) == ("fast", None, 1, 50, 16)
     assert ack.sequence is not None and 0 < ack.response_time_ms < 500
     assert robot.reset().result().profile == "seed"  # the server's default
     with pytest.raises(BadRequest) as raised:

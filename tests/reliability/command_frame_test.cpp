@@ -1,15 +1,27 @@
-// The fast profile's reliability layer: the 48-bit frame, the chase decoder, the frame
-// gate (one verdict per frame) and the sequence filter (no double execution).
+// The fast profile's reliability layer: the 50-bit frame, its Reed-Solomon code and the
+// decoding of tones heard with unequal certainty, the frame gate (one verdict per frame),
+// the sequence filter (no double execution) and the reply code.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numeric>
 #include <random>
 
-#include "reliability/chase_decoder.h"
 #include "reliability/command_frame.h"
+#include "reliability/frame_code.h"
 #include "reliability/frame_gate.h"
+#include "reliability/reply_code.h"
 #include "reliability/sequence_filter.h"
 
 using namespace dtmf::reliability;
+
+namespace {
+std::array<SymbolReading, kCodeSymbols> readings_of(const CodeSymbols& symbols) {
+  std::array<SymbolReading, kCodeSymbols> r{};
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = {symbols[i], 100.0f, true};
+  return r;
+}
+}  // namespace
 
 TEST(Crc16, MatchesCcittFalseReferenceValues) {
   // binascii.crc_hqx(data, 0xFFFF) in Python computes CRC-16/CCITT-FALSE.
@@ -17,80 +29,91 @@ TEST(Crc16, MatchesCcittFalseReferenceValues) {
   EXPECT_EQ(crc16(0x3132333435363738ull, 64), 0xA12B);  // "12345678"
 }
 
-TEST(CommandFrame, PacksSequencePayloadAndCrcAndUnpacksThem) {
-  const CommandFrame f{11, 0x2ABCDEF};
+TEST(CommandFrame, PacksAddressSequencePayloadAndCrcAndUnpacksThem) {
+  const CommandFrame f{5, 11, 0x5ABCDEF};
   const std::uint64_t bits = pack(f);
-  EXPECT_EQ(bits >> 44, 11u);
-  EXPECT_EQ((bits >> 16) & kPayloadMask, 0x2ABCDEFu);
-  EXPECT_EQ(bits & 0xFFFF, crc16(bits >> 16, 32));
+  EXPECT_EQ(bits >> 47, 5u);
+  EXPECT_EQ((bits >> 43) & 0xF, 11u);
+  EXPECT_EQ((bits >> 16) & kFramePayloadMask, 0x5ABCDEFu);
+  EXPECT_EQ(bits & 0xFFFF, crc16(bits >> 16, 34));
   EXPECT_EQ(unpack(bits), f);
-  EXPECT_EQ(from_symbols(to_symbols(bits)), bits);
+  EXPECT_FALSE(unpack(bits ^ (1ull << 30))) << "a flipped bit fails the CRC";
   EXPECT_FALSE(unpack(0).has_value()) << "the all-zero frame is not a codeword";
+  const CodeSymbols symbols = encode_symbols(bits);
+  EXPECT_EQ(data_bits(std::span<const std::uint8_t>(symbols).first(kCodeDataSymbols)), bits);
 }
 
-TEST(CommandFrame, EveryWrongSymbolAndEveryPairOfWrongBitsIsCaught) {
+// RS(16, 10) with two parity symbols kept for detection: one or two wrong tones anywhere,
+// or up to four unheard ones, and the frame comes back; three wrong tones are refused
+// (the code could correct them, but then noise would "decode" far too often).
+TEST(FrameCode, CorrectsTwoWrongTonesOrFourUnheardAndRefusesThree) {
   std::mt19937 rng(7);
-  for (int trial = 0; trial < 200; ++trial) {
-    const CommandFrame f{static_cast<std::uint8_t>(rng() & 15), static_cast<std::uint32_t>(rng()) & kPayloadMask};
-    const Symbols good = to_symbols(pack(f));
-    for (std::size_t s = 0; s < kCommandSymbols; ++s) {
-      for (int v = 0; v < 64; ++v) {
-        if (v == good[s]) continue;
-        Symbols bad = good;
-        bad[s] = static_cast<std::uint8_t>(v);
-        ASSERT_FALSE(unpack(from_symbols(bad))) << "symbol " << s << " -> " << v;
-      }
-    }
+  for (int trial = 0; trial < 2000; ++trial) {
+    const CommandFrame f{0, static_cast<std::uint8_t>(rng() & 15), static_cast<std::uint32_t>(rng() & kFramePayloadMask)};
     const std::uint64_t bits = pack(f);
-    for (int i = 0; i < 48; ++i) {
-      for (int j = i + 1; j < 48; ++j) ASSERT_FALSE(unpack(bits ^ (1ull << i) ^ (1ull << j)));
-    }
+    const CodeSymbols clean = encode_symbols(bits);
+    std::array<int, kCodeSymbols> order{};
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), rng);
+    auto wrong = [&](int count) {
+      auto r = readings_of(clean);
+      for (int i = 0; i < count; ++i) {
+        auto& s = r[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
+        s.symbol = static_cast<std::uint8_t>((s.symbol + 1 + rng() % 31) % 32);
+      }
+      return r;
+    };
+    const auto two = decode_frame(wrong(2), 4);
+    ASSERT_TRUE(two) << trial;
+    EXPECT_EQ(two->frame, f);
+    EXPECT_EQ(two->errors, 2);
+    auto unheard = wrong(4);
+    for (int i = 0; i < 4; ++i) unheard[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])].heard = false;
+    const auto four = decode_frame(unheard, 4);
+    ASSERT_TRUE(four) << trial;
+    EXPECT_EQ(four->frame, f);
+    EXPECT_EQ(four->erasures, 4);
+    EXPECT_FALSE(decode_frame(wrong(3), 0)) << "three errors and no erasures allowed";
   }
 }
 
-namespace {
-SymbolReading reading_of(const CommandFrame& f) {
-  SymbolReading r;
-  r.symbols = to_symbols(pack(f));
-  r.runner_up = r.symbols;
-  for (auto& u : r.runner_up) u = static_cast<std::uint8_t>((u + 1) % 64);
-  r.certainty.fill(10.0f);
-  return r;
+// The least certain tones are erased first: three wrong tones are too many errors, but
+// when they were the least certain, erasing two of them leaves one error to correct. The
+// same three wrong tones heard with confidence, and right tones doubted, are refused.
+TEST(FrameCode, ErasesTheLeastCertainTonesFirst) {
+  const CommandFrame f{0, 3, 0x1234567};
+  const CodeSymbols clean = encode_symbols(pack(f));
+  auto doubted_wrong = readings_of(clean);
+  auto doubted_right = readings_of(clean);
+  for (std::size_t i : {2u, 9u, 13u}) {
+    for (auto* r : {&doubted_wrong, &doubted_right}) (*r)[i].symbol = static_cast<std::uint8_t>((clean[i] + 5) % 32);
+    doubted_wrong[i].certainty = 1.1f;  // barely over its runner-up
+  }
+  for (std::size_t i : {0u, 5u, 7u, 11u}) doubted_right[i].certainty = 1.05f;
+  const auto decoded = decode_frame(doubted_wrong, 4);
+  ASSERT_TRUE(decoded);
+  EXPECT_EQ(decoded->frame, f);
+  EXPECT_EQ(decoded->erasures, 2);
+  EXPECT_EQ(decoded->errors, 1);
+  EXPECT_FALSE(decode_frame(doubted_right, 4));
 }
-}  // namespace
 
-TEST(ChaseDecoder, TakesTheFrameAsHeardWhenItsCrcHolds) {
-  const CommandFrame f{3, 0x1234567};
-  const auto got = chase_decode(reading_of(f), 2);
-  ASSERT_TRUE(got);
-  EXPECT_EQ(got->frame, f);
-  EXPECT_EQ(got->substitutions, 0);
-}
-
-TEST(ChaseDecoder, RepairsTheLeastCertainSymbolWithItsRunnerUpOnly) {
-  const CommandFrame f{9, 0x0ABCDEF};
-  SymbolReading r = reading_of(f);
-  const auto truth = r.symbols[5];
-  r.symbols[5] = 17 == truth ? 18 : 17;  // heard wrong ...
-  r.runner_up[5] = truth;                // ... with the truth close behind
-  r.certainty[5] = 1.1f;
-  r.certainty[2] = 1.5f;
-  const auto got = chase_decode(r, 2);
-  ASSERT_TRUE(got);
-  EXPECT_EQ(got->frame, f);
-  EXPECT_EQ(got->substitutions, 1);
-
-  r.certainty[5] = 20.0f;  // no longer among the two least certain: not tried
-  EXPECT_FALSE(chase_decode(r, 2));
-  r.certainty[5] = 1.1f;
-  EXPECT_FALSE(chase_decode(r, 0)) << "no chase asked for";
-  r.symbols[0] = static_cast<std::uint8_t>((r.symbols[0] + 5) % 64);  // a second wrong symbol
-  EXPECT_FALSE(chase_decode(r, 2));
+// Noise read as sixteen random tones: with two parity symbols kept and the CRC, not one of a
+// 300 000 random words decodes (each would be a wrong accept).
+TEST(FrameCode, RandomTonesNeverDecode) {
+  std::mt19937 rng(9);
+  int decoded = 0;
+  for (int trial = 0; trial < 300000; ++trial) {
+    std::array<SymbolReading, kCodeSymbols> r{};
+    for (auto& s : r) s = {static_cast<std::uint8_t>(rng() & 31), 1.0f + static_cast<float>(rng() % 100) / 10.0f, rng() % 8 != 0};
+    decoded += decode_frame(r, 4) ? 1 : 0;
+  }
+  EXPECT_EQ(decoded, 0);
 }
 
 TEST(FrameGate, AcceptsAFrameOnceAndDropsItsNeighbours) {
   FrameGate gate(30, 25);
-  const ChasedFrame f{{1, 42}, pack({1, 42}), 0};
+  const DecodedFrame f{{0, 1, 42}, pack({0, 1, 42}), 0, 0};
   EXPECT_FALSE(gate.on_candidate(0, 100, std::nullopt));  // a straddling window before it
   const auto v = gate.on_candidate(0, 110, f);
   ASSERT_TRUE(v);
@@ -115,17 +138,17 @@ TEST(FrameGate, AClusterOfFailedCandidatesEndsInOneNack) {
 
 TEST(SequenceFilter, ARetransmissionIsNotExecutedTwiceButANewCommandIs) {
   SequenceFilter filter;
-  EXPECT_TRUE(filter.first_time({4, 100}));
-  EXPECT_FALSE(filter.first_time({4, 100})) << "the same frame after a lost ACK";
-  EXPECT_TRUE(filter.first_time({5, 100})) << "the same command sent anew";
-  EXPECT_TRUE(filter.first_time({5, 101})) << "same number, different frame: a new sender";
+  EXPECT_TRUE(filter.first_time({0, 4, 100}));
+  EXPECT_FALSE(filter.first_time({0, 4, 100})) << "the same frame after a lost ACK";
+  EXPECT_TRUE(filter.first_time({0, 5, 100})) << "the same command sent anew";
+  EXPECT_TRUE(filter.first_time({0, 5, 101})) << "same number, different frame: a new sender";
   filter.reset();
-  EXPECT_TRUE(filter.first_time({5, 101}));
+  EXPECT_TRUE(filter.first_time({0, 5, 101}));
 }
 
 TEST(FrameGate, AFailedClusterWaitsToSettleAndAnAcceptClosesItSilently) {
   FrameGate gate(70, 25, 80);
-  ChasedFrame f;
+  DecodedFrame f;
   f.bits = 1;
   // A room's tail paired with the next frame's first chord, then that frame's own pair.
   EXPECT_FALSE(gate.on_candidate(0, 100, std::nullopt));
@@ -139,4 +162,20 @@ TEST(FrameGate, AFailedClusterWaitsToSettleAndAnAcceptClosesItSilently) {
   ASSERT_TRUE(nack);
   EXPECT_FALSE(nack->accepted);
   EXPECT_FALSE(gate.on_time(1300));
+}
+
+TEST(ReplyCode, EveryReplyIsReadFromAnyThreeOfItsFourBands) {
+  for (int r = 0; r <= 16; ++r) {
+    const NamedReply reply{r < 16, static_cast<std::uint8_t>(r % 16)};
+    const ReplyTones word = reply_codeword(reply);
+    std::array<int, 4> tones{word[0], word[1], word[2], word[3]};
+    EXPECT_EQ(read_reply(tones, 3), reply);
+    for (std::size_t lost = 0; lost < 4; ++lost) {
+      auto three = tones;
+      three[lost] = -1;
+      EXPECT_EQ(read_reply(three, 3), reply) << r << " without band " << lost;
+      three[(lost + 1) % 4] = -1;
+      EXPECT_FALSE(read_reply(three, 3)) << "two bands are not enough";
+    }
+  }
 }

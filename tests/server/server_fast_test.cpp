@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "command/command_payload.h"
-#include "link/transmit_plan.h"
+#include "link/link.h"
 #include "live_system.h"
 
 using namespace dtmf;
@@ -40,8 +40,8 @@ TEST(ServerFast, ADriveIsOneNamedFrameConfirmedAndExecutedWhole) {
     EXPECT_FALSE(p.has_word()) << "a fast frame carries a command, not a word";
     if (p.event() == v1::FRAME_EVENT_TRANSMITTING) {
       ++transmitted;
-      EXPECT_EQ(p.frame_bits().size(), 48u);
-      EXPECT_EQ(p.tones_hz_size(), 8);
+      EXPECT_EQ(p.frame_bits().size(), 50u);
+      EXPECT_EQ(p.tones_hz_size(), 16);
       ASSERT_TRUE(p.has_sequence());
       sequence = p.sequence();
     }
@@ -72,8 +72,7 @@ TEST(ServerFast, ConsecutiveCommandsGetConsecutiveSequenceNumbersAndMixWithTheSe
       // The next number, or the one after it when its chords would repeat a band's tone
       // (about 1 frame in 16; docs/protocol.md §10): what the planner picks from *next.
       std::uint8_t planned_from = *next;
-      const auto planned = link::plan_transmission(fast_profile(), command::DriveForDuration{speed, 1},
-                                                   planned_from);
+      const auto planned = link::link_for(fast_profile()).plan(command::DriveForDuration{speed, 1}, planned_from);
       EXPECT_EQ(sequence, planned.at(0).sequence) << "from " << int{*next};
       EXPECT_LE((sequence + 16 - *next) % 16, 2) << "a number is skipped only for a frame that repeats a tone";
     }

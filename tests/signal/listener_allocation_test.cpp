@@ -1,5 +1,5 @@
-// Signal layer: once running, the listeners allocate nothing per analysis window (issue
-// [7/7]: the receive path must keep up on a Raspberry Pi, where a heap call per 50 ms
+// Signal layer: once running, the listeners allocate nothing per analysis window (the
+// receive path must keep up on a Raspberry Pi, where a heap call per 50 ms
 // window is a real cost and a source of jitter). Its own executable: it replaces the
 // global operator new to count every allocation the process makes.
 #include <gtest/gtest.h>
@@ -9,12 +9,14 @@
 #include <new>
 
 #include "command/test_sequence.h"
-#include "link/command_frame_path.h"
+#include "link/hop_frame_path.h"
+#include "link/link.h"
 #include "link/sender_path.h"
 #include "physical/noise.h"
 #include "profile/link_profile.h"
-#include "signal/bin_reply_listener.h"
-#include "signal/bin_synthesizer.h"
+#include "reliability/reply_code.h"
+#include "signal/hop_reply.h"
+#include "signal/hop_synthesizer.h"
 #include "signal/synthesizer.h"
 #include "signal/tone_listener.h"
 
@@ -97,30 +99,34 @@ TEST(ListenerAllocation, TheSendersListenerAllocatesNothingWhileHearingAnswers) 
   EXPECT_EQ(heard, 20u);
 }
 
-// The fast profile's robot path (listener, chase, gate, payload) and the sender's reply
-// listener: 65 frames of the seed sequence back to back, then 17 named replies.
+// The fast profile's robot path (listener, Reed-Solomon, gate, payload) and the sender's reply
+// listener: the seed sequence's 27 commands as fast frames, then 17 named replies.
 TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFramesAndReplies) {
   const LinkProfile& profile = fast_profile();
+  const link::Link& fast = link::link_for(profile);
   std::vector<float> audio;
   std::uint8_t seq = 0;
   std::size_t sent = 0;
   for (const auto& command : command::seed_test_sequence()) {
-    const auto f = link::render_command_frame(profile, link::plan_command_frame(command, seq++));
+    const auto f = fast.plan(command, seq).front().audio;
     audio.insert(audio.end(), f.begin(), f.end());
+    audio.resize(audio.size() + 4800, 0.0f);  // the ACK's time
     ++sent;
   }
-  audio.resize(audio.size() + 4800, 0.0f);
   physical::NoiseSource noise(physical::parse_noise("pink", -40), profile.sample_rate_hz, 7);
   noise.add_to(audio);
   std::vector<float> replies;
   for (int s = 0; s <= 16; ++s) {
-    const auto r = signal::synthesize_named_reply(profile, {s < 16, static_cast<std::uint8_t>(s % 16)});
+    const auto r = signal::synthesize_hopped_reply(profile, reliability::reply_codeword({s < 16, static_cast<std::uint8_t>(s % 16)}));
     replies.insert(replies.end(), r.begin(), r.end());
     replies.resize(replies.size() + 2400, 0.0f);
   }
   for (std::size_t block : {std::size_t{480}, std::size_t{2400}, std::size_t{4096}}) {
-    link::CommandFramePath path(profile);
-    signal::BinReplyListener reply_listener(profile);
+    link::HopFramePath path(profile);
+    signal::HopReplyListener reply_listener(profile, [](const std::array<int, 4>& tones) {
+      const auto r = reliability::read_reply(tones, 3);
+      return r ? (r->ack ? r->sequence : 16) : -1;
+    });
     std::size_t frames = 0, answers = 0;
     const long before = g_allocations.load();
     for (std::size_t at = 0; at < audio.size(); at += block) {

@@ -52,7 +52,7 @@ class Progress:
     frame_count: int
     attempt: int                  # 1 = first transmission
     word: Optional[int]           # seed frames; None for fast frames (a whole command each)
-    frame_bits: str               # "1011001011011101" (48 bits under the fast profile)
+    frame_bits: str               # "1011001011011101" (50 bits under the fast profile)
     tones_hz: tuple[float, ...] = field(default_factory=tuple)
     response_time_ms: float = 0.0  # with ACK / NACK: chord start to the answer
     detail: str = ""

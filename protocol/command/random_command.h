@@ -1,0 +1,13 @@
+// Command abstraction layer: a random valid command (seeded), for benchmarks and tests that
+// need commands of every kind with parameters drawn over their whole ranges.
+#pragma once
+
+#include <random>
+
+#include "command/command.h"
+
+namespace dtmf::command {
+
+Command random_command(std::mt19937_64& rng);
+
+}  // namespace dtmf::command

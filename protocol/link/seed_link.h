@@ -1,0 +1,30 @@
+// The `seed` profile's link: the report's words, CRC-4 frames and four-tone chords behind
+// the Link interface (link.h). An ACK names no frame, so any ACK answers the frame on air.
+#pragma once
+
+#include "link/link.h"
+#include "link/sender_path.h"
+
+namespace dtmf::link {
+
+class SeedLink final : public Link {
+ public:
+  using Link::Link;
+  std::vector<TransmitFrame> plan(const command::Command& command, std::uint8_t& next_sequence) const override;
+  std::optional<TransmitFrame> plan_word(std::uint32_t word) const override;
+  command::Command as_received(const command::Command& command) const override;
+  int payload_bits(const command::Command& command) const override;
+  TransmitFrame random_frame(std::uint64_t seed) const override;
+  double frame_start_ms(std::size_t index) const override;
+  std::unique_ptr<FrameReceiver> receiver() const override;
+  std::vector<float> answer_audio(const Reception& reception) const override;
+  int receiver_block_samples() const override;
+  std::unique_ptr<AnswerListener> answer_listener() const override;
+  int answer_block_samples() const override;
+  bool answers(const Answer& answer, const TransmitFrame& frame) const override;
+
+ private:
+  TransmitFrame transmit_frame(const PlannedFrame& planned) const;
+};
+
+}  // namespace dtmf::link

@@ -1,0 +1,275 @@
+#include "signal/hop_listener.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace dtmf::signal {
+
+namespace {
+// Room either side of a band for tones moved by a frequency offset, and for a guard bin.
+constexpr int kMarginBins = 4;
+constexpr int kOffsetStepPpm = 50;
+// Hypotheses closer than this read the same bins over the whole plan: try one of them.
+constexpr int kSameHypothesisPpm = 150;
+// The most the middle half of a frame's tones may disagree on their offset to be tracked:
+// a quarter bin at 10 kHz.
+constexpr float kTrackSpreadPpm = 600.0f;
+}  // namespace
+
+HopListener::HopListener(const LinkProfile& profile)
+    : hops_(profile.hops),
+      sample_rate_hz_(profile.sample_rate_hz),
+      hop_(profile.hops.hop_samples),
+      hops_per_chord_(profile.hops.chord_samples() / profile.hops.hop_samples),
+      presence_ratio_(static_cast<float>(std::pow(10.0, profile.hops.presence_db / 10.0))),
+      onset_ratio_(static_cast<float>(std::pow(10.0, profile.hops.onset_db / 10.0))),
+      gate_ratio_(static_cast<float>(std::pow(10.0, profile.hops.gate_db / 10.0))),
+      rise_per_hop_(static_cast<float>(
+          std::pow(10.0, profile.hops.background_rise_db_per_s * profile.hops.hop_samples / profile.sample_rate_hz / 10.0))),
+      lo_bin_([&] {
+        int lo = std::numeric_limits<int>::max();
+        for (const auto& chord : profile.hops.band_first_bin) lo = std::min(lo, *std::min_element(chord.begin(), chord.end()));
+        return lo - kMarginBins;
+      }()),
+      hi_bin_([&] {
+        int hi = 0;
+        for (const auto& chord : profile.hops.band_first_bin) hi = std::max(hi, *std::max_element(chord.begin(), chord.end()));
+        const int top = hi + profile.hops.tones_per_band;
+        return top + kMarginBins + static_cast<int>(std::ceil(top * profile.hops.max_offset_ppm * 1e-6));
+      }()),
+      bins_(profile.hops.window_samples, lo_bin_, hi_bin_ - lo_bin_),
+      window_(static_cast<std::size_t>(profile.hops.window_samples), static_cast<std::size_t>(profile.hops.hop_samples)) {
+  if (profile.frame_format != FrameFormat::HoppedCommand || hops_.chords_per_frame != 2 ||
+      hops_.chord_samples() % hop_ != 0) {
+    throw std::invalid_argument("profile '" + profile.name + "' has no two-chord hopped plan with chords a whole number of hops long");
+  }
+  const auto bins = static_cast<std::size_t>(hi_bin_ - lo_bin_);
+  background_.assign(bins, std::numeric_limits<float>::max());
+  ring_.resize(static_cast<std::size_t>(2 * hops_per_chord_ + 1));
+  for (Window& w : ring_) {
+    w.power.assign(bins, 0.0f);
+    w.excess.assign(bins, 0.0f);
+  }
+  scratch_.reserve(static_cast<std::size_t>(hops_.tones_per_band));
+  floor_.reserve(static_cast<std::size_t>(hops_.tones_per_band));
+  found_.reserve(96);  // three hypotheses a window, 32 windows (a 16 000-sample block) a feed
+}
+
+std::span<const HopCandidate> HopListener::feed(std::span<const float> samples) {
+  // A sink that takes nothing, so that every hypothesis is built, and keeps them all.
+  struct Collect final : CandidateSink {
+    std::vector<HopCandidate>& found;
+    explicit Collect(std::vector<HopCandidate>& f) : found(f) {}
+    bool take(const HopCandidate& c) override {
+      found.push_back(c);
+      return false;
+    }
+    void none_taken(const HopCandidate&) override {}
+  } collect(found_);
+  found_.clear();
+  feed(samples, collect);
+  return found_;
+}
+
+void HopListener::feed(std::span<const float> samples, CandidateSink& sink) {
+  window_.feed(samples, [&] { analyze_window(sink); });
+}
+
+void HopListener::analyze_window(CandidateSink& sink) {
+  newest_ = (newest_ + 1) % ring_.size();
+  Window& now = ring_[newest_];
+  bins_.analyze(window_.window(), now.power);
+  // A bin's background falls with its power at once and rises at most rise_per_hop_: a
+  // steady tone (a whine) becomes background within seconds, a chord's tone never does.
+  for (std::size_t i = 0; i < now.power.size(); ++i) {
+    background_[i] = std::min(now.power[i], background_[i] * rise_per_hop_);
+    now.excess[i] = now.power[i] - background_[i];
+  }
+  for (int c = 0; c < 2; ++c) {
+    for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
+      // The band's best excess (a whine is background, not excess) over the mean of the
+      // other bins' raw power (the excess is zero wherever a bin just fell to a new low, so
+      // its mean is no floor to measure noise against).
+      const std::size_t from = static_cast<std::size_t>(hops_.band_first_bin[c][b] - lo_bin_ - 2);
+      const int n = hops_.tones_per_band + 4;
+      float best = 0, sum = 0;
+      std::size_t at = from;
+      for (std::size_t i = from; i < from + static_cast<std::size_t>(n); ++i) {
+        if (now.excess[i] > best) {
+          best = now.excess[i];
+          at = i;
+        }
+        sum += now.power[i];
+      }
+      const float others = (sum - now.power[at]) / static_cast<float>(n - 1);
+      now.band_score[static_cast<std::size_t>(tone_index(c, b))] = best / std::max(others, 1e-30f);
+    }
+  }
+  ++windows_;
+  analysed_until_ms_ = 1000.0 * static_cast<double>(window_.samples_fed()) / sample_rate_hz_;
+  if (windows_ <= 2 * hops_per_chord_) return;
+
+  if (analysed_until_ms_ < hold_until_ms_) return;
+  const Window& first = ring_[(newest_ + ring_.size() - static_cast<std::size_t>(hops_per_chord_)) % ring_.size()];
+  if (!gate(first, now)) return;
+  const Window& before_first = ring_[(newest_ + 1) % ring_.size()];  // one chord before the first
+  std::array<int, 3> tried{};
+  int count = 0;
+  std::optional<HopCandidate> first_candidate;
+  // Builds and offers the hypothesis unless one like it was tried; true when taken.
+  const auto offer = [&](int ppm) {
+    for (int i = 0; i < count; ++i) {
+      if (std::abs(tried[static_cast<std::size_t>(i)] - ppm) < kSameHypothesisPpm) return false;
+    }
+    tried[static_cast<std::size_t>(count++)] = ppm;
+    const HopCandidate c = make_candidate(before_first, first, now, ppm);
+    if (!first_candidate) first_candidate = c;
+    return sink.take(c);
+  };
+  if (tracked_ppm_ && offer(*tracked_ppm_)) return;
+  if (offer(0)) return;
+  if (offer(blind_offset_ppm(first, now))) return;
+  sink.none_taken(*first_candidate);
+}
+
+// Most of each chord's eight bands stand out of their own means: a frame, or something loud
+// and tonal enough in both band sets to be worth decoding. A noise band scores 6.2 dB on
+// average (1.5 dB spread), a frame's at -10 dB SNR about 12. Both chords must: one chord's
+// bands loud and the other's silent is a frame's edge, or the next frame's first chord.
+bool HopListener::gate(const Window& first, const Window& second) const {
+  const float threshold = gate_ratio_;
+  // Counted, not summed: two loud tones (a seed chord, a whistle) must not carry a chord
+  // whose other bands hold nothing.
+  int first_bands = 0, second_bands = 0;
+  for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
+    first_bands += first.band_score[static_cast<std::size_t>(tone_index(0, b))] >= threshold ? 1 : 0;
+    second_bands += second.band_score[static_cast<std::size_t>(tone_index(1, b))] >= threshold ? 1 : 0;
+  }
+  return first_bands >= hops_.gate_bands && second_bands >= hops_.gate_bands;
+}
+
+// Every band's peak, to a fraction of a bin (a pure tone at p + d puts power in bins p and
+// p + 1 in the ratio of sinc^2(d) to sinc^2(1 - d), so d = |X(p+1)| / (|X(p)| + |X(p+1)|));
+// the offset is the one that brings most peaks nearest to whole bins (tones sit on bins).
+int HopListener::blind_offset_ppm(const Window& first, const Window& second) const {
+  std::array<float, kFrameTones> position{}, weight{};
+  for (int c = 0; c < 2; ++c) {
+    const Window& w = c == 0 ? first : second;
+    for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
+      const int lo = hops_.band_first_bin[c][b] - lo_bin_ - kMarginBins + 1;
+      const int n = hops_.tones_per_band + 2 * kMarginBins - 2;
+      const auto* e = w.excess.data() + lo;
+      const int p = static_cast<int>(std::max_element(e, e + n) - e);
+      const float a0 = std::sqrt(std::max(e[p], 0.0f));
+      const float am = std::sqrt(std::max(e[p - 1], 0.0f)), ap = std::sqrt(std::max(e[p + 1], 0.0f));
+      const float d = ap > am ? ap / (a0 + ap + 1e-30f) : -am / (a0 + am + 1e-30f);
+      const std::size_t t = static_cast<std::size_t>(tone_index(c, b));
+      position[t] = static_cast<float>(lo_bin_ + lo + p) + d;
+      weight[t] = std::clamp(std::log2(std::max(w.band_score[t], 1.0f)) - 2.0f, 0.0f, 10.0f);  // strong peaks count, noise does not
+    }
+  }
+  int best_ppm = 0;
+  float best_cost = std::numeric_limits<float>::max();
+  for (int ppm = -hops_.max_offset_ppm; ppm <= hops_.max_offset_ppm; ppm += kOffsetStepPpm) {
+    const float scale = 1.0f / (1.0f + static_cast<float>(ppm) * 1e-6f);
+    float cost = 0;
+    for (std::size_t t = 0; t < kFrameTones; ++t) {
+      const float at = position[t] * scale;
+      const float r = at - std::round(at);
+      cost += weight[t] * std::min(r * r, 0.06f);
+    }
+    if (cost < best_cost - 1e-6f || (cost <= best_cost + 1e-6f && std::abs(ppm) < std::abs(best_ppm))) {
+      best_cost = cost;
+      best_ppm = ppm;
+    }
+  }
+  return best_ppm;
+}
+
+HopCandidate HopListener::make_candidate(const Window& before_first, const Window& first, const Window& second, int offset_ppm) {
+  HopCandidate c;
+  c.offset_ppm = offset_ppm;
+  const double scale = 1.0 + offset_ppm * 1e-6;
+  for (int chord = 0; chord < 2; ++chord) {
+    const Window& w = chord == 0 ? first : second;
+    const Window& before = chord == 0 ? before_first : first;
+    for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
+      const std::size_t t = static_cast<std::size_t>(tone_index(chord, b));
+      scratch_.clear();
+      floor_.clear();
+      int best = 0, second_best = -1;
+      int best_bin = 0;
+      for (int v = 0; v < hops_.tones_per_band; ++v) {
+        // A tone moved between two bins splits its power between them: take both then.
+        const double at = (hops_.band_first_bin[chord][b] + v) * scale;
+        const int bin = static_cast<int>(std::lround(at));
+        const double frac = at - bin;
+        const auto i = static_cast<std::size_t>(bin - lo_bin_);
+        float value = w.excess[i];
+        float power = w.power[i];
+        if (std::abs(frac) > 0.25) {
+          value += w.excess[frac > 0 ? i + 1 : i - 1];
+          power += w.power[frac > 0 ? i + 1 : i - 1];
+        }
+        scratch_.push_back(value);
+        floor_.push_back(power);
+        if (v == 0 || value > scratch_[static_cast<std::size_t>(best)]) {
+          second_best = v == 0 ? -1 : best;
+          best = v;
+          best_bin = bin;
+        } else if (second_best < 0 || value > scratch_[static_cast<std::size_t>(second_best)]) {
+          second_best = v;
+        }
+      }
+      const float top = scratch_[static_cast<std::size_t>(best)];
+      const float runner = scratch_[static_cast<std::size_t>(second_best)];
+      // The band's floor: the median of its raw power (the excess is zero at many bins).
+      std::nth_element(floor_.begin(), floor_.begin() + static_cast<std::ptrdiff_t>(floor_.size() / 2), floor_.end());
+      const float median = floor_[floor_.size() / 2];
+      const auto bi = static_cast<std::size_t>(best_bin - lo_bin_);
+      ToneReading& r = c.tones[t];
+      r.symbol = static_cast<std::uint8_t>(best);
+      r.certainty = runner > 0 ? top / runner : 1e9f;
+      r.heard = top > presence_ratio_ * median && w.power[bi] > onset_ratio_ * before.power[bi];
+      // The peak to a fraction of a bin, for offset tracking once the frame is known.
+      const float a0 = std::sqrt(std::max(w.excess[bi], 0.0f));
+      const float am = std::sqrt(std::max(w.excess[bi - 1], 0.0f)), ap = std::sqrt(std::max(w.excess[bi + 1], 0.0f));
+      c.peak_bins[t] = static_cast<float>(best_bin) + (ap > am ? ap / (a0 + ap + 1e-30f) : -am / (a0 + am + 1e-30f));
+    }
+  }
+  const double ms_per_sample = 1000.0 / sample_rate_hz_;
+  c.heard_ms = analysed_until_ms_;
+  // The first chord's window started one chord and one window before now; the chord itself
+  // began an edge (and up to a hop) before that window.
+  c.start_ms = c.heard_ms - (hops_.chord_samples() + hops_.window_samples + hops_.edge_samples + hop_ / 2.0) * ms_per_sample;
+  return c;
+}
+
+void HopListener::confirm(const HopCandidate& candidate, std::span<const std::uint8_t, kFrameTones> symbols) {
+  // Each tone sent on bin f was heard at f (1 + offset): the median over the tones the
+  // decoder did not have to correct.
+  std::array<float, kFrameTones> offsets{};
+  std::size_t n = 0;
+  for (int chord = 0; chord < 2; ++chord) {
+    for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
+      const std::size_t t = static_cast<std::size_t>(tone_index(chord, b));
+      if (candidate.tones[t].symbol != symbols[t] || !candidate.tones[t].heard) continue;
+      const float sent_bin = static_cast<float>(hops_.band_first_bin[chord][b] + symbols[t]);
+      offsets[n++] = (candidate.peak_bins[t] / sent_bin - 1.0f) * 1e6f;
+    }
+  }
+  if (n < 8) return;
+  std::sort(offsets.begin(), offsets.begin() + static_cast<std::ptrdiff_t>(n));
+  const float median = offsets[n / 2];
+  // Only a window wholly inside both chords gives every tone's true position; one that
+  // straddles a chord's edge smears each tone over its neighbours, and the two-bin estimate
+  // then errs by up to half a bin either way. Such windows decode too (the code corrects),
+  // but their offsets scatter: track only an estimate whose middle half agrees.
+  const float spread = offsets[3 * n / 4] - offsets[n / 4];
+  if (spread > kTrackSpreadPpm) return;
+  tracked_ppm_ = static_cast<int>(std::lround(median));
+}
+
+}  // namespace dtmf::signal

@@ -1,0 +1,123 @@
+// Signal layer: the fast profile's frame listener — audio in, frame candidates out.
+//
+//   samples -> rectangular window (W samples, every hop H) -> BinPower (the bins of the 16 bands)
+//           -> per bin: a background that may rise only slowly (steady tones: whines) and the
+//              excess over it; per band: its best bin against its mean
+//           -> the window now (second chord's bands) and the window one chord earlier (first
+//              chord's bands): a candidate when the sixteen bands together stand out
+//           -> per frequency-offset hypothesis, sixteen tone readings (symbol, certainty,
+//              heard) for the reliability layer's decoder
+//
+// A chord lasts W + 2 * edge + H samples, so exactly one grid window lies wholly inside each
+// chord, and the one inside the second chord comes exactly one chord after the first's.
+// The two chords use disjoint band sets, so neither chord's reverberant tail is read as a
+// symbol of the other. A tone counts as heard when its bin's excess stands `presence_db` over
+// the band's median power and rose `onset_db` since the window a chord earlier (a reverberant tail, or
+// any steady sound, decays or holds; a chord's tone starts). A steady whine is taken out
+// before any of this: each bin's background follows a drop at once and a rise only at
+// `background_rise_db_per_s`, and the readings use the excess over it.
+// Clocks and Doppler shift every tone by the same factor (1 + offset): the readings are
+// taken at each hypothesis's shifted bins — the offset tracked from the frames decoded
+// before (confirm()), no offset, and an estimate from this candidate's own fractional peak
+// positions — in that order, each built only when the one before did not decode (a sink
+// says so), since most frames decode at the first. While the sink holds the listener
+// (after an accept, the frame's later windows), no candidates are built at all.
+// Times are milliseconds since the first sample fed; the stream is taken to be preceded by
+// silence. Once constructed, feeding allocates nothing.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "profile/link_profile.h"
+#include "signal/bin_power.h"
+#include "signal/sliding_window.h"
+
+namespace dtmf::signal {
+
+inline constexpr int kFrameTones = 2 * HopLink::kBandsPerChord;  // 16
+
+struct ToneReading {
+  std::uint8_t symbol = 0;  // the strongest tone of its band
+  float certainty = 1;      // its power over the runner-up's (>= 1)
+  bool heard = true;        // false: no tone stood out there, or it did not rise with the chord
+};
+
+struct HopCandidate {
+  double start_ms = 0;    // when the first chord began (within a hop)
+  double heard_ms = 0;    // end of the window inside the second chord
+  int offset_ppm = 0;     // the frequency offset these readings assume
+  std::array<ToneReading, kFrameTones> tones{};  // first chord's bands, then the second's
+  std::array<float, kFrameTones> peak_bins{};  // each band's peak, in fractional bins (offset tracking)
+};
+
+// Where a window's candidates go, hypothesis after hypothesis.
+class CandidateSink {
+ public:
+  virtual ~CandidateSink() = default;
+  // True when the candidate is taken (its frame decoded): no further hypothesis is built.
+  virtual bool take(const HopCandidate& candidate) = 0;
+  // No hypothesis of the window was taken; `first` is the first of them.
+  virtual void none_taken(const HopCandidate& first) = 0;
+};
+
+class HopListener {
+ public:
+  explicit HopListener(const LinkProfile& profile);
+
+  // Every hypothesis of every candidate window within `samples` (for tests and tools); the
+  // span is valid until the next call.
+  std::span<const HopCandidate> feed(std::span<const float> samples);
+  // The receive path's way: candidates to `sink` as they come.
+  void feed(std::span<const float> samples, CandidateSink& sink);
+  // No candidates for windows ending before `until_ms` (the accepted frame's own windows).
+  void hold_until(double until_ms) { hold_until_ms_ = until_ms; }
+  // A frame was decoded from `candidate` with these code symbols: the offset its tones show
+  // is the first hypothesis for the frames that follow.
+  void confirm(const HopCandidate& candidate, std::span<const std::uint8_t, kFrameTones> symbols);
+  std::optional<int> tracked_offset_ppm() const { return tracked_ppm_; }
+  // End of the latest analysed window.
+  double now_ms() const { return analysed_until_ms_; }
+  double hop_ms() const { return 1000.0 * hop_ / sample_rate_hz_; }
+
+ private:
+  struct Window {
+    std::vector<float> power;   // raw |X|^2 of bins [lo_bin_, hi_bin_)
+    std::vector<float> excess;  // power over the background
+    std::array<float, kFrameTones> band_score{};  // the band's best excess over its mean power
+  };
+  void analyze_window(CandidateSink& sink);
+  bool gate(const Window& first, const Window& second) const;
+  HopCandidate make_candidate(const Window& before_first, const Window& first, const Window& second, int offset_ppm);
+  int blind_offset_ppm(const Window& first, const Window& second) const;
+  // chord c of a frame, band b -> index into the 16 tones
+  static int tone_index(int chord, int band) { return chord * HopLink::kBandsPerChord + band; }
+
+  const HopLink& hops_;
+  int sample_rate_hz_;
+  int hop_;
+  int hops_per_chord_;
+  float presence_ratio_;
+  float onset_ratio_;
+  float gate_ratio_;
+  float rise_per_hop_;
+  int lo_bin_;  // first bin analysed: the lowest band, less room for offsets
+  int hi_bin_;
+  BinPower bins_;
+  SlidingWindow window_;
+  std::vector<float> background_;
+  std::vector<Window> ring_;  // the last 2 * hops_per_chord + 1 windows
+  std::size_t newest_ = 0;
+  long long windows_ = 0;
+  double analysed_until_ms_ = 0;
+  std::optional<int> tracked_ppm_;
+  double hold_until_ms_ = -1e300;
+  std::vector<HopCandidate> found_;
+  std::vector<float> scratch_;  // a band's tones' excess (readings)
+  std::vector<float> floor_;    // ... and their raw power (the floor)
+};
+
+}  // namespace dtmf::signal

@@ -1,0 +1,175 @@
+// The fast profile through every layer (ggwave-style): every command kind with every
+// sequence number through a reverberant room, a retransmission answered but not re-executed,
+// frames at -10 dB SNR, another robot's frames, and sounds that are no frames.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "command/command_payload.h"
+#include "command/test_sequence.h"
+#include "link/hop_frame_path.h"
+#include "link/link.h"
+#include "physical/acoustic_channel.h"
+#include "reliability/command_frame.h"
+#include "signal/hop_synthesizer.h"
+
+using namespace dtmf;
+
+namespace {
+const LinkProfile& p = fast_profile();
+const link::Link& fast = link::link_by_name("fast");
+
+std::vector<link::ReceivedHopFrame> receive(const std::vector<float>& audio, std::size_t block = 1024) {
+  link::HopFramePath path(p);
+  std::vector<link::ReceivedHopFrame> got;
+  for (std::size_t at = 0; at < audio.size(); at += block) {
+    const auto n = std::min<std::size_t>(block, audio.size() - at);
+    for (const auto& r : path.feed(std::span<const float>(audio.data() + at, n))) got.push_back(r);
+  }
+  return got;
+}
+
+std::vector<float> frame_audio(const command::Command& c, std::uint8_t sequence) {
+  return fast.plan(c, sequence).front().audio;
+}
+
+const std::vector<command::Command> kEveryKind = {
+    command::Reset{}, command::Stop{}, command::DriveForDuration{50, 2}, command::TurnForDuration{-25, 1.5},
+    command::DriveForward{80}, command::Turn{33.3}};
+}  // namespace
+
+class HopFramePathRoom : public ::testing::TestWithParam<double> {};
+
+// Frames 100 ms apart (the next follows an ACK) in a quiet room's pink noise, at 1 m and 5 m.
+TEST_P(HopFramePathRoom, EveryKindWithEverySequenceNumberComesBackOnceWithNoNack) {
+  physical::ChannelConfig room;
+  room.noise = physical::parse_noise("pink", -45);
+  room.reverb.rt60_s = 0.6;
+  physical::AcousticChannel channel(p.sample_rate_hz, room);
+  channel.add_transmitter(GetParam());
+  std::vector<float> sent, heard;
+  std::vector<std::string> expected;
+  for (int seq = 0; seq < 16; ++seq) {
+    for (const auto& c : kEveryKind) {
+      const auto f = frame_audio(c, static_cast<std::uint8_t>(seq));
+      sent.insert(sent.end(), f.begin(), f.end());
+      sent.insert(sent.end(), 4800, 0.0f);  // 100 ms, as if waiting for the ACK
+      expected.push_back(std::to_string(seq) + " " + command::describe(command::quantised_payload(c)));
+    }
+  }
+  sent.insert(sent.end(), 9600, 0.0f);
+  channel.process(sent, heard);
+  std::vector<std::string> got;
+  for (const auto& r : receive(heard)) {
+    ASSERT_TRUE(r.frame) << "a NACK at " << r.start_ms << " ms " << r.error << " after " << got.size();
+    ASSERT_TRUE(r.command) << "repeat at " << r.start_ms << " after " << got.size();
+    got.push_back(std::to_string(r.frame->sequence) + " " + command::describe(*r.command));
+  }
+  EXPECT_EQ(got, expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(Distances, HopFramePathRoom, ::testing::Values(1.0, 5.0));
+
+TEST(HopFramePath, ARetransmittedFrameIsAnsweredButNotExecutedAgain) {
+  const auto frame = frame_audio(command::DriveForward{40}, 7);
+  std::vector<float> audio(2000, 0.0f);
+  for (int i = 0; i < 2; ++i) {
+    audio.insert(audio.end(), frame.begin(), frame.end());
+    audio.insert(audio.end(), 24000, 0.0f);  // the ACK was lost; the sender waits 500 ms, then repeats
+  }
+  const auto got = receive(audio);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_TRUE(got[0].command);
+  EXPECT_FALSE(got[0].repeat);
+  ASSERT_TRUE(got[1].frame);
+  EXPECT_EQ(got[1].frame->sequence, 7);
+  EXPECT_TRUE(got[1].repeat);
+  EXPECT_FALSE(got[1].command);
+}
+
+TEST(HopFramePath, AtMinusTenDbSnrFramesAreHeardWithNoWrongAccept) {
+  constexpr int kFrames = 1000;
+  std::mt19937 rng(11);
+  const std::size_t slot = static_cast<std::size_t>(p.samples_for_ms(fast.frame_start_ms(1)));
+  std::vector<float> audio(static_cast<std::size_t>(kFrames) * slot, 0.0f);
+  std::vector<std::uint64_t> bits;
+  double power = 0;
+  for (int i = 0; i < kFrames; ++i) {
+    const link::TransmitFrame f = fast.random_frame(rng());
+    bits.push_back(f.bits);
+    for (std::size_t k = 0; k < f.audio.size(); ++k) {
+      audio[static_cast<std::size_t>(i) * slot + k] = f.audio[k];
+      power += static_cast<double>(f.audio[k]) * f.audio[k];
+    }
+  }
+  power /= static_cast<double>(kFrames) * static_cast<double>(p.hops.frame_samples());  // the frames' own power
+  audio.insert(audio.begin(), 5000, 0.0f);
+  std::normal_distribution<float> noise(0.0f, static_cast<float>(std::sqrt(power * 10.0)));  // -10 dB
+  for (float& s : audio) s += noise(rng);
+
+  const double slot_ms = 1000.0 * static_cast<double>(slot) / p.sample_rate_hz;
+  std::vector<int> accepted(kFrames, 0);
+  int wrong = 0;
+  for (const auto& r : receive(audio)) {
+    if (!r.frame) continue;
+    // A frame starts its slot; a decode from a window a hop or two early says so, too early.
+    const auto k = std::lround((r.start_ms - 5000.0 / 48.0) / slot_ms);
+    if (k < 0 || k >= kFrames || bits[static_cast<std::size_t>(k)] != r.bits) {
+      ++wrong;
+      const bool sent_anywhere = std::find(bits.begin(), bits.end(), r.bits) != bits.end();
+      std::printf("wrong accept at %.1f ms (slot %ld): %s\n", r.start_ms, k, sent_anywhere ? "a frame sent in another slot" : "never sent");
+    } else {
+      ++accepted[static_cast<std::size_t>(k)];
+    }
+  }
+  const long once = std::count(accepted.begin(), accepted.end(), 1);
+  std::printf("-10 dB SNR: %ld of %d frames accepted exactly once, %d wrong accepts\n", once, kFrames, wrong);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GE(once, kFrames * 995 / 1000);
+}
+
+TEST(HopFramePath, AHeldChordOrSilenceExecutesNothing) {
+  const auto frame = frame_audio(command::Turn{50}, 3);
+  // The first chord held for a second: its tones never start again, so nothing is heard.
+  const auto chord = static_cast<std::size_t>(p.hops.chord_samples());
+  std::vector<float> held(2000, 0.0f);
+  for (int i = 0; i < 19; ++i) held.insert(held.end(), frame.begin(), frame.begin() + static_cast<long>(chord));
+  held.insert(held.end(), 5000, 0.0f);
+  for (const auto& r : receive(held)) {
+    ADD_FAILURE() << "a verdict at " << r.start_ms << " ms: " << (r.frame ? "accepted " + std::to_string(r.bits) : "NACK");
+  }
+  EXPECT_TRUE(receive(std::vector<float>(96000, 0.0f)).empty());
+}
+
+// Address 0 is every robot; a frame for robot 5 is not ours: no ACK, no NACK, no command.
+TEST(HopFramePath, AnotherRobotsFrameIsLeftAlone) {
+  const reliability::CommandFrame frame{5, 2, command::encode_payload(command::DriveForward{60})};
+  const auto symbols = reliability::encode_symbols(reliability::pack(frame));
+  std::vector<float> audio(2000, 0.0f);
+  const auto f = signal::synthesize_hopped_frame(p, symbols);
+  audio.insert(audio.end(), f.begin(), f.end());
+  audio.insert(audio.end(), 9600, 0.0f);
+  EXPECT_TRUE(receive(audio).empty());
+}
+
+// The agent listens with both profiles: the seed's chords must leave the fast path silent,
+// not even a NACK (which would put a reply on the air and a row in the report).
+TEST(HopFramePath, TheSeedsChordsMakeNoVerdictAtAll) {
+  const link::Link& seed = link::link_by_name("seed");
+  std::vector<link::TransmitFrame> frames;
+  std::uint8_t unused = 0;
+  for (const auto& c : command::seed_test_sequence()) {
+    for (auto& f : seed.plan(c, unused)) frames.push_back(std::move(f));
+  }
+  physical::ChannelConfig room;
+  room.noise = physical::parse_noise("white", -70);
+  room.reverb.rt60_s = 0.3;
+  physical::AcousticChannel channel(p.sample_rate_hz, room);
+  channel.add_transmitter(1.0);
+  std::vector<float> heard;
+  channel.process(seed.render(frames), heard);
+  const auto got = receive(heard);
+  EXPECT_EQ(got.size(), 0u) << "verdicts on " << frames.size() << " seed chords";
+  for (const auto& r : got) std::printf("verdict at %.0f ms: %s\n", r.start_ms, r.frame ? "accepted" : "NACK");
+}

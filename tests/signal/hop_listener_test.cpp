@@ -1,0 +1,231 @@
+// Signal layer, fast profile: the hopped frame listener and the reply listener read what the
+// synthesizer wrote — every tone of every band at any alignment of the analysis grid, at any
+// frequency offset the clocks and Doppler give — and take out what is no tone of a frame:
+// noise, a steady whine, a reverberant tail, a held chord.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "physical/acoustic_channel.h"
+#include "reliability/command_frame.h"
+#include "reliability/reply_code.h"
+#include "signal/hop_listener.h"
+#include "signal/hop_reply.h"
+#include "signal/hop_synthesizer.h"
+
+using namespace dtmf;
+
+namespace {
+const LinkProfile& p = fast_profile();
+
+std::vector<signal::HopCandidate> candidates(const std::vector<float>& audio, signal::HopListener& listener) {
+  std::vector<signal::HopCandidate> got;
+  for (std::size_t at = 0; at < audio.size(); at += 480) {
+    for (const auto& c : listener.feed(std::span<const float>(audio).subspan(at, std::min<std::size_t>(480, audio.size() - at)))) {
+      got.push_back(c);
+    }
+  }
+  return got;
+}
+
+// How many of the frame's sixteen symbols the best candidate (ignoring offset hypotheses)
+// reads right, and how many of those it heard.
+std::pair<int, int> best_reading(const std::vector<signal::HopCandidate>& got, const signal::HoppedSymbols& sent) {
+  std::pair<int, int> best{0, 0};
+  for (const auto& c : got) {
+    int right = 0, heard = 0;
+    for (std::size_t t = 0; t < sent.size(); ++t) {
+      right += c.tones[t].symbol == sent[t];
+      heard += c.tones[t].symbol == sent[t] && c.tones[t].heard;
+    }
+    best = std::max(best, std::make_pair(right, heard));
+  }
+  return best;
+}
+
+std::vector<float> with_silence(const std::vector<float>& audio, std::size_t before, std::size_t after) {
+  std::vector<float> out(before, 0.0f);
+  out.insert(out.end(), audio.begin(), audio.end());
+  out.resize(out.size() + after, 0.0f);
+  return out;
+}
+
+void add_sine(std::vector<float>& audio, double hz, double amplitude) {
+  for (std::size_t i = 0; i < audio.size(); ++i) {
+    audio[i] += static_cast<float>(amplitude * std::sin(2 * std::numbers::pi * hz * static_cast<double>(i) / p.sample_rate_hz));
+  }
+}
+
+}  // namespace
+
+TEST(HopListener, EveryToneOfEveryBandIsReadBackAtAnyAlignment) {
+  // Symbol v in every band, for every v, each frame starting at another sample of the hop.
+  for (int v = 0; v < p.hops.tones_per_band; ++v) {
+    signal::HoppedSymbols sent{};
+    sent.fill(static_cast<std::uint8_t>(v));
+    const std::size_t offset = static_cast<std::size_t>(v * 37 % p.hops.hop_samples);
+    signal::HopListener listener(p);
+    const auto got = candidates(with_silence(signal::synthesize_hopped_frame(p, sent), 3000 + offset, 6000), listener);
+    const auto [right, heard] = best_reading(got, sent);
+    EXPECT_EQ(right, 16) << "symbol " << v;
+    EXPECT_EQ(heard, 16) << "symbol " << v;
+  }
+}
+
+TEST(HopListener, NoiseAloneSeldomMakesACandidate) {
+  std::vector<float> noise(static_cast<std::size_t>(p.sample_rate_hz) * 20);
+  std::mt19937 rng(3);
+  std::normal_distribution<float> gauss(0.0f, 0.05f);
+  for (float& s : noise) s = gauss(rng);
+  signal::HopListener listener(p);
+  const auto got = candidates(noise, listener);
+  // 20 s is about 1950 windows; each gated window costs a decode, so the gate must hold.
+  EXPECT_LE(got.size(), 6u);
+}
+
+// A chord whose tones carry on into the next chord's time is no frame's first chord: its
+// tones did not start there. A room's decaying tail does not start either.
+TEST(HopListener, AToneThatDoesNotStartWithItsChordIsNotHeard) {
+  signal::HoppedSymbols sent{};
+  for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((5 * t + 3) % 32);
+  const auto frame = signal::synthesize_hopped_frame(p, sent);
+  // The first chord, then the whole frame: the second time, chord one's tones were already there.
+  std::vector<float> audio(frame.begin(), frame.begin() + p.hops.chord_samples());
+  audio.insert(audio.end(), frame.begin(), frame.end());
+  signal::HopListener listener(p);
+  const auto got = candidates(with_silence(audio, 3000, 6000), listener);
+  // The frame's own alignment: its second chord's inner window ends about here.
+  const double aligned_ms = (3000.0 + 2 * p.hops.chord_samples() + p.hops.edge_samples + p.hops.window_samples) / 48.0;
+  int checked = 0;
+  for (const auto& c : got) {
+    if (std::abs(c.heard_ms - aligned_ms) > 15) continue;
+    ++checked;
+    int first_chord_heard = 0;
+    for (int b = 0; b < 8; ++b) first_chord_heard += c.tones[static_cast<std::size_t>(b)].heard && c.tones[static_cast<std::size_t>(b)].symbol == sent[static_cast<std::size_t>(b)];
+    EXPECT_LE(first_chord_heard, 0) << "at " << c.heard_ms << " ms";
+  }
+  EXPECT_GT(checked, 0) << "no candidate at the frame's alignment to check";
+}
+
+// A whine 6 dB over a tone, right on a tone of the plan: the background takes it, the symbol
+// is still read and heard.
+TEST(HopListener, ASteadyWhineOnAToneOfThePlanBecomesBackground) {
+  signal::HoppedSymbols sent{};
+  for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((7 * t + 1) % 32);
+  const double whine_hz = (p.hops.band_first_bin[0][3] + 20) * 25.0;  // band 3 of chord one, not the sent tone
+  std::vector<float> audio = with_silence(signal::synthesize_hopped_frame(p, sent), 48000 * 3, 6000);
+  add_sine(audio, whine_hz, 2 * p.hops.tone_amplitude);
+  signal::HopListener listener(p);
+  const auto [right, heard] = best_reading(candidates(audio, listener), sent);
+  EXPECT_EQ(right, 16);
+  EXPECT_GE(heard, 15);
+}
+
+class HopListenerOffset : public ::testing::TestWithParam<double> {};
+
+// Clocks and Doppler move every tone by the same factor: the listener finds it from one frame.
+TEST_P(HopListenerOffset, TheBlindOffsetEstimateReadsEverySymbolAndConfirmTracksIt) {
+  signal::HoppedSymbols sent{};
+  for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((11 * t + 4) % 32);
+  physical::ChannelConfig config;
+  config.clock_offset_ppm = -GetParam();  // the microphone's clock: a slow clock hears tones high
+  physical::AcousticChannel channel(p.sample_rate_hz, config);
+  channel.add_transmitter(1.0);
+  std::vector<float> heard;
+  channel.process(with_silence(signal::synthesize_hopped_frame(p, sent), 3000, 6000), heard);
+  signal::HopListener listener(p);
+  const auto got = candidates(heard, listener);
+  // The window wholly inside both chords: its second chord's inner window ends about here.
+  const double aligned_ms = (3000.0 + 2 * p.hops.chord_samples() - p.hops.hop_samples) / 48.0;
+  const signal::HopCandidate* aligned = nullptr;
+  int right_aligned = 0;
+  for (const auto& c : got) {
+    int right = 0;
+    for (std::size_t t = 0; t < sent.size(); ++t) right += c.tones[t].symbol == sent[t];
+    // Of the candidates nearest the alignment, the hypothesis that reads the frame.
+    if (std::abs(c.heard_ms - aligned_ms) <= 6 && right > right_aligned) {
+      right_aligned = right;
+      aligned = &c;
+    }
+  }
+  ASSERT_NE(aligned, nullptr) << "no candidate at " << aligned_ms << " ms";
+  EXPECT_EQ(right_aligned, 16) << "at " << GetParam() << " ppm";
+  listener.confirm(*aligned, sent);
+  ASSERT_TRUE(listener.tracked_offset_ppm());
+  EXPECT_NEAR(*listener.tracked_offset_ppm(), GetParam(), 150);  // 0.1 bin at 17 kHz
+  // A window astride a chord's edge decodes too, but tells nothing reliable of the offset.
+  signal::HopListener fresh(p);
+  const auto early = candidates(heard, fresh);
+  fresh.confirm(early.front(), sent);
+  if (fresh.tracked_offset_ppm()) EXPECT_NEAR(*fresh.tracked_offset_ppm(), GetParam(), 300);
+}
+
+INSTANTIATE_TEST_SUITE_P(Ppm, HopListenerOffset, ::testing::Values(-3000.0, -2000.0, -700.0, 0.0, 900.0, 2000.0, 3000.0));
+
+namespace {
+std::vector<signal::HeardReply> replies_heard(const std::vector<float>& audio) {
+  signal::HopReplyListener listener(p, [](const std::array<int, 4>& tones) {
+    const auto r = reliability::read_reply(tones, p.hops.reply_bands_needed);
+    return r ? (r->ack ? r->sequence : 16) : -1;
+  });
+  std::vector<signal::HeardReply> got;
+  for (std::size_t at = 0; at < audio.size(); at += 192) {
+    for (const auto& h : listener.feed(std::span<const float>(audio).subspan(at, std::min<std::size_t>(192, audio.size() - at)))) {
+      got.push_back(h);
+    }
+  }
+  return got;
+}
+}  // namespace
+
+TEST(HopReplyListener, EveryAckNamesItsSequenceNumberAndANackIsANack) {
+  std::vector<float> audio(2000, 0.0f);
+  for (int r = 0; r <= 16; ++r) {
+    const auto reply = signal::synthesize_hopped_reply(p, reliability::reply_codeword({r < 16, static_cast<std::uint8_t>(r % 16)}));
+    audio.insert(audio.end(), reply.begin(), reply.end());
+    audio.insert(audio.end(), 4800, 0.0f);
+  }
+  const auto got = replies_heard(audio);
+  ASSERT_EQ(got.size(), 17u);
+  for (int r = 0; r <= 16; ++r) EXPECT_EQ(got[static_cast<std::size_t>(r)].reply, r);
+}
+
+TEST(HopReplyListener, AReplyWithOneBandLostIsStillHeardAndNoiseIsNoReply) {
+  // Band 2's tone gone (a fade): three bands still name the reply.
+  auto tones = reliability::reply_codeword({true, 9});
+  std::vector<float> reply(static_cast<std::size_t>(p.hops.reply_samples()), 0.0f);
+  const auto full = signal::synthesize_hopped_reply(p, tones);
+  tones[2] = static_cast<std::uint8_t>((tones[2] + 3) % 8);
+  const auto wrong_band = signal::synthesize_hopped_reply(p, tones);
+  std::vector<float> audio(2000, 0.0f);
+  for (std::size_t i = 0; i < full.size(); ++i) audio.push_back(full[i] - 0.999f * 0.0f);
+  audio.insert(audio.end(), 4800, 0.0f);
+  audio.insert(audio.end(), wrong_band.begin(), wrong_band.end());
+  audio.insert(audio.end(), 4800, 0.0f);
+  const auto got = replies_heard(audio);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[0].reply, 9);
+  EXPECT_EQ(got[1].reply, 9) << "one band of four wrong";
+  std::vector<float> noise(48000 * 5);
+  std::mt19937 rng(5);
+  std::normal_distribution<float> gauss(0.0f, 0.1f);
+  for (float& s : noise) s = gauss(rng);
+  EXPECT_TRUE(replies_heard(noise).empty());
+}
+
+// Tone 0 of the four reply bands are the seed's ACK and NACK tones (2000, 2500, 3000, 3500
+// Hz): no fast reply may sound one, so that no fast reply is a seed answer.
+TEST(ReplyCode, NoReplySoundsASeedAnswerAndAnyTwoDifferInThreeBands) {
+  for (int a = 0; a <= 16; ++a) {
+    const auto x = reliability::reply_codeword({a < 16, static_cast<std::uint8_t>(a % 16)});
+    for (std::uint8_t tone : x) EXPECT_NE(tone, 0);
+    for (int b = a + 1; b <= 16; ++b) {
+      const auto y = reliability::reply_codeword({b < 16, static_cast<std::uint8_t>(b % 16)});
+      int same = 0;
+      for (std::size_t i = 0; i < 4; ++i) same += x[i] == y[i];
+      EXPECT_LE(same, 1) << a << " and " << b;
+    }
+  }
+}
