@@ -5,7 +5,7 @@
         --machine "..." --date "..." --minutes 9 --build-type Release --talkoff-s 3600
 
 Each profile's directory holds one JSON file per benchmark (decoder, snr, distance,
-distance_loud, talkoff_speech, talkoff_music, talkoff_noise, e2e) or NAME.error when the
+distance_loud, rooms, talkoff_speech, talkoff_music, talkoff_noise, e2e) or NAME.error when the
 benchmark could not run for that profile. Every figure of ours comes from those files; the
 seed report's figures and the issue's targets for the fast profile are typed once below.
 Needs Python 3 and matplotlib (Debian: python3-matplotlib).
@@ -21,8 +21,11 @@ import matplotlib
 matplotlib.use("Agg")  # files only
 import matplotlib.pyplot as plt  # noqa: E402
 
-BENCHES = ["decoder", "snr", "distance", "distance_loud", "talkoff_speech", "talkoff_music", "talkoff_noise", "roundtrip",
-           "e2e"]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rooms_section import rooms_section  # noqa: E402
+
+BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "talkoff_speech", "talkoff_music", "talkoff_noise",
+           "roundtrip", "e2e", "e2e_room"]
 TALKOFF = [("speech", "speech (espeak-ng)"), ("music", "music-like (sox synth)"), ("noise", "noise (white, pink, brown)")]
 
 
@@ -384,6 +387,8 @@ def main() -> int:
     w("")
     sweep_table(w, data, profiles, "distance_loud", "distance_m", "distance", " m")
 
+    rooms_section(w, data, profiles, stem, png_dir, ok)
+
     w("## Talk-off")
     w("")
     w("| signal | profile | hours | RMS | accepted frames (/h) | check-failing frames (/h) | false ACK (/h) | false NACK (/h) |")
@@ -439,20 +444,21 @@ def main() -> int:
     w("")
     w("![end-to-end latency](" + stem + "/e2e_latency.png)")
     w("")
-    w("| profile | commands confirmed | median | p95 | max | payload | time | throughput | frames ACKed first time | retransmissions |")
-    w("|---|---|---|---|---|---|---|---|---|---|")
-    for p in profiles:
-        d = data[p]["e2e"]
+    w("| profile | air | commands confirmed | median | p95 | max | payload | time | throughput | frames ACKed first time | retransmissions |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|")
+    for p, bench in [(p, b) for p in profiles for b in ("e2e", "e2e_room")]:
+        d = data[p][bench]
+        air = "free field 1 m, white −70 dBFS" if bench == "e2e" else "seminar room (measured) both ways, pink −50 dBFS"
         if not ok(d):
-            w(f"| `{p}` | not run: {d['error']} | | | | | | | | |")
+            w(f"| `{p}` | {air} | not run: {d['error']} | | | | | | | | |")
             continue
-        w(f"| `{p}` | {d['confirmed']} of {d['commands']} | {d['latency_ms_median']:.0f} ms | {d['latency_ms_p95']:.0f} ms "
+        w(f"| `{p}` | {air} | {d['confirmed']} of {d['commands']} | {d['latency_ms_median']:.0f} ms | {d['latency_ms_p95']:.0f} ms "
           f"| {d['latency_ms_max']:.0f} ms | {d['payload_bits']} bits | {d['wall_s']:.1f} s | {d['throughput_bps']:.2f} bit/s "
           f"| {d['frames_acked_first_attempt']} of {d['frames_first_attempt']} | {d['retransmissions']} |")
     w("")
     with open(args.out, "w") as f:
         f.write("\n".join(out))
-    print(f"wrote {args.out} and 5 PNGs in {png_dir}")
+    print(f"wrote {args.out} and its plots in {png_dir}")
     return 0
 
 

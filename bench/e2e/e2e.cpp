@@ -2,7 +2,8 @@
 //
 // tests/server/live_system.h puts the server's transmitter and the robot's agent in one
 // process, talking through a simulated room that runs in real time (1 m, quiet white noise
-// at -70 dBFS), with the gRPC service on a loopback port. This program sends `--commands`
+// at -70 dBFS; or, with --rir, a measured room both ways in pink noise at -50 dBFS), with
+// the gRPC service on a loopback port. This program sends `--commands`
 // Drive commands (random speed and duration, seeded) one after another through a real
 // client stub and measures, per command:
 //   latency     from the RPC call until the FRAME_EVENT_CONFIRMED event reaches the client;
@@ -10,7 +11,7 @@
 //               retransmissions.
 // Throughput: payload bits of the confirmed commands (every frame's data bits, check bits
 // excluded: RESET, mode and parameter words, 3 x 12 = 36 bits per Drive in the seed profile;
-// the 28-bit command payload of the one frame per command in the fast profile)
+// the 27-bit command payload of the one frame per command in the fast profile)
 // divided by the wall time from the first call to the last confirmation.
 // It runs in real time: about 3 s per command with the seed profile, 0.15 s with fast.
 #include <CLI/CLI.hpp>
@@ -57,11 +58,13 @@ int main(int argc, char** argv) {
   int commands = 20;
   std::uint64_t seed = 1;
   double distance_m = 1.0;
+  std::string rir_file;
   double air_block_ms = 5;
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
   app.add_option("--json", json_path, "write the results to this JSON file");
   app.add_option("--commands", commands, "Drive commands to send")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--distance-m", distance_m, "robot's distance from the sender")->capture_default_str();
+  app.add_option("--rir", rir_file, "a measured room both ways (its impulse response file), pink noise at -50 dBFS");
   app.add_option("--air-block-ms", air_block_ms,
                  "the simulated room's audio period (as the round-trip benchmark: 5 ms, a low-latency device)")
       ->capture_default_str()->check(CLI::Range(1.0, 50.0));
@@ -75,6 +78,7 @@ int main(int argc, char** argv) {
     options.profile = &profile;
     options.distance_m = distance_m;
     options.air_block_ms = air_block_ms;
+    options.rir_file = rir_file;
     options.default_policy = server::Policy::Fail;
     test_support::LiveSystem system(options);
     spdlog::set_level(spdlog::level::warn);  // again: loggers made while starting take the global level
@@ -146,6 +150,7 @@ int main(int argc, char** argv) {
                            {"profile", profile.name},
                            {"seed", seed},
                            {"distance_m", distance_m},
+                           {"rir", rir_file},
                            {"commands", commands},
                            {"confirmed", confirmed},
                            {"latency_ms_median", percentile(latencies_ms, 0.5)},

@@ -34,7 +34,7 @@ TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const 
   auto score = [&] {
     for (const Accepted& a : accepted) {
       // A frame starts its slot, and its estimated start is within a few hops of that.
-      const double at = std::round(a.start_ms / slot_ms);
+      const double at = std::round(a.start_ms / slot_ms) - static_cast<double>(options.lead_in_slots);
       const auto k = static_cast<std::size_t>(std::max(at, 0.0));
       if (at >= 0 && k < sent.size() && a.bits == sent[k]) ++right[k];
       else {
@@ -49,10 +49,13 @@ TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const 
     accepted.clear();
   };
 
-  // Slots 0..frames-1 carry a frame; the last one is silence (plus whatever the channel adds).
-  for (std::size_t k = 0; k <= options.frames; ++k) {
+  // After the lead-in, slots 0..frames-1 carry a frame; the last one is silence (plus
+  // whatever the channel adds).
+  const std::size_t lead = options.lead_in_slots;
+  for (std::size_t slot_index = 0; slot_index <= lead + options.frames; ++slot_index) {
     std::fill(clean.begin(), clean.end(), 0.0f);
-    if (k < options.frames) {
+    if (slot_index >= lead && slot_index - lead < options.frames) {
+      const std::size_t k = slot_index - lead;
       const link::TransmitFrame frame = trials.random_frame(rng);
       sent[k] = frame.bits;
       FrameTrials::add_frame(frame, clean);

@@ -38,6 +38,10 @@ struct StreamOptions {
   std::size_t frames = 500;
   std::uint64_t seed = 1;            // frame contents
   std::size_t block_samples = 1024;  // receiver feed size
+  // Slots of the channel alone (noise, whines) before the first frame: a robot listens long
+  // before anyone speaks to it, so steady sounds are learnt by then. Anything accepted in
+  // them is a wrong accept.
+  std::size_t lead_in_slots = 0;
 };
 
 TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const Channel& channel);

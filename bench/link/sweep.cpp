@@ -1,6 +1,7 @@
 #include "link/sweep.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <mutex>
 
@@ -47,6 +48,8 @@ std::vector<SweepPoint> run_sweep(const LinkProfile& profile, const std::vector<
       const auto started = std::chrono::steady_clock::now();
       FrameTrials trials(link::link_for(profile));
       StreamOptions stream{job.frames, mix(options.seed, job.point, job.chunk, 1), options.block_samples};
+      stream.lead_in_slots = static_cast<std::size_t>(
+          std::ceil(options.lead_in_s * profile.sample_rate_hz / static_cast<double>(trials.slot_samples())));
       const TrialCounts counts =
           run_stream(trials, stream, channel(points[job.point].x, mix(options.seed, job.point, job.chunk, 2)));
       const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;

@@ -28,6 +28,7 @@ struct SweepOptions {
   std::size_t block_samples = 1024;
   std::uint64_t seed = 1;
   unsigned threads = 2;
+  double lead_in_s = 0;  // channel only, before each stream's first frame (StreamOptions)
 };
 
 // The channel of one stream at point value `x`, its noise seeded with `seed`.

@@ -51,6 +51,29 @@ TEST(BenchSmoke, DistanceSweepHearsNearFrames) {
   EXPECT_EQ(doc["noise_dbfs"], -50);
 }
 
+// A measured room the frames cross whole, and 100 m of air in noise that drowns them (-40 dB
+// of spreading, up to 46 dB of absorption at 16 kHz): the rooms table can
+// show a failure as well as a success.
+TEST_P(BenchSmokeProfile, RoomsTableHearsTheSeminarRoomAndNotADrownedOne) {
+  const std::string seminar = std::string(RIRS_DIR) + "/seminar_room_clap.wav";
+  const auto doc = run(std::string(ROOMS_PATH) + " --profile " + GetParam() + " --frames 10 --chunk-frames 10 --lead-in-s 1" +
+                           " --case 'seminar=--rir " + seminar + " --noise pink --noise-dbfs -50'" +
+                           " --case 'drowned=--distance 100 --noise white --noise-dbfs -40'",
+                       "rooms-" + GetParam());
+  ASSERT_EQ(doc["cases"].size(), 2u) << doc.dump();
+  EXPECT_EQ(doc["frames_per_case"], 10);
+  EXPECT_EQ(doc["lead_in_s"], 1);
+  const auto& heard = doc["cases"][0];
+  const auto& drowned = doc["cases"][1];
+  EXPECT_EQ(heard["case"], "seminar");
+  EXPECT_EQ(heard["success_rate"].get<double>(), 1.0) << heard.dump();
+  EXPECT_LT(drowned["success_rate"].get<double>(), 0.5) << drowned.dump();
+  for (const auto& c : doc["cases"]) {
+    EXPECT_EQ(c["wrong_accepts"], 0) << c.dump();
+    for (const char* key : {"flags", "frames", "success_rate_ci95", "duplicated", "check_failed"}) EXPECT_TRUE(c.contains(key)) << key;
+  }
+}
+
 TEST(BenchSmoke, TalkoffFindsNothingInSilence) {
   // 10 s of silence (raw float32 zeros) on stdin.
   const auto doc = run("head -c 1920000 /dev/zero | " + std::string(TALKOFF_PATH) + " --profile seed --signal silence",

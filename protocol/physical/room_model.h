@@ -11,7 +11,8 @@
 //   - A measured room's response already holds its own propagation: the delay, spreading
 //     and absorption between the loudspeaker and the microphone where it was measured. Every
 //     transmitter hears that one response; its distance only scales the level by 1/d
-//     relative to 1 m (the response's direct peak is 1) and adds no delay or absorption.
+//     relative to 1 m (its direct sound carries a unit impulse's energy) and adds no delay
+//     or absorption.
 //   - In an image-source room, positions decide everything: the response holds the delay,
 //     1/d and air absorption of every path. A transmitter given by its distance stands at
 //     that distance from the microphone, towards the room's farthest corner from it, and
@@ -65,7 +66,7 @@ class RoomModel {
   Kind kind() const { return kind_; }
   int sample_rate_hz() const { return sample_rate_hz_; }
 
-  // Measured: the one response (direct peak 1 at index direct_index()).
+  // Measured: the one response (its direct sound of unit energy, peaking at direct_index()).
   Response measured() const { return measured_; }
   std::size_t direct_index() const { return direct_index_; }
 

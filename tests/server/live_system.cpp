@@ -24,10 +24,11 @@ class LiveSystem::Recorder : public agent::CmdVelOutput {
 };
 
 LiveSystem::LiveSystem(LiveSystemOptions options)
-    : options_(std::move(options)), air_(options_.profile->sample_rate_hz, [] {
-        physical::ChannelConfig quiet;
-        quiet.noise = physical::parse_noise("white", -70);
-        return quiet;
+    : options_(std::move(options)), air_(options_.profile->sample_rate_hz, [this] {
+        physical::ChannelConfig air;
+        air.noise = options_.rir_file.empty() ? physical::parse_noise("white", -70) : physical::parse_noise("pink", -50);
+        air.room.rir_file = options_.rir_file;
+        return air;
       }(), options_.air_block_ms) {
   const LinkProfile& profile = *options_.profile;
   auto sender = air_.add_station("sender", 0.0);

@@ -21,6 +21,7 @@ struct LiveSystemOptions {
   const LinkProfile* profile = &seed_profile();  // the server's default; the robot hears every profile
   double distance_m = 1.0;
   double air_block_ms = 10;   // the room's audio period: what a device buffer adds to each way
+  std::string rir_file;       // a measured room both ways (pink noise -50 dBFS); empty: free field, white -70 dBFS
   bool robot_answers = true;  // false: the robot's loudspeaker is dead (every ACK lost)
   std::string auth_token;
   std::size_t max_queue = 32;
