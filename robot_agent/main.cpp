@@ -90,8 +90,12 @@ int run(const Flags& f) {
     // Before the microphone opens: the agent is deaf while its answer stream warms up, and a
     // frame missed then is retransmitted, where an ACK lost then made the seed sender repeat
     // a frame the robot had already executed (reply_player.h).
-    replies = std::make_unique<agent::LiveReplyPlayer>(physical::open_audio_sink(ack_out, profile.sample_rate_hz),
-                                                       kAnswerWarmup, /*realtime=*/true);
+    replies = std::make_unique<agent::LiveReplyPlayer>(
+        [&] {
+          const physical::AudioPriorityScope audio_priority;  // the sound library's threads too
+          return physical::open_audio_sink(ack_out, profile.sample_rate_hz);
+        }(),
+        kAnswerWarmup, /*realtime=*/true);
   spdlog::info("answering through {}", ack_out);
 
   std::vector<std::unique_ptr<agent::CmdVelOutput>> owned;
@@ -130,7 +134,10 @@ int run(const Flags& f) {
   // the agent would begin behind real time, hearing the first chords late.
   int min_rate_hz = 0;
   for (const LinkProfile* p : profiles) min_rate_hz = std::max(min_rate_hz, p->min_recording_rate_hz());
-  auto source = physical::open_audio_source(f.audio, profile.sample_rate_hz, min_rate_hz);
+  auto source = [&] {
+    const physical::AudioPriorityScope audio_priority;  // the sound library's threads too
+    return physical::open_audio_source(f.audio, profile.sample_rate_hz, min_rate_hz);
+  }();
   spdlog::info("listening to {}", source->describe());
 
   std::signal(SIGINT, on_signal);

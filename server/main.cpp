@@ -22,6 +22,7 @@
 #include "physical/audio_spec.h"
 #include "program_main.h"
 #include "physical/portaudio_device.h"
+#include "physical/realtime_priority.h"
 #include "physical/wav_file.h"
 #include "teleop_service.h"
 #include "utf8_refusal.h"
@@ -82,13 +83,17 @@ int run(const Flags& f) {
     spdlog::info("database {}: schema version {}", store::describe_database(db), store::migrate(*connection).version_after);
   }
   // A file stands in for the loudspeaker in real time: gaps and retries keep their length.
-  std::unique_ptr<physical::AudioSink> speaker =
-      physical::is_file_spec(f.audio_out)
-          ? std::make_unique<physical::RealTimeWavSink>(f.audio_out.substr(4), profile.sample_rate_hz)
-          : physical::open_audio_sink(f.audio_out, profile.sample_rate_hz);
-  std::unique_ptr<physical::AudioSource> microphone =
-      f.audio_in == "none" ? std::make_unique<Silence>(profile.sample_rate_hz)
-                           : physical::open_audio_source(f.audio_in, profile.sample_rate_hz, 0);
+  // Opened real-time, so that the sound library's threads are too.
+  std::unique_ptr<physical::AudioSink> speaker;
+  std::unique_ptr<physical::AudioSource> microphone;
+  {
+    const physical::AudioPriorityScope audio_priority;
+    speaker = physical::is_file_spec(f.audio_out)
+                  ? std::make_unique<physical::RealTimeWavSink>(f.audio_out.substr(4), profile.sample_rate_hz)
+                  : physical::open_audio_sink(f.audio_out, profile.sample_rate_hz);
+    microphone = f.audio_in == "none" ? std::make_unique<Silence>(profile.sample_rate_hz)
+                                      : physical::open_audio_source(f.audio_in, profile.sample_rate_hz, 0);
+  }
   spdlog::info("playing to {}, listening to {}", speaker->describe(), microphone->describe());
 
   store::StoreOptions store_options;

@@ -4,8 +4,9 @@
 // slot's clean audio goes through the channel (noise, a room), and the receiver is fed what
 // comes out in fixed blocks (1024 samples by default), as a sound device delivers it; one
 // more slot without a frame lets late or echoed detections show. An accepted frame belongs
-// to the slot in which it started, with start times read half an analysis window early
-// (a window centred up to half its length before a chord already holds some of it).
+// to the slot in which it started, a slot reaching from half its silence before its frame
+// to half its silence after it (start estimates run a little early, or late by most of a
+// drowned seed chord).
 // Definitions (docs/benchmarks.md):
 //   success       the slot's frame was accepted exactly once with the right bits;
 //   wrong accept  an accepted (check-passing) frame whose bits were not sent in its slot.

@@ -41,4 +41,20 @@ ThreadPriority raise_audio_thread_priority(std::string* why) {
   return ThreadPriority::Normal;
 }
 
+AudioPriorityScope::AudioPriorityScope() {
+  sched_param param{};
+  pthread_getschedparam(pthread_self(), &policy_, &param);
+  priority_ = param.sched_priority;
+  errno = 0;
+  nice_ = ::getpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)));
+  raise_audio_thread_priority();
+}
+
+AudioPriorityScope::~AudioPriorityScope() {
+  sched_param param{};
+  param.sched_priority = priority_;
+  pthread_setschedparam(pthread_self(), policy_, &param);
+  ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), nice_);
+}
+
 }  // namespace dtmf::physical

@@ -20,4 +20,22 @@ enum class ThreadPriority { Realtime, Raised, Normal };
 // how and, if not real-time, what to do about it.
 ThreadPriority raise_audio_thread_priority(std::string* why = nullptr);
 
+// Raised for its lifetime, then back to what the thread had: open audio devices inside one.
+// A sound library's own threads (ALSA's PulseAudio plugin moves every block through one)
+// are made when a device opens and inherit their creator's scheduling; left at normal
+// priority, that thread was starved under load and a chord still came out with 300 ms of
+// silence in it although the thread writing it was real-time.
+class AudioPriorityScope {
+ public:
+  AudioPriorityScope();
+  ~AudioPriorityScope();
+  AudioPriorityScope(const AudioPriorityScope&) = delete;
+  AudioPriorityScope& operator=(const AudioPriorityScope&) = delete;
+
+ private:
+  int policy_ = 0;
+  int priority_ = 0;
+  int nice_ = 0;
+};
+
 }  // namespace dtmf::physical

@@ -59,7 +59,10 @@ LinkProfile make_seed_profile() {
 
   p.debounce.min_detections = 2;   // seed section 8
   p.debounce.window_ms = 300;
-  p.debounce.lockout_ms = 800;
+  // The seed's 0.8 s, plus 0.1 s: a chord passes 0.1-0.15 s after it starts, so 0.8 s let
+  // a reverberant tail 8-10 dB down pass it again just after it ended (2 frames in 1000 in
+  // the smoking room, RT60 0.76 s). A repeat of the same chord starts 1 s after it.
+  p.debounce.lockout_ms = 900;
   p.debounce.rearm_drop_db = 10;  // a reverberant tail must not pass a chord twice
   return p;
 }

@@ -64,16 +64,18 @@ TEST(Debouncer, AChordThatKeepsSoundingPassesOnce) {
   sound(d, 7, 50, 3000);
 }
 
-TEST(Debouncer, TheSameChordAfterAGapIsLockedOutFor800Ms) {
+// The seed says 0.8 s; we lock out 0.9 s from the pass (docs/protocol.md §6).
+TEST(Debouncer, TheSameChordAfterAGapIsLockedOutFor900Ms) {
+  ASSERT_EQ(seed().lockout_ms, 900);
   Debouncer d(seed());
-  sound(d, 7, 50, 300);
+  sound(d, 7, 50, 300);  // passes at 50 ms: locked out until 950 ms
   miss(d, 350);
   // Back within the lockout: ignored, and these detections do not count later either.
   EXPECT_FALSE(hit(d, 7, 400));
   EXPECT_FALSE(hit(d, 7, 450));
-  miss(d, 800);
-  EXPECT_FALSE(hit(d, 7, 860));
-  EXPECT_TRUE(hit(d, 7, 910));
+  miss(d, 900);
+  EXPECT_FALSE(hit(d, 7, 960));
+  EXPECT_TRUE(hit(d, 7, 1010));
 }
 
 TEST(Debouncer, ADifferentSymbolPassesAtOnceDuringTheLockout) {
@@ -110,11 +112,12 @@ TEST(Debouncer, ARaggedLastWindowDoesNotLetTheTailPassAgain) {
 
 TEST(Debouncer, TheSameChordAgainThroughAReverberantGapPassesAgain) {
   Debouncer d(seed());
-  sound(d, 7, 100, 800);
-  EXPECT_FALSE(hit(d, 7, 850, 0.2));   // the gap, filled by the tail
-  EXPECT_FALSE(hit(d, 7, 900, 0.05));
-  EXPECT_FALSE(hit(d, 7, 950, 0.8));   // the new chord's onset re-arms and counts
-  EXPECT_TRUE(hit(d, 7, 1000, 1.0));
+  sound(d, 7, 100, 900);                // an 0.8 s chord, passed at 100 ms
+  EXPECT_FALSE(hit(d, 7, 950, 0.2));    // the 0.2 s gap, filled by the tail
+  EXPECT_FALSE(hit(d, 7, 1000, 0.05));
+  EXPECT_FALSE(hit(d, 7, 1050, 0.05));
+  EXPECT_FALSE(hit(d, 7, 1100, 0.8));   // the same chord again, 1 s after the first: its onset re-arms and counts
+  EXPECT_TRUE(hit(d, 7, 1150, 1.0));
 }
 
 TEST(Debouncer, AChordsOwnRisingOnsetDoesNotReArmIt) {
