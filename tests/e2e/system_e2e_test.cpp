@@ -21,7 +21,9 @@
 #include "command/command_payload.h"
 #include "command/test_sequence.h"
 #include "command/word_codec.h"
+#include "profile/link_profile.h"
 #include "robot_model.h"
+#include "support/air_recording.h"
 #include "support/free_port.h"
 #include "support/processes.h"
 #include "velocity_provider.h"
@@ -77,8 +79,10 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
     // New PulseAudio streams deliver their first seconds irregularly (scripts/air): chords
     // sent at once were heard late, and once heard twice. Let the streams settle first.
     std::this_thread::sleep_for(3s);
+    air_ = std::make_unique<test_support::AirRecording>(path("air.wav"));
   }
   void TearDown() override {
+    air_.reset();
     test_support::stop_process(server_);
     test_support::stop_process(agent_);
     if (HasFailure()) std::printf("%s\n", run_command("tail -n 30 " + path("agent.log") + " " + path("server.log")).out.c_str());
@@ -139,6 +143,16 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
   // second time (an echo, once seen early in runs; docs/protocol.md §6 has the tail rule that
   // ended it). Should one come back, the extra receptions are printed with their attempts.
   void expect_no_wrong_frame(const std::string& run_id, const pqxx::row& report, long receptions, long heard_again = 0) {
+    // A seed chord the air cut in two (tests/support/air_recording.h) is two chords to a
+    // receiver without sequence numbers: it may be heard twice, and that is all it may do.
+    long split = 0;
+    if (profile() == "seed") {
+      for (const auto& s : air_->split_chords(seed_profile().timing.chord_ms, 4000, 17000)) {
+        std::printf("the air split a chord %.2f s into the recording: %.0f ms, %.0f ms of silence, %.0f ms\n",
+                    s.start_s, s.first_ms, s.gap_ms, s.second_ms);
+        ++split;
+      }
+    }
     pqxx::connection c(db_.url());
     pqxx::work tx(c);
     const long unsent = tx.exec_params(
@@ -156,8 +170,9 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
       std::printf("  extra reception of frame %s heard %s; attempts: %s\n", row[0].c_str(), row[1].c_str(),
                   row[2].is_null() ? "none" : row[2].c_str());
     }
-    EXPECT_EQ(false_positives, 0);
-    EXPECT_EQ(receptions, report["successfully_matched"].as<long>() + heard_again);
+    EXPECT_LE(false_positives, split);
+    EXPECT_GE(receptions, report["successfully_matched"].as<long>() + heard_again);
+    EXPECT_LE(receptions, report["successfully_matched"].as<long>() + heard_again + split);
   }
 
   // What a frame heard twice may be. The seed protocol has no sequence numbers: a frame
@@ -210,6 +225,7 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
   const std::string topic_ = "cmd_vel_e2e_" + std::to_string(::getpid());
   test_support::TempDatabase db_;
   std::unique_ptr<test_support::CmdVelSubscriber> subscriber_;
+  std::unique_ptr<test_support::AirRecording> air_;  // what was on the air while the test ran
   int agent_ = 0, server_ = 0, port_ = 0;
 };
 

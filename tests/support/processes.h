@@ -37,9 +37,13 @@ inline void stop_process(int pid, int signal = SIGTERM) {
   while (process_running(pid)) std::this_thread::sleep_for(std::chrono::milliseconds(20));
 }
 
-// Until `dtmfctl health` answers on port (10 s); false if it never does.
+// Until `dtmfctl health` answers on port, for at most 15 s of wall time; false if it never
+// does. A deadline rather than a count of tries: each try against a server that died at
+// start (say, on a database error) takes seconds, and a hundred of them outlasted ctest's
+// timeout, which then killed the test before it could stop the processes it had started.
 inline bool wait_healthy(const std::string& dtmfctl, int port) {
-  for (int i = 0; i < 100; ++i) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(15);
+  while (std::chrono::steady_clock::now() < deadline) {
     if (run_command(dtmfctl + " health --server 127.0.0.1:" + std::to_string(port)).exit_code == 0) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
