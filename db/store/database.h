@@ -1,4 +1,4 @@
-// Store library, part 2: reaching the database and bringing its schema up to date.
+// Store library: reaching the database and bringing its schema up to date.
 //
 // The database is named by a libpq connection string or URL (`--db URL`); when none is
 // given, libpq's own environment (PGHOST, PGPORT, PGUSER, PGDATABASE, PGPASSWORD, ...)

@@ -1,4 +1,4 @@
-// Store library, part 1: the rows both programs log, as the database's tables hold them.
+// Store library: the rows both programs log, as the database's tables hold them.
 //
 // Each row carries a client-made uuid, so that the same row can be written again (an
 // update, or a replay after an outage) without becoming two. Rows become JSON objects

@@ -1,4 +1,4 @@
-// Store library, part 3: where rows wait while the database is away.
+// Store library: where rows wait while the database is away.
 //
 // Rows are appended as JSON lines to `path`. To replay, the file is first renamed to
 // `path.replaying` (new rows then start a fresh file), read in order, and removed once all

@@ -1,4 +1,4 @@
-// Store library, part 4: logging rows to PostgreSQL without ever making the caller wait.
+// Store library: logging rows to PostgreSQL without ever making the caller wait.
 //
 //   caller --write()--> bounded memory queue --worker thread--> store_rows() in PostgreSQL
 //                              | full                  | database down

@@ -1,4 +1,4 @@
-// Command abstraction layer, part 1: the robot commands and the 12-bit words that name them.
+// Command abstraction layer: the robot commands and the 12-bit words that name them.
 //
 // A command travels as words: the RESET word, then a mode word, then (for modes that take
 // parameters) one parameter word. The numbering of the modes is the table "Mode words" in

@@ -1,4 +1,4 @@
-// Command abstraction layer, part 3: the robot's state machine that turns words into commands.
+// Command abstraction layer: the robot's state machine that turns words into commands.
 //
 //   Idle --RESET--> ModeSelect --mode word--> AwaitingParameter --parameter--> Idle (command)
 //                   ModeSelect --STOP word--> Idle (stop command)

@@ -1,4 +1,4 @@
-// Command abstraction layer, part 2: commands to 12-bit words and back.
+// Command abstraction layer: commands to 12-bit words and back.
 //
 // Parameters are quantised into fields of a parameter word (layouts in docs/protocol.md,
 // table "Parameter words"): duration and velocity share a word as two 6-bit fields in the

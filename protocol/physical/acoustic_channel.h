@@ -1,4 +1,4 @@
-// Physical layer, part 5: a simulated room between loudspeakers and one microphone.
+// Physical layer: a simulated room between loudspeakers and one microphone.
 //
 // Each transmitter (a loudspeaker) reaches the microphone by one path:
 //   - in free field (no room given): delayed by distance / 343 m/s (whole samples),

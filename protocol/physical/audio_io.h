@@ -1,4 +1,4 @@
-// Physical layer, part 1: where samples come from and go to.
+// Physical layer: where samples come from and go to.
 //
 // Every source and sink carries mono float samples (full scale ±1.0) at one sample rate.
 // Implementations: WAV files (wav_file.h), PortAudio devices (portaudio_device.h), and the

@@ -1,4 +1,4 @@
-// Physical layer, part 6: choosing an audio source or sink from one flag value.
+// Physical layer: choosing an audio source or sink from one flag value.
 //
 //   wav:PATH        a recording to read, or a file to write what would be played
 //   default         the host's default device (the PulseAudio "air" when PULSE_* point at it)

@@ -1,4 +1,4 @@
-// Physical layer, part 4: noise for the simulated acoustic channel.
+// Physical layer: noise for the simulated acoustic channel.
 //
 // White: Gaussian, flat to fs/2. Pink: white shaped by Paul Kellet's economy filter
 // (-3 dB/octave within 0.5 dB above about 40 Hz at 48 kHz). File: any recording (speech, music),

@@ -1,4 +1,4 @@
-// Physical layer, part 3: sound cards and sound servers through PortAudio.
+// Physical layer: sound cards and sound servers through PortAudio.
 //
 // Devices are found by index, by exact name, or by a unique case-insensitive part of the
 // name ("pulse", "USB"); "default" is the host's default device. Streams are blocking,

@@ -1,4 +1,4 @@
-// Physical layer, part 7: a simulated room that runs in real time, for whole systems.
+// Physical layer: a simulated room that runs in real time, for whole systems.
 //
 // Stations — a loudspeaker and a microphone each, like the sender's computer and the robot
 // — stand at positions on a line. Every `block_ms` of real time a clock thread takes the

@@ -1,4 +1,4 @@
-// Physical layer, part 2: audio files through libsndfile.
+// Physical layer: audio files through libsndfile.
 //
 // Reading accepts anything libsndfile reads (WAV, FLAC, AIFF, ... in any sample format),
 // mixes channels down to mono and resamples to the rate asked for with libsamplerate; a

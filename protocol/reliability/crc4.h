@@ -1,4 +1,4 @@
-// Reliability layer, part 1: CRC-4 frames.
+// Reliability layer: CRC-4 frames.
 //
 // A frame is 16 bits: the 12-bit data word followed by the 4-bit remainder of
 // (word << 4) divided by the generator x^4 + x + 1 (binary 10011), computed as the seed's

@@ -1,4 +1,4 @@
-// Reliability layer, part 2: the sender's retry controller (seed section 7, Fig. 8).
+// Reliability layer: the sender's retry controller (seed section 7, Fig. 8).
 //
 // One controller follows one frame. It asks for the first transmission; after a NACK or an
 // ACK timeout it asks for `auto_retransmissions` more on its own; after that it asks its

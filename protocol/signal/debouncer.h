@@ -1,4 +1,4 @@
-// Signal layer, part 6: the debouncer that turns repeated detections into one event.
+// Signal layer: the debouncer that turns repeated detections into one event.
 //
 // Seed section 8: a symbol (a chord's 16 bits, or ACK/NACK) passes after `min_detections`
 // detections of it within `window_ms`; the symbol that passed is then ignored for

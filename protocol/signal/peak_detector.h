@@ -1,4 +1,4 @@
-// Signal layer, part 4: the loudest peaks of a spectrum inside one side's band-pass.
+// Signal layer: the loudest peaks of a spectrum inside one side's band-pass.
 //
 // Seed section 8: the spectrum is band-passed (4–17 kHz on the robot, 1.5–4 kHz on the
 // sender), a noise gate drops everything quieter than a set level, and the N loudest peaks

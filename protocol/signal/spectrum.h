@@ -1,4 +1,4 @@
-// Signal layer, part 3: the magnitude spectrum of one analysis window, with FFTW3.
+// Signal layer: the magnitude spectrum of one analysis window, with FFTW3.
 //
 // A Hann window (sidelobes at -31 dB, so a loud tone does not bury its neighbours a few
 // bins away) is applied, a real-to-complex FFT is run with a plan made once per analyser,

@@ -1,4 +1,4 @@
-// Signal layer, part 2: chords as audio.
+// Signal layer: chords as audio.
 //
 // Every tone of a chord has the plan's amplitude and starts at phase 0; the chord fades in
 // and out over `edge_ms` with a raised-cosine (Hann) ramp, which keeps the switching

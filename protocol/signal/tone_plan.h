@@ -1,4 +1,4 @@
-// Signal layer, part 1: the tone plan — which frequencies carry which bits.
+// Signal layer: the tone plan — which frequencies carry which bits.
 //
 // A 16-bit frame becomes a chord of four tones, one per band: nibble b (most significant
 // first; band 4 carries the CRC) with value v sounds at band_low_hz[b] + v * step_hz. The
