@@ -3,6 +3,7 @@
 //
 //   dtmf-agent                                   # default microphone and speaker, DDS cmd_vel
 //   dtmf-agent --audio wav:x.wav --ack-out wav:y.wav --cmd-vel log --db none   # offline
+//   dtmf-agent --stop-robot                      # publish zero on cmd_vel now, and exit
 // Exit codes: 0 stopped cleanly, 1 a device, the database or DDS could not be had, 2 bad usage.
 #include <unistd.h>
 
@@ -13,12 +14,14 @@
 #include <csignal>
 #include <thread>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "agent.h"
 #include "cmd_vel/dds_cmd_vel.h"
+#include "stop_guard.h"
 #include "cmd_vel/log_cmd_vel.h"
 #include "cmd_vel/sim_turtlebot.h"
 #include "physical/audio_spec.h"
@@ -52,7 +55,26 @@ struct Flags {
   std::string log_level = "info";
   bool list_devices = false;
   bool realtime = false;
+  bool stop_robot = false;
+  std::optional<int> stop_robot_when_closed;  // the stop guard's pipe (stop_guard.h)
 };
+
+dtmf::agent::DdsOptions dds_options(const Flags& f) {
+  dtmf::agent::DdsOptions options;
+  options.topic = f.topic;
+  options.stamped = f.message == "twist_stamped";
+  options.domain_id = f.domain_id;
+  options.frame_id = f.frame_id;
+  return options;
+}
+
+// This program's own file, for the stop guard (a second process of the same binary).
+std::string own_executable() {
+  std::error_code error;
+  const auto path = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) throw std::runtime_error("cannot find this program's own file for the stop guard: " + error.message());
+  return path.string();
+}
 
 std::string hostname() {
   char name[256] = {};
@@ -99,15 +121,13 @@ int run(const Flags& f) {
   spdlog::info("answering through {}", ack_out);
 
   std::vector<std::unique_ptr<agent::CmdVelOutput>> owned;
+  std::unique_ptr<agent::StopGuard> guard;  // with DDS: the wheels stop even if this process is killed
   for (const std::string& name : f.cmd_vel) {
     if (name == "dds") {
-      agent::DdsOptions options;
-      options.topic = f.topic;
-      options.stamped = f.message == "twist_stamped";
-      options.domain_id = f.domain_id;
-      options.frame_id = f.frame_id;
-      owned.push_back(std::make_unique<agent::DdsCmdVel>(options));
-      spdlog::info("cmd_vel: DDS topic {} ({})", f.topic, f.message);
+      owned.push_back(std::make_unique<agent::DdsCmdVel>(dds_options(f)));
+      guard = std::make_unique<agent::StopGuard>(own_executable(), dds_options(f), f.message);
+      spdlog::info("cmd_vel: DDS topic {} ({}); stop guard pid {} publishes zero if this process dies", f.topic,
+                   f.message, guard->pid());
     } else if (name == "sim") {
       owned.push_back(std::make_unique<agent::SimTurtlebot>(model, [](const std::string& line) { spdlog::info("{}", line); }));
     } else if (name == "log") {
@@ -224,13 +244,21 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))->capture_default_str();
   app.add_flag("--list-audio-devices", f.list_devices, "list the audio devices and exit");
   app.add_flag("--realtime", f.realtime, "with wav: input, take as long as the recording lasts (as if heard live)");
+  app.add_flag("--stop-robot", f.stop_robot,
+               "publish zero on cmd_vel (DDS: --topic, --message, --ros-domain-id) and exit: stops the robot now");
+  app.add_option("--stop-robot-when-closed", f.stop_robot_when_closed,
+                 "(internal) the stop guard: publish zero on cmd_vel once this descriptor reads end-of-file")
+      ->group("");
   app.footer("Exit codes: 0 stopped cleanly, 1 a device, the database or DDS could not be had, 2 bad usage.\n"
              "Safety: zero velocity is published when a duration ends, on STOP, on SIGINT/SIGTERM, at the\n"
-             "end of a recording, and when continuous motion exceeds --continuous-limit-s.");
+             "end of a recording, and when continuous motion exceeds --continuous-limit-s; with DDS, a stop\n"
+             "guard process publishes it too if the agent dies, even by SIGKILL.");
   if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
   spdlog::set_level(spdlog::level::from_str(f.log_level));
   return dtmf::program::run(
       [&] {
+        if (f.stop_robot_when_closed) return dtmf::agent::guard_until_closed(*f.stop_robot_when_closed, dds_options(f));
+        if (f.stop_robot) return dtmf::agent::stop_robot_now(dds_options(f), std::chrono::seconds(3));
         if (f.list_devices) {
           std::printf("%s", dtmf::physical::format_device_list(dtmf::physical::list_audio_devices()).c_str());
           return 0;

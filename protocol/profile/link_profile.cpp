@@ -40,10 +40,11 @@ LinkProfile make_seed_profile() {
   p.robot_detector.noise_gate_dbfs = -60;
   p.robot_detector.tone_tolerance_hz = 25;
   p.robot_detector.dominance_db = 8;  // spandsp's DTMF relative-peak test
-  // Receiver choices of ours (docs/protocol.md §10, "What the seed receiver changed for real rooms"): a moving robot and two sound cards
-  // put 16 kHz tones up to 48 Hz off at 3000 ppm, twice the tolerance; a fast profile's
-  // sixteen-tone chords must not read as seed chords; a fan's whine on a plan tone must
-  // not win its band. A 0.8 s chord lifts its bins' background by 8 dB at most; a whine 50 dB over the floor is learnt in 5 s.
+  // Receiver choices of ours (docs/protocol.md §10, "What the seed receiver changed for real
+  // rooms"): a moving robot and two sound cards put 16 kHz tones up to 48 Hz off at 3000 ppm,
+  // twice the tolerance; a fast profile's sixteen-tone chords must not read as seed chords; a
+  // fan's whine on a plan tone must not win its band. A 0.8 s chord lifts its bins'
+  // background by 8 dB at most; a whine 50 dB over the floor is learnt in 5 s.
   p.robot_detector.max_offset_ppm = 3000;
   p.robot_detector.crowding_peaks = 3;
   p.robot_detector.background_rise_db_per_s = 10;
