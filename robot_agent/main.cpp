@@ -222,7 +222,7 @@ int main(int argc, char** argv) {
   app.add_option("--ack-out", f.ack_out, "where to answer: wav:FILE, a device, default, or none (default: none for wav: input, else default)")
       ->envname("DTMF_AGENT_ACK_OUT");
   app.add_option("--cmd-vel", f.cmd_vel, "outputs, one or more of: dds (ROS 2), sim (simulated robot), log (JSON lines on stdout)")
-      ->delimiter(',')->check(CLI::IsMember({"dds", "sim", "log"}))->capture_default_str();
+      ->delimiter(',')->check(CLI::IsMember({"dds", "sim", "log"}))->envname("DTMF_AGENT_CMD_VEL")->capture_default_str();
   app.add_option("--profile", f.profiles,
                  "link profiles to listen with, comma-separated (default: all of " + dtmf::profile_names() + ")")
       ->delimiter(',');
@@ -231,9 +231,9 @@ int main(int argc, char** argv) {
   app.add_option("--publish-rate-hz", f.publish_rate_hz, "cmd_vel publish rate")->check(CLI::Range(1.0, 200.0))->capture_default_str();
   app.add_option("--continuous-limit-s", f.continuous_limit_s,
                  "stop a DRIVE_FORWARD / TURN after this long, 0 = never")->check(CLI::Range(0.0, 3600.0))->capture_default_str();
-  app.add_option("--topic", f.topic, "ROS 2 topic")->capture_default_str();
+  app.add_option("--topic", f.topic, "ROS 2 topic")->envname("DTMF_AGENT_TOPIC")->capture_default_str();
   app.add_option("--message", f.message, "twist_stamped (ROS 2 Jazzy) or twist (Humble)")
-      ->check(CLI::IsMember({"twist_stamped", "twist"}))->capture_default_str();
+      ->check(CLI::IsMember({"twist_stamped", "twist"}))->envname("DTMF_AGENT_MESSAGE")->capture_default_str();
   app.add_option("--ros-domain-id", f.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0)")->check(CLI::Range(0, 232));
   app.add_option("--frame-id", f.frame_id, "header.frame_id of TwistStamped");
   app.add_option("--db", f.db, "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")

@@ -159,14 +159,14 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(spdlog::stderr_color_mt("dtmf-server"));
   Flags f;
   CLI::App app{"dtmf-server: the gRPC control API that drives a TurtleBot3 by sound"};
-  app.add_option("--address", f.address, "address to listen on")->capture_default_str();
-  app.add_option("--port", f.port, "port to listen on (0: any free one)")->check(CLI::Range(0, 65535))->capture_default_str();
+  app.add_option("--address", f.address, "address to listen on")->envname("DTMF_SERVER_ADDRESS")->capture_default_str();
+  app.add_option("--port", f.port, "port to listen on (0: any free one)")->check(CLI::Range(0, 65535))->envname("DTMF_SERVER_PORT")->capture_default_str();
   app.add_option("--audio-out", f.audio_out, "loudspeaker: a device name or index, default, or wav:FILE (write what would be played)")
       ->envname("DTMF_SERVER_AUDIO_OUT")->capture_default_str();
   app.add_option("--audio-in", f.audio_in, "microphone for the robot's ACK / NACK: a device, default, wav:FILE, or none")
       ->envname("DTMF_SERVER_AUDIO_IN")->capture_default_str();
   app.add_option("--profile", f.profile, "link profile of commands that name none (CommandOptions.profile): " +
-                                            dtmf::profile_names())->capture_default_str();
+                                            dtmf::profile_names())->envname("DTMF_SERVER_PROFILE")->capture_default_str();
   app.add_option("--db", f.db, "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
       ->envname("DTMF_DB_URL");
   app.add_option("--spill-file", f.spill_file, "where log rows wait while the database is away");
@@ -176,9 +176,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 3600.0))->capture_default_str();
   app.add_option("--max-queue", f.max_queue, "commands that may wait; more get RESOURCE_EXHAUSTED")
       ->check(CLI::Range(1, 10000))->capture_default_str();
-  app.add_option("--tls-cert", f.tls_cert, "PEM certificate: serve TLS (with --tls-key)");
-  app.add_option("--tls-key", f.tls_key, "PEM private key");
-  app.add_option("--auth-token-file", f.auth_token_file, "every call must carry 'authorization: Bearer <token in this file>'");
+  app.add_option("--tls-cert", f.tls_cert, "PEM certificate: serve TLS (with --tls-key)")->envname("DTMF_SERVER_TLS_CERT");
+  app.add_option("--tls-key", f.tls_key, "PEM private key")->envname("DTMF_SERVER_TLS_KEY");
+  app.add_option("--auth-token-file", f.auth_token_file, "every call must carry 'authorization: Bearer <token in this file>'")
+      ->envname("DTMF_SERVER_AUTH_TOKEN_FILE");
   app.add_option("--log-level", f.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))->capture_default_str();
   app.add_flag("--list-audio-devices", f.list_devices, "list the audio devices and exit");
