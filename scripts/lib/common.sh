@@ -13,6 +13,7 @@ DTMF_PACKAGES=(
   libfastrtps-dev fastddsgen  # tests/interop/fastdds: ROS 2 Jazzy's default middleware as the subscriber
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
   espeak-ng sox openssl
+  systemd  # systemd-analyze verify checks the units (tests/install)
   docker-compose  # tests/docker: validates docker/compose.yaml offline (no engine needed)
   python3 python3-pip python3-venv python3-grpcio python3-protobuf python3-pytest python3-matplotlib
 )
