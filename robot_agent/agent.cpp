@@ -59,9 +59,26 @@ void Agent::told(const HeardFrame& frame) const {
 }
 
 void Agent::on_reception(const link::Link& link, const link::Reception& r) {
-  ++frames_heard_;
   const LinkProfile& profile = link.profile();
-  replies_.play(link.answer_audio(r), r.heard_ms);
+  // A frame that fails while another profile's intact frame, or the answer to it, still
+  // sounds is that sound's doing, not a damaged frame of this profile: a sender plays one
+  // frame at a time, so none of this profile was on the air then. (Where the microphone
+  // clips under the robot's own seed ACK, ACK and seed chord make tones in every fast band
+  // at once; the fast receiver now and then took them for a damaged frame and NACKed it.)
+  if (!r.intact && sounding_link_ && sounding_link_ != &link && r.start_ms < sounding_until_ms_) {
+    spdlog::debug("t={:.3f}s {} candidate during a {} frame: not answered", r.heard_ms / 1000.0, profile.name,
+                  sounding_link_->name());
+    return;
+  }
+  ++frames_heard_;
+  std::vector<float> answer = link.answer_audio(r);
+  if (r.intact) {
+    sounding_link_ = &link;
+    const double frame_period_ms = link.frame_start_ms(1) - link.frame_start_ms(0);
+    sounding_until_ms_ = std::max(r.start_ms + frame_period_ms,
+                                  r.heard_ms + 1000.0 * static_cast<double>(answer.size()) / sample_rate_hz_);
+  }
+  replies_.play(std::move(answer), r.heard_ms);
   store::ReceptionRow row;
   row.host = options_.host;
   row.profile = profile.name;

@@ -127,6 +127,9 @@ class Agent {
   long long samples_ = 0;
   double next_publish_ms_ = 0;
   std::size_t frames_heard_ = 0;
+  // The last intact frame's link, and until when (audio ms) that frame and its answer sound.
+  const link::Link* sounding_link_ = nullptr;
+  double sounding_until_ms_ = 0;
 };
 
 }  // namespace dtmf::agent

@@ -6,6 +6,8 @@
 #include "link/sender_path.h"
 #include "link/link.h"
 #include "physical/wav_file.h"
+#include "reliability/command_frame.h"
+#include "signal/hop_synthesizer.h"
 #include "signal/tone_listener.h"
 
 using namespace dtmf;
@@ -189,4 +191,59 @@ TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) 
   }
   EXPECT_TRUE(heard[4].command.has_value());
   EXPECT_GT(output.published.back().velocity.linear_mps, 0) << "the seed's DRIVE_FORWARD runs on";
+}
+
+// A fast frame that fails its check while a seed frame and the robot's answer to it still
+// sound is that sound's doing, not a damaged fast frame: one sender plays one frame at a
+// time. It is not answered (in the PulseAudio air a clipped seed chord and ACK drew such
+// NACKs now and then); the same damaged frame on a quiet air is NACKed.
+TEST(Agent, AFastFrameFailingWhileASeedFrameSoundsIsNotAnswered) {
+  const LinkProfile& fast = fast_profile();
+  const LinkProfile& seed = seed_profile();
+  std::uint8_t sequence = 3;
+  const auto sent = link::link_for(fast).plan(command::Stop{}, sequence).front();
+  auto symbols = reliability::encode_symbols(sent.bits);
+  for (int i : {0, 2, 5, 8, 11, 13, 15}) symbols[static_cast<std::size_t>(i)] ^= 0x11;  // 7 errors: beyond the code
+  signal::HoppedSymbols hopped{};
+  std::copy(symbols.begin(), symbols.end(), hopped.begin());
+  const std::vector<float> damaged = signal::synthesize_hopped_frame(fast, hopped);
+  const auto seed_chord = link::render_frames(seed, {link::plan_command(seed, command::Reset{}).front()});
+
+  std::vector<float> audio(static_cast<std::size_t>(fast.samples_for_ms(4000)), 0.0f);
+  const auto mix = [&](const std::vector<float>& sound, double at_ms) {
+    const auto from = static_cast<std::size_t>(fast.samples_for_ms(at_ms));
+    for (std::size_t i = 0; i < sound.size(); ++i) audio[from + i] += sound[i];
+  };
+  mix(seed_chord, 200);
+  mix(damaged, 500);   // inside the seed chord (200-1000 ms)
+  mix(damaged, 2500);  // on a quiet air
+
+  struct Recorded : ReplyPlayer {
+    void play(std::vector<float> audio, double) override { answers.push_back(std::move(audio)); }
+    void finish(double) override {}
+    std::vector<std::vector<float>> answers;
+  } replies;
+  RecordingOutput output;
+  std::vector<HeardFrame> heard;
+  AgentOptions options;
+  options.profiles = {&seed, &fast};
+  options.on_frame_heard = [&](const HeardFrame& f) { heard.push_back(f); };
+  store::StoreOptions no_db;
+  no_db.database = std::string();
+  store::Store store(no_db);
+  Timeline timeline(false);
+  Agent agent(options, replies, {&output}, store, timeline);
+  const auto block = static_cast<std::size_t>(agent.block_samples());
+  for (std::size_t i = 0; i < audio.size(); i += block) {
+    agent.process(std::span<const float>(audio).subspan(i, std::min(block, audio.size() - i)));
+  }
+
+  ASSERT_EQ(heard.size(), 2u) << "the seed frame, and the damaged fast frame on the quiet air";
+  EXPECT_EQ(heard[0].profile, &seed);
+  EXPECT_TRUE(heard[0].intact);
+  EXPECT_EQ(heard[1].profile, &fast);
+  EXPECT_FALSE(heard[1].intact);
+  EXPECT_GT(heard[1].start_ms, 2400);
+  EXPECT_EQ(replies.answers.size(), 2u);
+  EXPECT_EQ(replies.answers[1], answer(fast, false));
 }

@@ -83,9 +83,17 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
   }
   void TearDown() override {
     air_.reset();
+    if (HasFailure() && fs::exists(path("air.wav"))) {  // what was on the air, to replay offline
+      const auto kept = fs::path(::testing::TempDir()) / ("e2e-failed-" + std::to_string(::getpid()) + "-air.wav");
+      fs::copy_file(path("air.wav"), kept, fs::copy_options::overwrite_existing);
+      std::printf("the air's recording is kept in %s\n", kept.c_str());
+    }
     test_support::stop_process(server_);
     test_support::stop_process(agent_);
-    if (HasFailure()) std::printf("%s\n", run_command("tail -n 30 " + path("agent.log") + " " + path("server.log")).out.c_str());
+    if (HasFailure()) {  // every frame the robot refused or heard oddly, then the ends of both logs
+      std::printf("%s\n%s\n", run_command("grep -E 'NACK|warn|error|twice|again' " + path("agent.log")).out.c_str(),
+                  run_command("tail -n 30 " + path("agent.log") + " " + path("server.log")).out.c_str());
+    }
     fs::remove_all(dir_);
   }
 
