@@ -116,17 +116,21 @@ double commanded_duration_s() {
 // What both messages share: discovery, QoS, values, the final zero and the motion's length.
 void expect_ros2_cmd_vel(const AgentRun& run, const std::string& type) {
   const CmdVelState& s = run.ros;
-  // The writer as discovery announced it: ours, reliable, volatile, XCDR1. Cyclone leaves
+  // The writers as discovery announced them: ours, reliable, volatile, XCDR1. Cyclone leaves
   // out of its announcement every QoS at the RTPS default for a writer (its trace shows
   // only topic, type and history): Fast DDS reports reliability, durability and
   // representation as those defaults, which is what the agent offers, and would report
   // anything else the agent announced instead.
-  ASSERT_EQ(s.writers.size(), 1u) << run.agent.out;
-  EXPECT_EQ(s.writers[0].topic, "rt/cmd_vel");
-  EXPECT_EQ(s.writers[0].type, type);
-  EXPECT_EQ(s.writers[0].reliability, "RELIABLE");
-  EXPECT_EQ(s.writers[0].durability, "VOLATILE");
-  for (const auto& r : s.writers[0].representations) EXPECT_EQ(r, "XCDR");  // none given: XCDR
+  // Two writers: the agent's, and its stop guard's (robot_agent/stop_guard.h), which
+  // publishes zero if the agent dies. Both must be what a ROS 2 node accepts.
+  ASSERT_EQ(s.writers.size(), 2u) << run.agent.out;
+  for (const auto& writer : s.writers) {
+    EXPECT_EQ(writer.topic, "rt/cmd_vel");
+    EXPECT_EQ(writer.type, type);
+    EXPECT_EQ(writer.reliability, "RELIABLE");
+    EXPECT_EQ(writer.durability, "VOLATILE");
+    for (const auto& r : writer.representations) EXPECT_EQ(r, "XCDR");  // none given: XCDR
+  }
   // Fast DDS's own matching agrees: our reliable reader matched it with no complaint
   // (a best-effort writer would have been refused), one asking for TRANSIENT_LOCAL was
   // refused for durability.
