@@ -66,6 +66,37 @@ void run_agent(const std::vector<float>& audio, AgentRun& run) {
   run.frames = agent.frames_heard();
 }
 
+// The agent listening with both profiles to `audio`, fed in its own block size: what it
+// heard, what it answered and what it published.
+struct BothProfilesRun {
+  struct Recorded : ReplyPlayer {
+    void play(std::vector<float> audio, double) override { answers.push_back(std::move(audio)); }
+    void finish(double) override {}
+    std::vector<std::vector<float>> answers;
+  } replies;
+  RecordingOutput output;
+  std::vector<HeardFrame> heard;
+  int block_samples = 0;
+};
+
+BothProfilesRun run_both_profiles(const std::vector<float>& audio) {
+  BothProfilesRun run;
+  AgentOptions options;
+  options.profiles = {&seed_profile(), &fast_profile()};
+  options.on_frame_heard = [&](const HeardFrame& f) { run.heard.push_back(f); };
+  store::StoreOptions no_db;
+  no_db.database = std::string();
+  store::Store store(no_db);
+  Timeline timeline(false);
+  Agent agent(options, run.replies, {&run.output}, store, timeline);
+  run.block_samples = agent.block_samples();
+  const auto block = static_cast<std::size_t>(agent.block_samples());
+  for (std::size_t i = 0; i < audio.size(); i += block) {
+    agent.process(std::span<const float>(audio).subspan(i, std::min(block, audio.size() - i)));
+  }
+  return run;
+}
+
 }  // namespace
 
 TEST(Agent, DrivesForTheQuantisedDurationThenPublishesZero) {
@@ -152,26 +183,11 @@ TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) 
   append(frame.audio, 500);  // the sender did not hear the ACK: the same frame again
   append(link::render_frames(seed, link::plan_command(seed, command::DriveForward{30})), 500);
 
-  struct Recorded : ReplyPlayer {
-    void play(std::vector<float> audio, double) override { answers.push_back(std::move(audio)); }
-    void finish(double) override {}
-    std::vector<std::vector<float>> answers;
-  } replies;
-  RecordingOutput output;
-  std::vector<HeardFrame> heard;
-  AgentOptions options;
-  options.profiles = {&seed, &fast};
-  options.on_frame_heard = [&](const HeardFrame& f) { heard.push_back(f); };
-  store::StoreOptions no_db;
-  no_db.database = std::string();
-  store::Store store(no_db);
-  Timeline timeline(false);
-  Agent agent(options, replies, {&output}, store, timeline);
-  EXPECT_EQ(agent.block_samples(), fast.hop_samples());
-  const auto block = static_cast<std::size_t>(agent.block_samples());
-  for (std::size_t i = 0; i < audio.size(); i += block) {
-    agent.process(std::span<const float>(audio).subspan(i, std::min(block, audio.size() - i)));
-  }
+  BothProfilesRun run = run_both_profiles(audio);
+  EXPECT_EQ(run.block_samples, fast.hop_samples());
+  const auto& heard = run.heard;
+  const auto& replies = run.replies;
+  const auto& output = run.output;
 
   ASSERT_EQ(heard.size(), 5u);  // two fast frames, three seed words
   const auto named_ack = answer(fast, true, frame.sequence);
@@ -218,25 +234,9 @@ TEST(Agent, AFastFrameFailingWhileASeedFrameSoundsIsNotAnswered) {
   mix(damaged, 500);   // inside the seed chord (200-1000 ms)
   mix(damaged, 2500);  // on a quiet air
 
-  struct Recorded : ReplyPlayer {
-    void play(std::vector<float> audio, double) override { answers.push_back(std::move(audio)); }
-    void finish(double) override {}
-    std::vector<std::vector<float>> answers;
-  } replies;
-  RecordingOutput output;
-  std::vector<HeardFrame> heard;
-  AgentOptions options;
-  options.profiles = {&seed, &fast};
-  options.on_frame_heard = [&](const HeardFrame& f) { heard.push_back(f); };
-  store::StoreOptions no_db;
-  no_db.database = std::string();
-  store::Store store(no_db);
-  Timeline timeline(false);
-  Agent agent(options, replies, {&output}, store, timeline);
-  const auto block = static_cast<std::size_t>(agent.block_samples());
-  for (std::size_t i = 0; i < audio.size(); i += block) {
-    agent.process(std::span<const float>(audio).subspan(i, std::min(block, audio.size() - i)));
-  }
+  const BothProfilesRun run = run_both_profiles(audio);
+  const auto& heard = run.heard;
+  const auto& replies = run.replies;
 
   ASSERT_EQ(heard.size(), 2u) << "the seed frame, and the damaged fast frame on the quiet air";
   EXPECT_EQ(heard[0].profile, &seed);

@@ -8,6 +8,7 @@
 #include <iterator>
 #include <thread>
 
+#include "profile/link_profile.h"
 #include "support/air_recording.h"
 #include "support/free_port.h"
 #include "support/processes.h"
@@ -125,8 +126,9 @@ TEST_F(DtmfctlLive, BadValuesAreUsageErrorsAndAMissingServerIsOneLine) {
 TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   dtmf::test_support::AirRecording air((kDir / "air.wav").string());
   const auto r = run_command(ctl("sequence --label general") + " < /dev/null");
-  // Seed chords: 0.8 s, tones 4.5-16.5 kHz (docs/protocol.md §2).
-  const auto split = air.split_chords(800, 4000, 17000);
+  const dtmf::LinkProfile& seed = dtmf::seed_profile();
+  const auto split = air.split_chords(seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
+                                      seed.robot_detector.bandpass_high_hz);
   for (const auto& s : split) {
     std::printf("the air split a chord %.2f s into the recording: %.0f ms, %.0f ms of silence, %.0f ms\n", s.start_s,
                 s.first_ms, s.gap_ms, s.second_ms);

@@ -155,7 +155,8 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
     // receiver without sequence numbers: it may be heard twice, and that is all it may do.
     long split = 0;
     if (profile() == "seed") {
-      for (const auto& s : air_->split_chords(seed_profile().timing.chord_ms, 4000, 17000)) {
+      for (const auto& s : air_->split_chords(seed_profile().timing.chord_ms, seed_profile().robot_detector.bandpass_low_hz,
+                                                   seed_profile().robot_detector.bandpass_high_hz)) {
         std::printf("the air split a chord %.2f s into the recording: %.0f ms, %.0f ms of silence, %.0f ms\n",
                     s.start_s, s.first_ms, s.gap_ms, s.second_ms);
         ++split;

@@ -35,7 +35,8 @@ TEST(AirRecording, AChordWithAnUnderrunInItIsOneSplitChord) {
   append(air, chord);
   append_silence(air, 500);
 
-  const auto split = find_split_chords(air, kRateHz, seed.timing.chord_ms, 4000, 17000);
+  const auto split = find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
+                                      seed.robot_detector.bandpass_high_hz);
   ASSERT_EQ(split.size(), 1u);
   EXPECT_NEAR(split[0].start_s, 1.5, 0.02);
   EXPECT_NEAR(split[0].first_ms, 300, 20);
@@ -52,5 +53,6 @@ TEST(AirRecording, WholeChordsWithAnAckOverThemAreNotSplit) {
     append(air, chord);
     append_silence(air, 200);
   }
-  EXPECT_TRUE(find_split_chords(air, kRateHz, seed.timing.chord_ms, 4000, 17000).empty());
+  EXPECT_TRUE(find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
+                                      seed.robot_detector.bandpass_high_hz).empty());
 }
