@@ -121,7 +121,8 @@ void Agent::publish_until(double audio_ms, bool inclusive) {
   const double period_ms = 1000.0 / options_.publish_rate_hz;
   while (next_publish_ms_ < audio_ms || (inclusive && next_publish_ms_ == audio_ms)) {
     const Velocity velocity = provider_.update(next_publish_ms_ / 1000.0);
-    if (auto reason = provider_.take_stop_reason()) spdlog::info("t={:.3f}s stop: {}", next_publish_ms_ / 1000.0, *reason);
+    if (auto reason = provider_.take_stop_reason())
+      spdlog::info("t={:.3f}s stop: {}", next_publish_ms_ / 1000.0, *reason);
     publish(velocity, next_publish_ms_);
     next_publish_ms_ += period_ms;
   }

@@ -44,14 +44,15 @@ class Timeline {
   void block_read(double block_end_ms, double queued_ms = 0) {
     block_end_ms_ = block_end_ms;
     if (live_) {
-      block_end_wall_ = std::chrono::system_clock::now() -
-                        std::chrono::duration_cast<std::chrono::system_clock::duration>(
-                            std::chrono::duration<double, std::milli>(queued_ms));
+      block_end_wall_ =
+          std::chrono::system_clock::now() - std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                                                 std::chrono::duration<double, std::milli>(queued_ms));
     }
   }
   std::chrono::system_clock::time_point wall(double audio_ms) const {
     const auto offset = [](double ms) {
-      return std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double, std::milli>(ms));
+      return std::chrono::duration_cast<std::chrono::system_clock::duration>(
+          std::chrono::duration<double, std::milli>(ms));
     };
     return live_ ? block_end_wall_ - offset(block_end_ms_ - audio_ms) : start_ + offset(audio_ms);
   }

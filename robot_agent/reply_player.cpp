@@ -14,7 +14,8 @@ ReplyTimeline::ReplyTimeline(const LinkProfile& profile, std::unique_ptr<physica
 void ReplyTimeline::silence_until(long long sample) {
   static const std::vector<float> zeros(4096, 0.0f);
   while (written_ < sample) {
-    const auto n = static_cast<std::size_t>(std::min<long long>(sample - written_, static_cast<long long>(zeros.size())));
+    const auto n =
+        static_cast<std::size_t>(std::min<long long>(sample - written_, static_cast<long long>(zeros.size())));
     sink_->write(std::span<const float>(zeros.data(), n));
     written_ += static_cast<long long>(n);
   }

@@ -1,13 +1,12 @@
 // How the robot answers: ACK or NACK chords through its loudspeaker (physical layer sink).
 //
-// The answers themselves are each link's (link::Link::answer_audio). ReplyTimeline writes a file: each chord at the audio time of the frame it answers, with
-// silence between, so an offline run leaves a recording aligned with its input.
-// LiveReplyPlayer plays on a device from its own thread, so answering never holds up
-// listening; a chord asked for while another plays follows it. It first plays a stretch of
-// silence (`warmup`) and only then returns from its constructor: a new PulseAudio stream
-// delivers its first sounds late or not at all, and a restarted agent's first ACK was lost
-// that way (the seed sender then retransmitted a frame the robot had executed, which the
-// robot, without sequence numbers, executed again).
+// The answers themselves are each link's (link::Link::answer_audio). ReplyTimeline writes a file: each chord at the
+// audio time of the frame it answers, with silence between, so an offline run leaves a recording aligned with its
+// input. LiveReplyPlayer plays on a device from its own thread, so answering never holds up listening; a chord asked
+// for while another plays follows it. It first plays a stretch of silence (`warmup`) and only then returns from its
+// constructor: a new PulseAudio stream delivers its first sounds late or not at all, and a restarted agent's first ACK
+// was lost that way (the seed sender then retransmitted a frame the robot had executed, which the robot, without
+// sequence numbers, executed again).
 #pragma once
 
 #include <chrono>
@@ -16,8 +15,8 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <vector>
 #include <thread>
+#include <vector>
 
 #include "physical/audio_io.h"
 #include "profile/link_profile.h"

@@ -36,8 +36,8 @@ std::string errno_text() { return std::strerror(errno); }
 StopGuard::StopGuard(const std::string& program, const DdsOptions& options, const std::string& message) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("cannot make the stop guard's pipe: " + errno_text());
-  std::vector<std::string> args{program, "--stop-robot-when-closed", std::to_string(kGuardFd), "--topic", options.topic,
-                                "--message", message};
+  std::vector<std::string> args{
+      program, "--stop-robot-when-closed", std::to_string(kGuardFd), "--topic", options.topic, "--message", message};
   if (options.domain_id) args.insert(args.end(), {"--ros-domain-id", std::to_string(*options.domain_id)});
   if (!options.frame_id.empty()) args.insert(args.end(), {"--frame-id", options.frame_id});
   std::vector<char*> argv;
@@ -101,9 +101,10 @@ int stop_robot_now(const DdsOptions& options, std::chrono::milliseconds discover
   const bool found = cmd_vel.wait_for_subscribers(1, discovery);
   publish_stop(cmd_vel);
   if (!found) {
-    spdlog::error("zero published on {} (domain {}), but no subscriber was found within {} ms: is the robot on this "
-                  "DDS domain and network (ROS_DOMAIN_ID, CYCLONEDDS_URI)?",
-                  cmd_vel.topic_name(), cmd_vel.domain_id(), discovery.count());
+    spdlog::error(
+        "zero published on {} (domain {}), but no subscriber was found within {} ms: is the robot on this "
+        "DDS domain and network (ROS_DOMAIN_ID, CYCLONEDDS_URI)?",
+        cmd_vel.topic_name(), cmd_vel.domain_id(), discovery.count());
     return 1;
   }
   spdlog::info("zero published on {} (domain {}) to {} subscriber(s)", cmd_vel.topic_name(), cmd_vel.domain_id(),

@@ -7,13 +7,13 @@
 // runs) and the read end of a pipe whose write end only the agent holds. However the agent
 // ends, the kernel closes that end and the guard's read() returns. An agent that ends
 // normally has stopped the robot itself and writes one byte first, standing the guard down;
-// without that byte the guard publishes zero on cmd_vel at once, then exits. The same binary serves a person who needs the robot stopped
-// now: `dtmf-agent --stop-robot` publishes zero and exits.
+// without that byte the guard publishes zero on cmd_vel at once, then exits. The same binary serves a person who needs
+// the robot stopped now: `dtmf-agent --stop-robot` publishes zero and exits.
 #pragma once
 
+#include <sys/types.h>
 #include <chrono>
 #include <string>
-#include <sys/types.h>
 
 #include "cmd_vel/dds_cmd_vel.h"
 

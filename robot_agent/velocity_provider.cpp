@@ -7,9 +7,12 @@ namespace dtmf::agent {
 
 std::string motion_state_name(MotionState state) {
   switch (state) {
-    case MotionState::Idle: return "idle";
-    case MotionState::Duration: return "duration";
-    case MotionState::Continuous: return "continuous";
+    case MotionState::Idle:
+      return "idle";
+    case MotionState::Duration:
+      return "duration";
+    case MotionState::Continuous:
+      return "continuous";
   }
   return "unknown";
 }

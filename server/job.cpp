@@ -1,16 +1,21 @@
 #include "job.h"
 
-
 namespace dtmf::server {
 
 std::string outcome_name(Outcome outcome) {
   switch (outcome) {
-    case Outcome::Pending: return "pending";
-    case Outcome::Confirmed: return "confirmed";
-    case Outcome::Continued: return "continued";
-    case Outcome::Failed: return "failed";
-    case Outcome::Cancelled: return "cancelled";
-    case Outcome::Unavailable: return "failed";
+    case Outcome::Pending:
+      return "pending";
+    case Outcome::Confirmed:
+      return "confirmed";
+    case Outcome::Continued:
+      return "continued";
+    case Outcome::Failed:
+      return "failed";
+    case Outcome::Cancelled:
+      return "cancelled";
+    case Outcome::Unavailable:
+      return "failed";
   }
   return "failed";
 }
@@ -18,13 +23,14 @@ std::string outcome_name(Outcome outcome) {
 Job::Job(const link::Link& link, command::Command command, std::vector<link::TransmitFrame> frames, Policy policy,
          std::chrono::milliseconds decision_timeout, std::optional<std::string> run_id)
     : link_(link),
-      command_(std::move(command)), frames_(std::move(frames)), policy_(policy), decision_timeout_(decision_timeout),
+      command_(std::move(command)),
+      frames_(std::move(frames)),
+      policy_(policy),
+      decision_timeout_(decision_timeout),
       run_id_(std::move(run_id)) {}
 
 // What the robot will execute: the command as its parameter fields carry it.
-std::string Job::description() const {
-  return command::describe(link_.as_received(command_));
-}
+std::string Job::description() const { return command::describe(link_.as_received(command_)); }
 
 std::optional<ProgressEvent> Job::next_event(std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);

@@ -25,7 +25,18 @@ enum class Outcome { Pending, Confirmed, Continued, Failed, Cancelled, Unavailab
 std::string outcome_name(Outcome outcome);
 
 struct ProgressEvent {
-  enum class Kind { Queued, Transmitting, Ack, Nack, NoAnswer, Retransmitting, AwaitingDecision, Confirmed, Continued, Failed };
+  enum class Kind {
+    Queued,
+    Transmitting,
+    Ack,
+    Nack,
+    NoAnswer,
+    Retransmitting,
+    AwaitingDecision,
+    Confirmed,
+    Continued,
+    Failed
+  };
   explicit ProgressEvent(Kind k) : kind(k) {}
   Kind kind;
   int frame_index = 0;

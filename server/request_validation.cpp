@@ -66,9 +66,15 @@ CommandSettings command_settings(const v1::CommandOptions& options, const Comman
   CommandSettings settings = defaults;
   if (options.has_on_unconfirmed()) {
     switch (options.on_unconfirmed()) {
-      case v1::UNCONFIRMED_POLICY_ASK: settings.policy = Policy::Ask; break;
-      case v1::UNCONFIRMED_POLICY_CONTINUE: settings.policy = Policy::Continue; break;
-      case v1::UNCONFIRMED_POLICY_FAIL: settings.policy = Policy::Fail; break;
+      case v1::UNCONFIRMED_POLICY_ASK:
+        settings.policy = Policy::Ask;
+        break;
+      case v1::UNCONFIRMED_POLICY_CONTINUE:
+        settings.policy = Policy::Continue;
+        break;
+      case v1::UNCONFIRMED_POLICY_FAIL:
+        settings.policy = Policy::Fail;
+        break;
       default:
         throw RequestError("options.on_unconfirmed: " + std::to_string(options.on_unconfirmed()) +
                            " is not a policy; use UNCONFIRMED_POLICY_ASK, _CONTINUE or _FAIL, or leave it out");
@@ -94,9 +100,12 @@ reliability::Decision decision_of(const v1::DecideRequest& r) {
   if (r.command_id().empty()) throw RequestError("command_id: required (from the AWAITING_DECISION progress)");
   check_text("command_id", r.command_id(), kIdLimit);
   switch (r.decision()) {
-    case v1::DECISION_CONTINUE: return reliability::Decision::Continue;
-    case v1::DECISION_RETRANSMIT: return reliability::Decision::Retransmit;
-    case v1::DECISION_ABORT: return reliability::Decision::GiveUp;
+    case v1::DECISION_CONTINUE:
+      return reliability::Decision::Continue;
+    case v1::DECISION_RETRANSMIT:
+      return reliability::Decision::Retransmit;
+    case v1::DECISION_ABORT:
+      return reliability::Decision::GiveUp;
     default:
       throw RequestError("decision: " + std::to_string(r.decision()) +
                          " is not a decision; use DECISION_CONTINUE, DECISION_RETRANSMIT or DECISION_ABORT");

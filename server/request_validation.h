@@ -37,7 +37,7 @@ struct TextLimit {
 };
 inline constexpr TextLimit kLabelLimit{100};
 inline constexpr TextLimit kNotesLimit{2000, true};
-inline constexpr TextLimit kIdLimit{64};       // command_id, run_id (uuids are 36)
+inline constexpr TextLimit kIdLimit{64};  // command_id, run_id (uuids are 36)
 inline constexpr TextLimit kProfileLimit{32};
 
 // Throws RequestError naming `field` when `text` is not valid UTF-8, holds a NUL or another

@@ -12,16 +12,26 @@ namespace {
 v1::FrameEvent frame_event(ProgressEvent::Kind kind) {
   using K = ProgressEvent::Kind;
   switch (kind) {
-    case K::Queued: return v1::FRAME_EVENT_QUEUED;
-    case K::Transmitting: return v1::FRAME_EVENT_TRANSMITTING;
-    case K::Ack: return v1::FRAME_EVENT_ACK;
-    case K::Nack: return v1::FRAME_EVENT_NACK;
-    case K::NoAnswer: return v1::FRAME_EVENT_NO_ANSWER;
-    case K::Retransmitting: return v1::FRAME_EVENT_RETRANSMITTING;
-    case K::AwaitingDecision: return v1::FRAME_EVENT_AWAITING_DECISION;
-    case K::Confirmed: return v1::FRAME_EVENT_CONFIRMED;
-    case K::Continued: return v1::FRAME_EVENT_CONTINUED;
-    case K::Failed: return v1::FRAME_EVENT_FAILED;
+    case K::Queued:
+      return v1::FRAME_EVENT_QUEUED;
+    case K::Transmitting:
+      return v1::FRAME_EVENT_TRANSMITTING;
+    case K::Ack:
+      return v1::FRAME_EVENT_ACK;
+    case K::Nack:
+      return v1::FRAME_EVENT_NACK;
+    case K::NoAnswer:
+      return v1::FRAME_EVENT_NO_ANSWER;
+    case K::Retransmitting:
+      return v1::FRAME_EVENT_RETRANSMITTING;
+    case K::AwaitingDecision:
+      return v1::FRAME_EVENT_AWAITING_DECISION;
+    case K::Confirmed:
+      return v1::FRAME_EVENT_CONFIRMED;
+    case K::Continued:
+      return v1::FRAME_EVENT_CONTINUED;
+    case K::Failed:
+      return v1::FRAME_EVENT_FAILED;
   }
   return v1::FRAME_EVENT_UNSPECIFIED;
 }
@@ -49,10 +59,14 @@ grpc::Status outcome_status(Job& job) {
   const std::string detail = job.outcome_detail();
   switch (job.outcome()) {
     case Outcome::Confirmed:
-    case Outcome::Continued: return grpc::Status::OK;
-    case Outcome::Cancelled: return {grpc::StatusCode::CANCELLED, detail};
-    case Outcome::Unavailable: return {grpc::StatusCode::UNAVAILABLE, detail};
-    default: return {grpc::StatusCode::ABORTED, job.description() + ": " + detail};
+    case Outcome::Continued:
+      return grpc::Status::OK;
+    case Outcome::Cancelled:
+      return {grpc::StatusCode::CANCELLED, detail};
+    case Outcome::Unavailable:
+      return {grpc::StatusCode::UNAVAILABLE, detail};
+    default:
+      return {grpc::StatusCode::ABORTED, job.description() + ": " + detail};
   }
 }
 
@@ -75,11 +89,13 @@ grpc::Status TeleopService::authorize(grpc::ServerContext* context) const {
   if (options_.auth_token.empty()) return grpc::Status::OK;
   const auto& metadata = context->client_metadata();
   const auto found = metadata.find("authorization");
-  if (found != metadata.end() && std::string(found->second.data(), found->second.size()) == "Bearer " + options_.auth_token) {
+  if (found != metadata.end() &&
+      std::string(found->second.data(), found->second.size()) == "Bearer " + options_.auth_token) {
     return grpc::Status::OK;
   }
-  return {grpc::StatusCode::UNAUTHENTICATED,
-          "this server needs a bearer token: send metadata 'authorization: Bearer <token>' (dtmfctl --token-file FILE)"};
+  return {
+      grpc::StatusCode::UNAUTHENTICATED,
+      "this server needs a bearer token: send metadata 'authorization: Bearer <token>' (dtmfctl --token-file FILE)"};
 }
 
 CommandSettings TeleopService::settings_of(const v1::CommandOptions& options) const {
@@ -158,7 +174,8 @@ grpc::Status TeleopService::Reset(grpc::ServerContext* context, const v1::ResetR
   return run_command(context, command::Reset{}, request->options(), false, progress_to(writer));
 }
 
-grpc::Status TeleopService::Decide(grpc::ServerContext* context, const v1::DecideRequest* request, v1::DecideResponse*) {
+grpc::Status TeleopService::Decide(grpc::ServerContext* context, const v1::DecideRequest* request,
+                                   v1::DecideResponse*) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
   try {
     if (!transmitter_.decide(request->command_id(), decision_of(*request))) {
@@ -194,7 +211,8 @@ grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const 
   for (std::size_t k = 0; k < commands.size() && status.ok(); ++k) {
     status = run_command(context, commands[k], request->options(), false, [&](const v1::Progress& p) {
       if (p.event() == v1::FRAME_EVENT_ACK) done = before + p.frame_index() + 1;
-      if (p.event() == v1::FRAME_EVENT_CONFIRMED || p.event() == v1::FRAME_EVENT_CONTINUED) done = before + p.frame_count();
+      if (p.event() == v1::FRAME_EVENT_CONFIRMED || p.event() == v1::FRAME_EVENT_CONTINUED)
+        done = before + p.frame_count();
       v1::RunTestSequenceResponse response;
       response.set_run_id(run_id);
       response.set_command_index(static_cast<std::uint32_t>(k));

@@ -17,9 +17,9 @@
 namespace dtmf::server {
 
 struct ServiceOptions {
-  store::DatabaseUrl database;      // for reports
+  store::DatabaseUrl database;  // for reports
   CommandSettings defaults{Policy::Fail, std::chrono::seconds(60)};
-  std::string auth_token;           // empty: no authentication
+  std::string auth_token;  // empty: no authentication
   std::string host;
 };
 

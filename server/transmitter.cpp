@@ -18,13 +18,15 @@ store::CommandRow command_row(const Job& job, const std::string& host) {
   row.run_id = job.run_id();
   row.kind = command::kind_name(job.command());
   row.parameters = nlohmann::json::object();
-  std::visit([&](const auto& c) {
-    using T = std::decay_t<decltype(c)>;
-    if constexpr (requires { c.speed_percent; }) row.parameters["speed_percent"] = c.speed_percent;
-    if constexpr (requires { c.rotation_percent; }) row.parameters["rotation_percent"] = c.rotation_percent;
-    if constexpr (requires { c.duration_s; }) row.parameters["duration_s"] = c.duration_s;
-    (void)sizeof(T);
-  }, job.command());
+  std::visit(
+      [&](const auto& c) {
+        using T = std::decay_t<decltype(c)>;
+        if constexpr (requires { c.speed_percent; }) row.parameters["speed_percent"] = c.speed_percent;
+        if constexpr (requires { c.rotation_percent; }) row.parameters["rotation_percent"] = c.rotation_percent;
+        if constexpr (requires { c.duration_s; }) row.parameters["duration_s"] = c.duration_s;
+        (void)sizeof(T);
+      },
+      job.command());
   row.profile = job.profile().name;
   row.frame_count = static_cast<int>(job.frames().size());
   row.requested_at = store::WallClock::now();
@@ -34,8 +36,12 @@ store::CommandRow command_row(const Job& job, const std::string& host) {
 }  // namespace
 
 Transmitter::Transmitter(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> speaker,
-                         std::unique_ptr<physical::AudioSource> microphone, store::Store& store, TransmitterOptions options)
-    : profile_(profile), speaker_(std::move(speaker)), microphone_(std::move(microphone)), store_(store),
+                         std::unique_ptr<physical::AudioSource> microphone, store::Store& store,
+                         TransmitterOptions options)
+    : profile_(profile),
+      speaker_(std::move(speaker)),
+      microphone_(std::move(microphone)),
+      store_(store),
       options_(std::move(options)) {
   for (const link::Link* l : link::all_links()) {
     if (l->profile().sample_rate_hz == profile_.sample_rate_hz) links_.push_back(l);
@@ -55,9 +61,11 @@ double Transmitter::now_ms() const {
 
 const LinkProfile& Transmitter::usable_profile(std::string_view name) const {
   const LinkProfile& p = profile_by_name(name);
-  if (std::find_if(links_.begin(), links_.end(), [&](const link::Link* l) { return &l->profile() == &p; }) == links_.end()) {
+  if (std::find_if(links_.begin(), links_.end(), [&](const link::Link* l) { return &l->profile() == &p; }) ==
+      links_.end()) {
     throw std::invalid_argument("profile " + p.name + " needs " + std::to_string(p.sample_rate_hz) +
-                                " Hz audio and this server's devices run at " + std::to_string(profile_.sample_rate_hz) + " Hz");
+                                " Hz audio and this server's devices run at " +
+                                std::to_string(profile_.sample_rate_hz) + " Hz");
   }
   return p;
 }
@@ -81,8 +89,10 @@ std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy
       throw QueueFull("the transmit queue is full (" + std::to_string(options_.max_queue) +
                       " commands wait); retry later, or send Stop, which goes first");
     }
-    if (to_front) queue_.push_front(job);
-    else queue_.push_back(job);
+    if (to_front)
+      queue_.push_front(job);
+    else
+      queue_.push_back(job);
     position = to_front ? 0 : static_cast<int>(queue_.size()) - 1;
     position += on_air_ ? 1 : 0;
   }
@@ -165,8 +175,8 @@ std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const link::Link&
       replies_.pop_front();
       if (reply.steady_ms < since_ms || reply.answer.link != &link) continue;  // not an answer to this frame
       if (!link.answers(reply.answer.answer, frame)) {
-        spdlog::debug("an ACK naming frame {} while frame {} waits: late, ignored", reply.answer.answer.sequence.value_or(0),
-                      frame.sequence.value_or(0));
+        spdlog::debug("an ACK naming frame {} while frame {} waits: late, ignored",
+                      reply.answer.answer.sequence.value_or(0), frame.sequence.value_or(0));
         continue;
       }
       return reply;

@@ -24,8 +24,8 @@
 
 #include "job.h"
 #include "physical/audio_io.h"
-#include "reply_listeners.h"
 #include "profile/link_profile.h"
+#include "reply_listeners.h"
 #include "store.h"
 
 namespace dtmf::server {

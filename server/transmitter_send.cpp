@@ -14,7 +14,8 @@ using reliability::RetryState;
 store::WallTime Transmitter::wall(double steady_ms) const {
   const auto steady = epoch_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                    std::chrono::duration<double, std::milli>(steady_ms));
-  return store::WallClock::now() + std::chrono::duration_cast<store::WallClock::duration>(steady - std::chrono::steady_clock::now());
+  return store::WallClock::now() +
+         std::chrono::duration_cast<store::WallClock::duration>(steady - std::chrono::steady_clock::now());
 }
 
 store::FrameAttemptRow Transmitter::attempt_row(const Job& job, int frame_index, int attempt, double start_ms) const {
@@ -39,7 +40,9 @@ void Transmitter::send(Job& job) {
   job.log_row().outcome = "transmitting";
   store_.write(job.log_row());
   const auto end = [&](Outcome outcome, const std::string& detail) {
-    ProgressEvent last{outcome == Outcome::Confirmed ? Kind::Confirmed : outcome == Outcome::Continued ? Kind::Continued : Kind::Failed};
+    ProgressEvent last{outcome == Outcome::Confirmed   ? Kind::Confirmed
+                       : outcome == Outcome::Continued ? Kind::Continued
+                                                       : Kind::Failed};
     last.detail = detail;
     job.emit(last);
     store::CommandRow& row = job.log_row();
@@ -120,13 +123,16 @@ void Transmitter::send(Job& job) {
         }
         case RetryState::AwaitingDecision: {
           std::optional<reliability::Decision> decision;
-          if (job.policy() == Policy::Continue) decision = reliability::Decision::Continue;
-          else if (job.policy() == Policy::Fail) decision = reliability::Decision::GiveUp;
+          if (job.policy() == Policy::Continue)
+            decision = reliability::Decision::Continue;
+          else if (job.policy() == Policy::Fail)
+            decision = reliability::Decision::GiveUp;
           else {
             ProgressEvent ask{Kind::AwaitingDecision};
             ask.frame_index = index;
             ask.attempt = retry.attempt();
-            ask.detail = "frame " + std::to_string(index + 1) + " unconfirmed after " + std::to_string(retry.attempt()) +
+            ask.detail = "frame " + std::to_string(index + 1) + " unconfirmed after " +
+                         std::to_string(retry.attempt()) +
                          " transmissions: call Decide(command_id, CONTINUE | RETRANSMIT | ABORT)";
             job.emit(ask);
             decision = job.await_decision();

@@ -46,8 +46,8 @@ std::vector<float> noise_only(const LinkProfile& profile, double audio_s) {
 // Random frames back to back, as many as fit in `audio_s` (at least one), in quiet noise.
 std::pair<std::vector<float>, std::size_t> back_to_back_frames(const LinkProfile& profile, double audio_s) {
   FrameTrials trials(link::link_for(profile));
-  const std::size_t count = std::max<std::size_t>(
-      1, static_cast<std::size_t>(audio_s * profile.sample_rate_hz) / trials.slot_samples());
+  const std::size_t count =
+      std::max<std::size_t>(1, static_cast<std::size_t>(audio_s * profile.sample_rate_hz) / trials.slot_samples());
   std::vector<float> audio(count * trials.slot_samples(), 0.0f);
   std::mt19937_64 rng(7);
   for (std::size_t i = 0; i < count; ++i) {
@@ -83,34 +83,48 @@ int main(int argc, char** argv) {
   bool list_profiles = false;
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
   app.add_option("--json", json_path, "write the results to this JSON file");
-  app.add_option("--audio-s", audio_s, "seconds of audio per signal")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_flag("--list-profiles", list_profiles, "print every profile's name, one a line (for scripts/bench), and exit");
+  app.add_option("--audio-s", audio_s, "seconds of audio per signal")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--list-profiles", list_profiles,
+               "print every profile's name, one a line (for scripts/bench), and exit");
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
-  return program::run([&] {
-    if (list_profiles) {
-      for (const LinkProfile* p : all_profiles()) std::printf("%s\n", p->name.c_str());
-      return 0;
-    }
-    const LinkProfile& profile = profile_by_name(profile_name);
-    const auto [frames_audio, frames] = back_to_back_frames(profile, audio_s);
-    nlohmann::json doc{{"benchmark", "decoder"}, {"profile", profile.name}, {"block_samples", kBlockSamples},
-                       {"signals", nlohmann::json::array()}};
-    int status = 0;
-    for (const auto& [signal_name, audio, expected] :
-         {std::tuple{"noise", noise_only(profile, audio_s), std::size_t{0}}, std::tuple{"frames", frames_audio, frames}}) {
-      const Measurement m = decode(profile, audio);
-      const double speed = m.audio_s / m.cpu_s;
-      std::printf("decoder speed  %-6s %-7s %6.1f s of audio in %6.3f s CPU: %8.0f x real time, %zu of %zu frames accepted\n",
-                  profile.name.c_str(), signal_name, m.audio_s, m.cpu_s, speed, m.accepted, expected);
-      doc["signals"].push_back({{"signal", signal_name}, {"audio_s", m.audio_s}, {"cpu_s", m.cpu_s},
-                                {"realtime_factor", speed}, {"frames_expected", expected}, {"frames_accepted", m.accepted}});
-      if (m.accepted != expected) {
-        std::fprintf(stderr, "dtmf-bench-decoder: profile %s accepted %zu frames in the %s signal, expected %zu\n",
-                     profile.name.c_str(), m.accepted, signal_name, expected);
-        status = 1;
-      }
-    }
-    write_json(json_path, doc);
-    return status;
-  }, [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-decoder: %s\n", why.c_str()); });
+  return program::run(
+      [&] {
+        if (list_profiles) {
+          for (const LinkProfile* p : all_profiles()) std::printf("%s\n", p->name.c_str());
+          return 0;
+        }
+        const LinkProfile& profile = profile_by_name(profile_name);
+        const auto [frames_audio, frames] = back_to_back_frames(profile, audio_s);
+        nlohmann::json doc{{"benchmark", "decoder"},
+                           {"profile", profile.name},
+                           {"block_samples", kBlockSamples},
+                           {"signals", nlohmann::json::array()}};
+        int status = 0;
+        for (const auto& [signal_name, audio, expected] :
+             {std::tuple{"noise", noise_only(profile, audio_s), std::size_t{0}},
+              std::tuple{"frames", frames_audio, frames}}) {
+          const Measurement m = decode(profile, audio);
+          const double speed = m.audio_s / m.cpu_s;
+          std::printf(
+              "decoder speed  %-6s %-7s %6.1f s of audio in %6.3f s CPU: %8.0f x real time, %zu of %zu frames "
+              "accepted\n",
+              profile.name.c_str(), signal_name, m.audio_s, m.cpu_s, speed, m.accepted, expected);
+          doc["signals"].push_back({{"signal", signal_name},
+                                    {"audio_s", m.audio_s},
+                                    {"cpu_s", m.cpu_s},
+                                    {"realtime_factor", speed},
+                                    {"frames_expected", expected},
+                                    {"frames_accepted", m.accepted}});
+          if (m.accepted != expected) {
+            std::fprintf(stderr, "dtmf-bench-decoder: profile %s accepted %zu frames in the %s signal, expected %zu\n",
+                         profile.name.c_str(), m.accepted, signal_name, expected);
+            status = 1;
+          }
+        }
+        write_json(json_path, doc);
+        return status;
+      },
+      [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-decoder: %s\n", why.c_str()); });
 }

@@ -19,8 +19,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include <spdlog/spdlog.h>
@@ -67,105 +67,111 @@ int main(int argc, char** argv) {
   app.add_option("--rir", rir_file, "a measured room both ways (its impulse response file), pink noise at -50 dBFS");
   app.add_option("--air-block-ms", air_block_ms,
                  "the simulated room's audio period (as the round-trip benchmark: 5 ms, a low-latency device)")
-      ->capture_default_str()->check(CLI::Range(1.0, 50.0));
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 50.0));
   app.add_option("--seed", seed, "random seed (speeds and durations)")->capture_default_str();
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
-  return program::run([&] {
-    const LinkProfile& profile = profile_by_name(profile_name);
-    const link::Link& link = link::link_for(profile);
-    spdlog::set_level(spdlog::level::warn);  // the agent's and server's per-frame lines would drown the summary
-    test_support::LiveSystemOptions options;
-    options.profile = &profile;
-    options.distance_m = distance_m;
-    options.air_block_ms = air_block_ms;
-    options.rir_file = rir_file;
-    options.default_policy = server::Policy::Fail;
-    test_support::LiveSystem system(options);
-    spdlog::set_level(spdlog::level::warn);  // again: loggers made while starting take the global level
-    auto client = system.client();
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> speed(0, 100), duration(0.5, 8);
+  return program::run(
+      [&] {
+        const LinkProfile& profile = profile_by_name(profile_name);
+        const link::Link& link = link::link_for(profile);
+        spdlog::set_level(spdlog::level::warn);  // the agent's and server's per-frame lines would drown the summary
+        test_support::LiveSystemOptions options;
+        options.profile = &profile;
+        options.distance_m = distance_m;
+        options.air_block_ms = air_block_ms;
+        options.rir_file = rir_file;
+        options.default_policy = server::Policy::Fail;
+        test_support::LiveSystem system(options);
+        spdlog::set_level(spdlog::level::warn);  // again: loggers made while starting take the global level
+        auto client = system.client();
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> speed(0, 100), duration(0.5, 8);
 
-    std::vector<double> latencies_ms, response_ms;
-    nlohmann::json per_command = nlohmann::json::array();
-    std::uint64_t confirmed = 0, payload_bits = 0, first_tx = 0, first_acked = 0, retransmissions = 0;
-    const Clock::time_point first_call = Clock::now();
-    Clock::time_point last_confirm = first_call;
-    for (int i = 0; i < commands; ++i) {
-      v1::DriveRequest request;
-      request.set_speed_percent(std::round(speed(rng) * 10) / 10);
-      request.set_duration_s(std::round(duration(rng) * 100) / 100);
-      request.mutable_options()->set_profile(profile.name);
-      grpc::ClientContext context;
-      const Clock::time_point call = Clock::now();
-      auto reader = client->Drive(&context, request);
-      v1::DriveResponse response;
-      std::optional<double> latency_ms;
-      std::uint32_t frames = 0;
-      std::vector<bool> acked_first;  // per frame: ACK on attempt 1
-      while (reader->Read(&response)) {
-        const v1::Progress& p = response.progress();
-        frames = p.frame_count();
-        if (acked_first.size() < frames) acked_first.resize(frames, false);
-        if (p.event() == v1::FRAME_EVENT_TRANSMITTING && p.attempt() == 1) ++first_tx;
-        if (p.event() == v1::FRAME_EVENT_RETRANSMITTING) ++retransmissions;
-        if (p.event() == v1::FRAME_EVENT_ACK) {
-          response_ms.push_back(p.response_time_ms());
-          if (p.attempt() == 1 && p.frame_index() < frames) acked_first[p.frame_index()] = true;
+        std::vector<double> latencies_ms, response_ms;
+        nlohmann::json per_command = nlohmann::json::array();
+        std::uint64_t confirmed = 0, payload_bits = 0, first_tx = 0, first_acked = 0, retransmissions = 0;
+        const Clock::time_point first_call = Clock::now();
+        Clock::time_point last_confirm = first_call;
+        for (int i = 0; i < commands; ++i) {
+          v1::DriveRequest request;
+          request.set_speed_percent(std::round(speed(rng) * 10) / 10);
+          request.set_duration_s(std::round(duration(rng) * 100) / 100);
+          request.mutable_options()->set_profile(profile.name);
+          grpc::ClientContext context;
+          const Clock::time_point call = Clock::now();
+          auto reader = client->Drive(&context, request);
+          v1::DriveResponse response;
+          std::optional<double> latency_ms;
+          std::uint32_t frames = 0;
+          std::vector<bool> acked_first;  // per frame: ACK on attempt 1
+          while (reader->Read(&response)) {
+            const v1::Progress& p = response.progress();
+            frames = p.frame_count();
+            if (acked_first.size() < frames) acked_first.resize(frames, false);
+            if (p.event() == v1::FRAME_EVENT_TRANSMITTING && p.attempt() == 1) ++first_tx;
+            if (p.event() == v1::FRAME_EVENT_RETRANSMITTING) ++retransmissions;
+            if (p.event() == v1::FRAME_EVENT_ACK) {
+              response_ms.push_back(p.response_time_ms());
+              if (p.attempt() == 1 && p.frame_index() < frames) acked_first[p.frame_index()] = true;
+            }
+            if (p.event() == v1::FRAME_EVENT_CONFIRMED) {
+              last_confirm = Clock::now();
+              latency_ms = ms_between(call, last_confirm);
+            }
+          }
+          const grpc::Status status = reader->Finish();
+          first_acked += static_cast<std::uint64_t>(std::count(acked_first.begin(), acked_first.end(), true));
+          if (latency_ms && status.ok()) {
+            ++confirmed;
+            // The command as sent: its payload bits whatever its frames (checks excluded).
+            payload_bits += static_cast<std::uint64_t>(
+                link.payload_bits(command::DriveForDuration{request.speed_percent(), request.duration_s()}));
+            latencies_ms.push_back(*latency_ms);
+          }
+          per_command.push_back({{"speed_percent", request.speed_percent()},
+                                 {"duration_s", request.duration_s()},
+                                 {"frames", frames},
+                                 {"confirmed", latency_ms.has_value() && status.ok()},
+                                 {"latency_ms", latency_ms ? nlohmann::json(*latency_ms) : nlohmann::json(nullptr)},
+                                 {"status", status.error_message()}});
+          std::printf("command %2d/%d  drive %5.1f %% %4.2f s: %s%s\n", i + 1, commands, request.speed_percent(),
+                      request.duration_s(), latency_ms ? "confirmed in " : "NOT confirmed ",
+                      latency_ms ? (std::to_string(static_cast<int>(*latency_ms)) + " ms").c_str()
+                                 : status.error_message().c_str());
+          std::fflush(stdout);
         }
-        if (p.event() == v1::FRAME_EVENT_CONFIRMED) {
-          last_confirm = Clock::now();
-          latency_ms = ms_between(call, last_confirm);
-        }
-      }
-      const grpc::Status status = reader->Finish();
-      first_acked += static_cast<std::uint64_t>(std::count(acked_first.begin(), acked_first.end(), true));
-      if (latency_ms && status.ok()) {
-        ++confirmed;
-        // The command as sent: its payload bits whatever its frames (checks excluded).
-        payload_bits += static_cast<std::uint64_t>(
-            link.payload_bits(command::DriveForDuration{request.speed_percent(), request.duration_s()}));
-        latencies_ms.push_back(*latency_ms);
-      }
-      per_command.push_back({{"speed_percent", request.speed_percent()}, {"duration_s", request.duration_s()},
-                             {"frames", frames}, {"confirmed", latency_ms.has_value() && status.ok()},
-                             {"latency_ms", latency_ms ? nlohmann::json(*latency_ms) : nlohmann::json(nullptr)},
-                             {"status", status.error_message()}});
-      std::printf("command %2d/%d  drive %5.1f %% %4.2f s: %s%s\n", i + 1, commands, request.speed_percent(),
-                  request.duration_s(), latency_ms ? "confirmed in " : "NOT confirmed ",
-                  latency_ms ? (std::to_string(static_cast<int>(*latency_ms)) + " ms").c_str()
-                             : status.error_message().c_str());
-      std::fflush(stdout);
-    }
-    const double wall_s = ms_between(first_call, last_confirm) / 1000;
-    const double throughput = wall_s > 0 ? static_cast<double>(payload_bits) / wall_s : 0;
-    const double frame_success = first_tx ? static_cast<double>(first_acked) / static_cast<double>(first_tx) : 0;
-    std::printf("e2e %s: %llu of %d commands confirmed; latency median %.0f ms, p95 %.0f ms, max %.0f ms; "
-                "%.2f bit/s net payload; frames ACKed at the first attempt %llu of %llu (%.2f %%), %llu retransmissions\n",
-                profile.name.c_str(), static_cast<unsigned long long>(confirmed), commands,
-                percentile(latencies_ms, 0.5), percentile(latencies_ms, 0.95), percentile(latencies_ms, 1.0), throughput,
-                static_cast<unsigned long long>(first_acked), static_cast<unsigned long long>(first_tx),
-                100 * frame_success, static_cast<unsigned long long>(retransmissions));
-    write_json(json_path, {{"benchmark", "e2e"},
-                           {"profile", profile.name},
-                           {"seed", seed},
-                           {"distance_m", distance_m},
-                           {"rir", rir_file},
-                           {"commands", commands},
-                           {"confirmed", confirmed},
-                           {"latency_ms_median", percentile(latencies_ms, 0.5)},
-                           {"latency_ms_p95", percentile(latencies_ms, 0.95)},
-                           {"latency_ms_max", percentile(latencies_ms, 1.0)},
-                           {"latencies_ms", latencies_ms},
-                           {"response_times_ms", response_ms},
-                           {"payload_bits", payload_bits},
-                           {"wall_s", wall_s},
-                           {"throughput_bps", throughput},
-                           {"frames_first_attempt", first_tx},
-                           {"frames_acked_first_attempt", first_acked},
-                           {"frame_success_rate", frame_success},
-                           {"retransmissions", retransmissions},
-                           {"per_command", per_command}});
-    return confirmed == static_cast<std::uint64_t>(commands) ? 0 : 1;
-  }, [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-e2e: %s\n", why.c_str()); });
+        const double wall_s = ms_between(first_call, last_confirm) / 1000;
+        const double throughput = wall_s > 0 ? static_cast<double>(payload_bits) / wall_s : 0;
+        const double frame_success = first_tx ? static_cast<double>(first_acked) / static_cast<double>(first_tx) : 0;
+        std::printf(
+            "e2e %s: %llu of %d commands confirmed; latency median %.0f ms, p95 %.0f ms, max %.0f ms; "
+            "%.2f bit/s net payload; frames ACKed at the first attempt %llu of %llu (%.2f %%), %llu retransmissions\n",
+            profile.name.c_str(), static_cast<unsigned long long>(confirmed), commands, percentile(latencies_ms, 0.5),
+            percentile(latencies_ms, 0.95), percentile(latencies_ms, 1.0), throughput,
+            static_cast<unsigned long long>(first_acked), static_cast<unsigned long long>(first_tx),
+            100 * frame_success, static_cast<unsigned long long>(retransmissions));
+        write_json(json_path, {{"benchmark", "e2e"},
+                               {"profile", profile.name},
+                               {"seed", seed},
+                               {"distance_m", distance_m},
+                               {"rir", rir_file},
+                               {"commands", commands},
+                               {"confirmed", confirmed},
+                               {"latency_ms_median", percentile(latencies_ms, 0.5)},
+                               {"latency_ms_p95", percentile(latencies_ms, 0.95)},
+                               {"latency_ms_max", percentile(latencies_ms, 1.0)},
+                               {"latencies_ms", latencies_ms},
+                               {"response_times_ms", response_ms},
+                               {"payload_bits", payload_bits},
+                               {"wall_s", wall_s},
+                               {"throughput_bps", throughput},
+                               {"frames_first_attempt", first_tx},
+                               {"frames_acked_first_attempt", first_acked},
+                               {"frame_success_rate", frame_success},
+                               {"retransmissions", retransmissions},
+                               {"per_command", per_command}});
+        return confirmed == static_cast<std::uint64_t>(commands) ? 0 : 1;
+      },
+      [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-e2e: %s\n", why.c_str()); });
 }

@@ -41,61 +41,67 @@ int main(int argc, char** argv) {
   app.add_option("--rt60-s", rt60_s, "the room's reverberation time (0: none)")->capture_default_str();
   app.add_option("--wet", wet, "reverberant level against the direct sound")->capture_default_str();
   app.add_option("--frames", options.frames, "frames per point")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--chunk-frames", options.chunk_frames, "frames per continuous stream")->capture_default_str()
+  app.add_option("--chunk-frames", options.chunk_frames, "frames per continuous stream")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app.add_option("--block-samples", options.block_samples, "receiver feed size")->capture_default_str()
+  app.add_option("--block-samples", options.block_samples, "receiver feed size")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--seed", options.seed, "random seed (frame contents and noise)")->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads")->capture_default_str()->check(CLI::PositiveNumber);
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
-  return program::run([&] {
-    const LinkProfile& profile = profile_by_name(profile_name);
-    if (noise_kind != "white" && noise_kind != "pink" && noise_kind != "none") {
-      throw std::invalid_argument("--noise must be white, pink or none, not '" + noise_kind + "'");
-    }
-    if (distances_m.empty()) {
-      for (double d = from_m; d <= to_m + 1e-9; d += step_m) distances_m.push_back(std::round(d * 1000) / 1000);
-    }
-    std::sort(distances_m.begin(), distances_m.end());
-    std::printf("dtmf-bench-distance: profile %s, seed %llu, %zu frames per point, %s noise at %g dBFS RMS, "
-                "RT60 %g s (wet %g), %u threads\n",
-                profile.name.c_str(), static_cast<unsigned long long>(options.seed), options.frames,
-                noise_kind.c_str(), noise_dbfs, rt60_s, wet, options.threads);
-    std::fflush(stdout);
+  return program::run(
+      [&] {
+        const LinkProfile& profile = profile_by_name(profile_name);
+        if (noise_kind != "white" && noise_kind != "pink" && noise_kind != "none") {
+          throw std::invalid_argument("--noise must be white, pink or none, not '" + noise_kind + "'");
+        }
+        if (distances_m.empty()) {
+          for (double d = from_m; d <= to_m + 1e-9; d += step_m) distances_m.push_back(std::round(d * 1000) / 1000);
+        }
+        std::sort(distances_m.begin(), distances_m.end());
+        std::printf(
+            "dtmf-bench-distance: profile %s, seed %llu, %zu frames per point, %s noise at %g dBFS RMS, "
+            "RT60 %g s (wet %g), %u threads\n",
+            profile.name.c_str(), static_cast<unsigned long long>(options.seed), options.frames, noise_kind.c_str(),
+            noise_dbfs, rt60_s, wet, options.threads);
+        std::fflush(stdout);
 
-    const auto started = std::chrono::steady_clock::now();
-    const auto points = run_sweep(profile, distances_m, options, [&](double distance_m, std::uint64_t seed) -> Channel {
-      physical::ChannelConfig config;
-      config.noise = physical::parse_noise(noise_kind, noise_dbfs);
-      config.reverb = {rt60_s, wet};
-      config.seed = seed;
-      auto room = std::make_shared<physical::AcousticChannel>(profile.sample_rate_hz, config);
-      room->add_transmitter(distance_m);
-      return [room](std::span<const float> clean, std::vector<float>& heard) { room->process(clean, heard); };
-    });
-    const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
+        const auto started = std::chrono::steady_clock::now();
+        const auto points =
+            run_sweep(profile, distances_m, options, [&](double distance_m, std::uint64_t seed) -> Channel {
+              physical::ChannelConfig config;
+              config.noise = physical::parse_noise(noise_kind, noise_dbfs);
+              config.reverb = {rt60_s, wet};
+              config.seed = seed;
+              auto room = std::make_shared<physical::AcousticChannel>(profile.sample_rate_hz, config);
+              room->add_transmitter(distance_m);
+              return [room](std::span<const float> clean, std::vector<float>& heard) { room->process(clean, heard); };
+            });
+        const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
 
-    print_points(points, "distance (m)");
-    const nlohmann::json d99 = threshold(points, 0.99, false), d999 = threshold(points, 0.999, false);
-    std::printf("farthest distance with >= 99 %% success up to it: %s m; with >= 99.9 %%: %s m; %.1f s\n",
-                d99.dump().c_str(), d999.dump().c_str(), took.count());
+        print_points(points, "distance (m)");
+        const nlohmann::json d99 = threshold(points, 0.99, false), d999 = threshold(points, 0.999, false);
+        std::printf("farthest distance with >= 99 %% success up to it: %s m; with >= 99.9 %%: %s m; %.1f s\n",
+                    d99.dump().c_str(), d999.dump().c_str(), took.count());
 
-    nlohmann::json doc{{"benchmark", "distance"},
-                       {"profile", profile.name},
-                       {"seed", options.seed},
-                       {"frames_per_point", options.frames},
-                       {"block_samples", options.block_samples},
-                       {"threads", options.threads},
-                       {"noise", noise_kind},
-                       {"noise_dbfs", noise_dbfs},
-                       {"rt60_s", rt60_s},
-                       {"wet", wet},
-                       {"farthest_m_99", d99},
-                       {"farthest_m_99_9", d999},
-                       {"wall_s", took.count()},
-                       {"points", nlohmann::json::array()}};
-    for (const auto& p : points) doc["points"].push_back(point_json(p, "distance_m"));
-    write_json(json_path, doc);
-    return 0;
-  }, [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-distance: %s\n", why.c_str()); });
+        nlohmann::json doc{{"benchmark", "distance"},
+                           {"profile", profile.name},
+                           {"seed", options.seed},
+                           {"frames_per_point", options.frames},
+                           {"block_samples", options.block_samples},
+                           {"threads", options.threads},
+                           {"noise", noise_kind},
+                           {"noise_dbfs", noise_dbfs},
+                           {"rt60_s", rt60_s},
+                           {"wet", wet},
+                           {"farthest_m_99", d99},
+                           {"farthest_m_99_9", d999},
+                           {"wall_s", took.count()},
+                           {"points", nlohmann::json::array()}};
+        for (const auto& p : points) doc["points"].push_back(point_json(p, "distance_m"));
+        write_json(json_path, doc);
+        return 0;
+      },
+      [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-distance: %s\n", why.c_str()); });
 }

@@ -9,8 +9,10 @@ void FrameReceiver::feed(std::span<const float> samples, std::vector<Accepted>& 
   // A repeat (a numbered frame heard again) is accepted and answered too; only its execution
   // is skipped.
   for (const link::Reception& r : receiver_->feed(samples)) {
-    if (r.intact) accepted.push_back({r.start_ms, r.bits});
-    else ++check_failed_;
+    if (r.intact)
+      accepted.push_back({r.start_ms, r.bits});
+    else
+      ++check_failed_;
   }
 }
 

@@ -71,8 +71,8 @@ class FrameTrials {
 
   const LinkProfile& profile() const { return link_.profile(); }
   const link::Link& link() const { return link_; }
-  int data_bits() const { return data_bits_; }    // payload bits per frame (what a command carries)
-  int check_bits() const { return check_bits_; }  // bits spent on the check (CRC)
+  int data_bits() const { return data_bits_; }                  // payload bits per frame (what a command carries)
+  int check_bits() const { return check_bits_; }                // bits spent on the check (CRC)
   std::size_t slot_samples() const { return slot_samples_; }    // one frame + its gap
   std::size_t sound_samples() const { return sound_samples_; }  // the non-silent part of a slot
 

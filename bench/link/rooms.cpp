@@ -59,8 +59,10 @@ std::vector<Case> default_cases(const LinkProfile& profile, const std::string& r
                        "--room 6x8x3 --room-rt60 " + number(rt60) + " --distance " + number(d) + kQuiet});
     }
   }
-  for (double ppm : {2000.0, -2000.0}) cases.push_back({"clock " + number(ppm) + " ppm", "--clock-ppm " + number(ppm) + kQuiet});
-  cases.push_back({"seminar_room_clap -2000 ppm", "--rir " + rirs + "/seminar_room_clap.wav --clock-ppm -2000" + kQuiet});
+  for (double ppm : {2000.0, -2000.0})
+    cases.push_back({"clock " + number(ppm) + " ppm", "--clock-ppm " + number(ppm) + kQuiet});
+  cases.push_back(
+      {"seminar_room_clap -2000 ppm", "--rir " + rirs + "/seminar_room_clap.wav --clock-ppm -2000" + kQuiet});
   // 6 dB over one tone as heard at 1 m: a tone of amplitude A is 20 log10(A / sqrt 2) dBFS RMS.
   const double whine_dbfs = 20 * std::log10(profile.tones.tone_amplitude / std::sqrt(2.0)) + 6;
   for (double hz : {5000.0, 6012.5, 9000.0, 12000.0, 15000.0, 16012.5}) {
@@ -73,7 +75,8 @@ std::vector<Case> default_cases(const LinkProfile& profile, const std::string& r
 Case parse_case(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0) {
-    throw std::invalid_argument("--case '" + text + "': write NAME=FLAGS, e.g. 'seminar=--rir bench/rirs/seminar_room_clap.wav'");
+    throw std::invalid_argument("--case '" + text +
+                                "': write NAME=FLAGS, e.g. 'seminar=--rir bench/rirs/seminar_room_clap.wav'");
   }
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
@@ -108,75 +111,84 @@ int main(int argc, char** argv) {
   options.lead_in_s = 8;
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
   app.add_option("--json", json_path, "write the results to this JSON file");
-  app.add_option("--case", case_texts, "NAME=FLAGS (dtmfctl simulate's channel flags); repeatable; default: the rooms table");
+  app.add_option("--case", case_texts,
+                 "NAME=FLAGS (dtmfctl simulate's channel flags); repeatable; default: the rooms table");
   app.add_option("--rirs", rirs, "where the measured rooms are")->capture_default_str();
   app.add_option("--frames", options.frames, "frames per case")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--chunk-frames", options.chunk_frames, "frames per continuous stream")->capture_default_str()
+  app.add_option("--chunk-frames", options.chunk_frames, "frames per continuous stream")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--lead-in-s", options.lead_in_s, "seconds of the channel alone before each stream's first frame")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", options.seed, "random seed (frame contents and noise)")->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads")->capture_default_str()->check(CLI::PositiveNumber);
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
-  return program::run([&] {
-    const LinkProfile& profile = profile_by_name(profile_name);
-    std::vector<Case> cases;
-    for (const auto& t : case_texts) cases.push_back(parse_case(t));
-    if (cases.empty()) cases = default_cases(profile, rirs);
+  return program::run(
+      [&] {
+        const LinkProfile& profile = profile_by_name(profile_name);
+        std::vector<Case> cases;
+        for (const auto& t : case_texts) cases.push_back(parse_case(t));
+        if (cases.empty()) cases = default_cases(profile, rirs);
 
-    // Each case's channel settings and its room, prepared once (a measured file read, a
-    // shoebox tuned to its RT60) and shared by every stream.
-    std::vector<program::ChannelSetup> setups;
-    std::vector<std::shared_ptr<const physical::RoomModel>> rooms;
-    for (const Case& c : cases) {
-      setups.push_back(setup_of(c));
-      const auto& room = setups.back().config.room;
-      rooms.push_back(room.enabled() ? std::make_shared<const physical::RoomModel>(room, profile.sample_rate_hz) : nullptr);
-    }
-    std::printf("dtmf-bench-rooms: profile %s, seed %llu, %zu frames per case, %g s lead-in, %u threads\n",
-                profile.name.c_str(), static_cast<unsigned long long>(options.seed), options.frames, options.lead_in_s,
-                options.threads);
-    std::fflush(stdout);
+        // Each case's channel settings and its room, prepared once (a measured file read, a
+        // shoebox tuned to its RT60) and shared by every stream.
+        std::vector<program::ChannelSetup> setups;
+        std::vector<std::shared_ptr<const physical::RoomModel>> rooms;
+        for (const Case& c : cases) {
+          setups.push_back(setup_of(c));
+          const auto& room = setups.back().config.room;
+          rooms.push_back(room.enabled() ? std::make_shared<const physical::RoomModel>(room, profile.sample_rate_hz)
+                                         : nullptr);
+        }
+        std::printf("dtmf-bench-rooms: profile %s, seed %llu, %zu frames per case, %g s lead-in, %u threads\n",
+                    profile.name.c_str(), static_cast<unsigned long long>(options.seed), options.frames,
+                    options.lead_in_s, options.threads);
+        std::fflush(stdout);
 
-    std::vector<double> xs;
-    for (std::size_t i = 0; i < cases.size(); ++i) xs.push_back(static_cast<double>(i));
-    const auto started = std::chrono::steady_clock::now();
-    const auto points = run_sweep(profile, xs, options, [&](double x, std::uint64_t seed) -> Channel {
-      const auto i = static_cast<std::size_t>(x);
-      physical::ChannelConfig config = setups[i].config;
-      config.seed = seed;
-      std::shared_ptr<physical::AcousticChannel> channel =
-          rooms[i] ? std::make_shared<physical::AcousticChannel>(profile.sample_rate_hz, config, rooms[i])
-                   : std::make_shared<physical::AcousticChannel>(profile.sample_rate_hz, config);
-      if (setups[i].speaker_at) channel->add_transmitter_at(*setups[i].speaker_at);
-      else channel->add_transmitter(setups[i].distance_m);
-      return [channel](std::span<const float> clean, std::vector<float>& heard) { channel->process(clean, heard); };
-    });
-    const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
+        std::vector<double> xs;
+        for (std::size_t i = 0; i < cases.size(); ++i) xs.push_back(static_cast<double>(i));
+        const auto started = std::chrono::steady_clock::now();
+        const auto points = run_sweep(profile, xs, options, [&](double x, std::uint64_t seed) -> Channel {
+          const auto i = static_cast<std::size_t>(x);
+          physical::ChannelConfig config = setups[i].config;
+          config.seed = seed;
+          std::shared_ptr<physical::AcousticChannel> channel =
+              rooms[i] ? std::make_shared<physical::AcousticChannel>(profile.sample_rate_hz, config, rooms[i])
+                       : std::make_shared<physical::AcousticChannel>(profile.sample_rate_hz, config);
+          if (setups[i].speaker_at)
+            channel->add_transmitter_at(*setups[i].speaker_at);
+          else
+            channel->add_transmitter(setups[i].distance_m);
+          return [channel](std::span<const float> clean, std::vector<float>& heard) { channel->process(clean, heard); };
+        });
+        const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
 
-    std::printf("%-36s %7s %9s %7s %6s %6s\n", "case", "frames", "success", "wrong", "twice", "NACKed");
-    nlohmann::json rows = nlohmann::json::array();
-    for (const auto& p : points) {
-      const Case& c = cases[static_cast<std::size_t>(p.x)];
-      const TrialCounts& n = p.counts;
-      std::printf("%-36s %7llu %8.2f%% %7llu %6llu %6llu\n", c.name.c_str(), static_cast<unsigned long long>(n.frames),
-                  100.0 * static_cast<double>(n.success) / static_cast<double>(std::max<std::uint64_t>(n.frames, 1)),
-                  static_cast<unsigned long long>(n.wrong_accepts), static_cast<unsigned long long>(n.duplicated),
-                  static_cast<unsigned long long>(n.check_failed));
-      nlohmann::json row = point_json(p, "case_index");
-      row["case"] = c.name;
-      row["flags"] = c.flags;
-      rows.push_back(row);
-    }
-    std::printf("%.1f s\n", took.count());
-    write_json(json_path, {{"benchmark", "rooms"},
-                           {"profile", profile.name},
-                           {"seed", options.seed},
-                           {"frames_per_case", options.frames},
-                           {"lead_in_s", options.lead_in_s},
-                           {"threads", options.threads},
-                           {"wall_s", took.count()},
-                           {"cases", rows}});
-    return 0;
-  }, [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-rooms: %s\n", why.c_str()); });
+        std::printf("%-36s %7s %9s %7s %6s %6s\n", "case", "frames", "success", "wrong", "twice", "NACKed");
+        nlohmann::json rows = nlohmann::json::array();
+        for (const auto& p : points) {
+          const Case& c = cases[static_cast<std::size_t>(p.x)];
+          const TrialCounts& n = p.counts;
+          std::printf(
+              "%-36s %7llu %8.2f%% %7llu %6llu %6llu\n", c.name.c_str(), static_cast<unsigned long long>(n.frames),
+              100.0 * static_cast<double>(n.success) / static_cast<double>(std::max<std::uint64_t>(n.frames, 1)),
+              static_cast<unsigned long long>(n.wrong_accepts), static_cast<unsigned long long>(n.duplicated),
+              static_cast<unsigned long long>(n.check_failed));
+          nlohmann::json row = point_json(p, "case_index");
+          row["case"] = c.name;
+          row["flags"] = c.flags;
+          rows.push_back(row);
+        }
+        std::printf("%.1f s\n", took.count());
+        write_json(json_path, {{"benchmark", "rooms"},
+                               {"profile", profile.name},
+                               {"seed", options.seed},
+                               {"frames_per_case", options.frames},
+                               {"lead_in_s", options.lead_in_s},
+                               {"threads", options.threads},
+                               {"wall_s", took.count()},
+                               {"cases", rows}});
+        return 0;
+      },
+      [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-rooms: %s\n", why.c_str()); });
 }

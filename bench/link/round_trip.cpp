@@ -66,7 +66,8 @@ class Speaker {
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size()) - 1, p * static_cast<double>(v.size())))];
+  return v[static_cast<std::size_t>(
+      std::min<double>(static_cast<double>(v.size()) - 1, p * static_cast<double>(v.size())))];
 }
 
 nlohmann::json run(const LinkProfile& profile, const Options& o) {
@@ -134,7 +135,8 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
     for (auto& answer : robot.feed(heard)) robot_speaker.queue(std::move(answer));
 
     heard.clear();
-    const std::array<std::span<const float>, 2> both{std::span<const float>(speaker_block), std::span<const float>(robot_block)};
+    const std::array<std::span<const float>, 2> both{std::span<const float>(speaker_block),
+                                                     std::span<const float>(robot_block)};
     to_sender.process(both, heard);
     for (const link::Answer& a : sender_ear->feed(heard)) {
       if (!awaiting) continue;
@@ -168,16 +170,26 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   const double run_s = static_cast<double>(samples) / profile.sample_rate_hz;
   const double median = percentile(latencies_ms, 0.5), p95 = percentile(latencies_ms, 0.95);
   const double max = latencies_ms.empty() ? 0 : *std::max_element(latencies_ms.begin(), latencies_ms.end());
-  std::printf("round trip  %-5s %d commands at %.1f m: confirmed %zu, failed %ld; latency median %.1f ms, p95 %.1f, max %.1f; "
-              "%.1f bit/s net; %ld of %ld frames answered at the first attempt, %ld retransmissions\n",
-              profile.name.c_str(), o.commands, o.distance_m, latencies_ms.size(), failed_commands, median, p95, max,
-              static_cast<double>(payload_bits) / run_s, frames_first_time, frames_sent, retransmissions);
-  return {{"benchmark", "roundtrip"}, {"profile", profile.name}, {"commands", o.commands},
-          {"distance_m", o.distance_m}, {"block_samples", o.block_samples}, {"confirmed", latencies_ms.size()},
-          {"failed", failed_commands}, {"latency_ms", {{"median", median}, {"p95", p95}, {"max", max}}},
-          {"latencies_ms", latencies_ms}, {"payload_bits", payload_bits}, {"run_s", run_s},
-          {"throughput_bps", static_cast<double>(payload_bits) / run_s}, {"frames_sent", frames_sent},
-          {"frames_first_time", frames_first_time}, {"retransmissions", retransmissions}};
+  std::printf(
+      "round trip  %-5s %d commands at %.1f m: confirmed %zu, failed %ld; latency median %.1f ms, p95 %.1f, max %.1f; "
+      "%.1f bit/s net; %ld of %ld frames answered at the first attempt, %ld retransmissions\n",
+      profile.name.c_str(), o.commands, o.distance_m, latencies_ms.size(), failed_commands, median, p95, max,
+      static_cast<double>(payload_bits) / run_s, frames_first_time, frames_sent, retransmissions);
+  return {{"benchmark", "roundtrip"},
+          {"profile", profile.name},
+          {"commands", o.commands},
+          {"distance_m", o.distance_m},
+          {"block_samples", o.block_samples},
+          {"confirmed", latencies_ms.size()},
+          {"failed", failed_commands},
+          {"latency_ms", {{"median", median}, {"p95", p95}, {"max", max}}},
+          {"latencies_ms", latencies_ms},
+          {"payload_bits", payload_bits},
+          {"run_s", run_s},
+          {"throughput_bps", static_cast<double>(payload_bits) / run_s},
+          {"frames_sent", frames_sent},
+          {"frames_first_time", frames_first_time},
+          {"retransmissions", retransmissions}};
 }
 
 }  // namespace
@@ -188,15 +200,19 @@ int main(int argc, char** argv) {
   Options o;
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
   app.add_option("--json", json_path, "write the results to this JSON file");
-  app.add_option("--commands", o.commands, "commands to send, one after another")->capture_default_str()
+  app.add_option("--commands", o.commands, "commands to send, one after another")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--distance-m", o.distance_m, "sender to robot")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--block-samples", o.block_samples, "audio block of both sides")->capture_default_str()
+  app.add_option("--block-samples", o.block_samples, "audio block of both sides")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--seed", o.seed, "random seed (noise)")->capture_default_str();
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
-  return program::run([&] {
-    write_json(json_path, run(profile_by_name(profile_name), o));
-    return 0;
-  }, [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-roundtrip: %s\n", why.c_str()); });
+  return program::run(
+      [&] {
+        write_json(json_path, run(profile_by_name(profile_name), o));
+        return 0;
+      },
+      [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-roundtrip: %s\n", why.c_str()); });
 }

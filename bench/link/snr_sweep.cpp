@@ -39,71 +39,78 @@ int main(int argc, char** argv) {
   app.add_option("--snr-db", snrs_db, "these SNRs instead of the range (repeatable)");
   app.add_option("--frames", options.frames, "frames per point")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--topup-frames", options.topup_frames, "frames at points near the thresholds")->capture_default_str();
-  app.add_option("--topup-low", options.topup_low, "top up points with success at least this ...")->capture_default_str();
+  app.add_option("--topup-low", options.topup_low, "top up points with success at least this ...")
+      ->capture_default_str();
   app.add_option("--topup-high", options.topup_high, "... and below this")->capture_default_str();
-  app.add_option("--chunk-frames", options.chunk_frames, "frames per continuous stream")->capture_default_str()
+  app.add_option("--chunk-frames", options.chunk_frames, "frames per continuous stream")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app.add_option("--block-samples", options.block_samples, "receiver feed size")->capture_default_str()
+  app.add_option("--block-samples", options.block_samples, "receiver feed size")
+      ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--seed", options.seed, "random seed (frame contents and noise)")->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads")->capture_default_str()->check(CLI::PositiveNumber);
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
-  return program::run([&] {
-    const LinkProfile& profile = profile_by_name(profile_name);
-    if (snrs_db.empty()) {
-      for (double s = from_db; s <= to_db + 1e-9; s += step_db) snrs_db.push_back(std::round(s * 1000) / 1000);
-    }
-    std::sort(snrs_db.begin(), snrs_db.end());
-    FrameTrials trials(link::link_for(profile));
-    const double signal_power = mean_sound_power(trials, 256, options.seed);
-    std::printf("dtmf-bench-snr: profile %s, seed %llu, %zu frames per point (up to %zu near the thresholds), "
-                "%u threads\n  signal power over the chords %.4f (%.2f dBFS RMS, a full-scale sine = -3.01)\n",
-                profile.name.c_str(), static_cast<unsigned long long>(options.seed), options.frames,
-                options.topup_frames, options.threads, signal_power, 10 * std::log10(signal_power));
-    std::fflush(stdout);
+  return program::run(
+      [&] {
+        const LinkProfile& profile = profile_by_name(profile_name);
+        if (snrs_db.empty()) {
+          for (double s = from_db; s <= to_db + 1e-9; s += step_db) snrs_db.push_back(std::round(s * 1000) / 1000);
+        }
+        std::sort(snrs_db.begin(), snrs_db.end());
+        FrameTrials trials(link::link_for(profile));
+        const double signal_power = mean_sound_power(trials, 256, options.seed);
+        std::printf(
+            "dtmf-bench-snr: profile %s, seed %llu, %zu frames per point (up to %zu near the thresholds), "
+            "%u threads\n  signal power over the chords %.4f (%.2f dBFS RMS, a full-scale sine = -3.01)\n",
+            profile.name.c_str(), static_cast<unsigned long long>(options.seed), options.frames, options.topup_frames,
+            options.threads, signal_power, 10 * std::log10(signal_power));
+        std::fflush(stdout);
 
-    const auto started = std::chrono::steady_clock::now();
-    const auto points = run_sweep(profile, snrs_db, options, [&](double snr_db, std::uint64_t seed) -> Channel {
-      const auto sigma = static_cast<float>(std::sqrt(signal_power / std::pow(10.0, snr_db / 10)));
-      return [sigma, noise = std::make_shared<GaussianNoise>(seed)](std::span<const float> clean,
-                                                                     std::vector<float>& heard) {
-        heard.assign(clean.begin(), clean.end());
-        noise->add_to(heard, sigma);
-      };
-    });
-    const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
+        const auto started = std::chrono::steady_clock::now();
+        const auto points = run_sweep(profile, snrs_db, options, [&](double snr_db, std::uint64_t seed) -> Channel {
+          const auto sigma = static_cast<float>(std::sqrt(signal_power / std::pow(10.0, snr_db / 10)));
+          return [sigma, noise = std::make_shared<GaussianNoise>(seed)](std::span<const float> clean,
+                                                                        std::vector<float>& heard) {
+            heard.assign(clean.begin(), clean.end());
+            noise->add_to(heard, sigma);
+          };
+        });
+        const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
 
-    print_points(points, "SNR (dB)");
-    const nlohmann::json t99 = threshold(points, 0.99, true), t999 = threshold(points, 0.999, true);
-    std::uint64_t total_frames = 0, total_wrong = 0;
-    for (const auto& p : points) total_frames += p.counts.frames, total_wrong += p.counts.wrong_accepts;
-    std::printf("lowest SNR with >= 99 %% success: %s dB; with >= 99.9 %%: %s dB\n"
-                "%llu frames, %llu wrong accepts in all, %.1f s (%.0f s of audio per second)\n",
-                t99.dump().c_str(), t999.dump().c_str(), static_cast<unsigned long long>(total_frames),
-                static_cast<unsigned long long>(total_wrong), took.count(),
-                static_cast<double>(total_frames) * trials.slot_samples() / profile.sample_rate_hz / took.count());
+        print_points(points, "SNR (dB)");
+        const nlohmann::json t99 = threshold(points, 0.99, true), t999 = threshold(points, 0.999, true);
+        std::uint64_t total_frames = 0, total_wrong = 0;
+        for (const auto& p : points) total_frames += p.counts.frames, total_wrong += p.counts.wrong_accepts;
+        std::printf(
+            "lowest SNR with >= 99 %% success: %s dB; with >= 99.9 %%: %s dB\n"
+            "%llu frames, %llu wrong accepts in all, %.1f s (%.0f s of audio per second)\n",
+            t99.dump().c_str(), t999.dump().c_str(), static_cast<unsigned long long>(total_frames),
+            static_cast<unsigned long long>(total_wrong), took.count(),
+            static_cast<double>(total_frames) * trials.slot_samples() / profile.sample_rate_hz / took.count());
 
-    nlohmann::json doc{{"benchmark", "snr"},
-                       {"profile", profile.name},
-                       {"seed", options.seed},
-                       {"frames_per_point", options.frames},
-                       {"topup_frames", options.topup_frames},
-                       {"topup_band", {options.topup_low, options.topup_high}},
-                       {"block_samples", options.block_samples},
-                       {"chunk_frames", options.chunk_frames},
-                       {"threads", options.threads},
-                       {"sample_rate_hz", profile.sample_rate_hz},
-                       {"slot_ms", profile.timing.chord_ms + profile.timing.gap_ms},
-                       {"signal_power", signal_power},
-                       {"signal_rms_dbfs", 10 * std::log10(signal_power)},
-                       {"lowest_snr_db_99", t99},
-                       {"lowest_snr_db_99_9", t999},
-                       {"total_frames", total_frames},
-                       {"total_wrong_accepts", total_wrong},
-                       {"wall_s", took.count()},
-                       {"points", nlohmann::json::array()}};
-    for (const auto& p : points) doc["points"].push_back(point_json(p, "snr_db"));
-    write_json(json_path, doc);
-    return 0;
-  }, [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-snr: %s\n", why.c_str()); });
+        nlohmann::json doc{{"benchmark", "snr"},
+                           {"profile", profile.name},
+                           {"seed", options.seed},
+                           {"frames_per_point", options.frames},
+                           {"topup_frames", options.topup_frames},
+                           {"topup_band", {options.topup_low, options.topup_high}},
+                           {"block_samples", options.block_samples},
+                           {"chunk_frames", options.chunk_frames},
+                           {"threads", options.threads},
+                           {"sample_rate_hz", profile.sample_rate_hz},
+                           {"slot_ms", profile.timing.chord_ms + profile.timing.gap_ms},
+                           {"signal_power", signal_power},
+                           {"signal_rms_dbfs", 10 * std::log10(signal_power)},
+                           {"lowest_snr_db_99", t99},
+                           {"lowest_snr_db_99_9", t999},
+                           {"total_frames", total_frames},
+                           {"total_wrong_accepts", total_wrong},
+                           {"wall_s", took.count()},
+                           {"points", nlohmann::json::array()}};
+        for (const auto& p : points) doc["points"].push_back(point_json(p, "snr_db"));
+        write_json(json_path, doc);
+        return 0;
+      },
+      [](const std::string& why) { std::fprintf(stderr, "dtmf-bench-snr: %s\n", why.c_str()); });
 }

@@ -36,17 +36,20 @@ TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const 
   // first windows of a seed chord drowned). So a slot runs from half its silence before
   // its frame to half its silence after: a tail heard in the gap stays with its frame
   // (heard twice), a late detection is not taken for the next slot's.
-  const double early_ms = 0.5 * (slot_ms - 1000.0 * static_cast<double>(trials.sound_samples()) / profile.sample_rate_hz);
+  const double early_ms =
+      0.5 * (slot_ms - 1000.0 * static_cast<double>(trials.sound_samples()) / profile.sample_rate_hz);
   auto score = [&] {
     for (const Accepted& a : accepted) {
       const double at = std::floor((a.start_ms + early_ms) / slot_ms) - static_cast<double>(options.lead_in_slots);
       const auto k = static_cast<std::size_t>(std::max(at, 0.0));
-      if (at >= 0 && k < sent.size() && a.bits == sent[k]) ++right[k];
+      if (at >= 0 && k < sent.size() && a.bits == sent[k])
+        ++right[k];
       else {
         ++counts.wrong_accepts;
         if (std::getenv("DTMF_DEBUG_WRONG")) {
-          std::fprintf(stderr, "wrong: start %.1f ms slot %.0f (after the lead-in) bits %llx; sent there %llx, before %llx\n", a.start_ms, at,
-                       (unsigned long long)a.bits, k < sent.size() ? (unsigned long long)sent[k] : 0ull,
+          std::fprintf(stderr,
+                       "wrong: start %.1f ms slot %.0f (after the lead-in) bits %llx; sent there %llx, before %llx\n",
+                       a.start_ms, at, (unsigned long long)a.bits, k < sent.size() ? (unsigned long long)sent[k] : 0ull,
                        k > 0 && k <= sent.size() ? (unsigned long long)sent[k - 1] : 0ull);
         }
       }

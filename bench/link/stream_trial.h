@@ -22,12 +22,12 @@
 namespace dtmf::bench {
 
 struct TrialCounts {
-  std::uint64_t frames = 0;         // sent
+  std::uint64_t frames = 0;  // sent
   std::uint64_t success = 0;
-  std::uint64_t missed = 0;         // never accepted with the right bits
-  std::uint64_t duplicated = 0;     // accepted with the right bits more than once
+  std::uint64_t missed = 0;      // never accepted with the right bits
+  std::uint64_t duplicated = 0;  // accepted with the right bits more than once
   std::uint64_t wrong_accepts = 0;
-  std::uint64_t check_failed = 0;   // heard but failing the check (NACKed by a robot)
+  std::uint64_t check_failed = 0;  // heard but failing the check (NACKed by a robot)
 
   TrialCounts& operator+=(const TrialCounts& o);
 };

@@ -71,7 +71,8 @@ std::vector<SweepPoint> run_sweep(const LinkProfile& profile, const std::vector<
   for (std::size_t p = 0; p < points.size(); ++p) {
     const TrialCounts& c = points[p].counts;
     const bool above_slope = p > 0 && on_slope(p - 1) && rate(c.success, c.frames) >= options.topup_high;
-    if ((on_slope(p) || above_slope) && c.frames < options.topup_frames) schedule(p, options.topup_frames - c.frames, jobs);
+    if ((on_slope(p) || above_slope) && c.frames < options.topup_frames)
+      schedule(p, options.topup_frames - c.frames, jobs);
   }
   run(jobs);
   return points;

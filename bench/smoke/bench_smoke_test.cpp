@@ -26,7 +26,8 @@ class BenchSmokeProfile : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(BenchSmokeProfile, SnrSweepSeesTheObviousEnds) {
   const auto doc = run(std::string(SNR_PATH) + " --profile " + GetParam() +
-                       " --snr-db -30 --snr-db 40 --frames 20 --chunk-frames 10 --topup-frames 0", "snr-" + GetParam());
+                           " --snr-db -30 --snr-db 40 --frames 20 --chunk-frames 10 --topup-frames 0",
+                       "snr-" + GetParam());
   ASSERT_EQ(doc["points"].size(), 2u);
   const auto& low = doc["points"][0];
   const auto& high = doc["points"][1];
@@ -42,7 +43,8 @@ TEST_P(BenchSmokeProfile, SnrSweepSeesTheObviousEnds) {
 }
 
 TEST(BenchSmoke, DistanceSweepHearsNearFrames) {
-  const auto doc = run(std::string(DISTANCE_PATH) + " --profile seed --distance-m 1 --distance-m 5 --frames 10", "distance");
+  const auto doc =
+      run(std::string(DISTANCE_PATH) + " --profile seed --distance-m 1 --distance-m 5 --frames 10", "distance");
   ASSERT_EQ(doc["points"].size(), 2u);
   for (const auto& point : doc["points"]) {
     EXPECT_EQ(point["success_rate"].get<double>(), 1.0) << point.dump();
@@ -56,10 +58,11 @@ TEST(BenchSmoke, DistanceSweepHearsNearFrames) {
 // show a failure as well as a success.
 TEST_P(BenchSmokeProfile, RoomsTableHearsTheSeminarRoomAndNotADrownedOne) {
   const std::string seminar = std::string(RIRS_DIR) + "/seminar_room_clap.wav";
-  const auto doc = run(std::string(ROOMS_PATH) + " --profile " + GetParam() + " --frames 10 --chunk-frames 10 --lead-in-s 1" +
-                           " --case 'seminar=--rir " + seminar + " --noise pink --noise-dbfs -50'" +
-                           " --case 'drowned=--distance 100 --noise white --noise-dbfs -40'",
-                       "rooms-" + GetParam());
+  const auto doc =
+      run(std::string(ROOMS_PATH) + " --profile " + GetParam() + " --frames 10 --chunk-frames 10 --lead-in-s 1" +
+              " --case 'seminar=--rir " + seminar + " --noise pink --noise-dbfs -50'" +
+              " --case 'drowned=--distance 100 --noise white --noise-dbfs -40'",
+          "rooms-" + GetParam());
   ASSERT_EQ(doc["cases"].size(), 2u) << doc.dump();
   EXPECT_EQ(doc["frames_per_case"], 10);
   EXPECT_EQ(doc["lead_in_s"], 1);
@@ -70,14 +73,15 @@ TEST_P(BenchSmokeProfile, RoomsTableHearsTheSeminarRoomAndNotADrownedOne) {
   EXPECT_LT(drowned["success_rate"].get<double>(), 0.5) << drowned.dump();
   for (const auto& c : doc["cases"]) {
     EXPECT_EQ(c["wrong_accepts"], 0) << c.dump();
-    for (const char* key : {"flags", "frames", "success_rate_ci95", "duplicated", "check_failed"}) EXPECT_TRUE(c.contains(key)) << key;
+    for (const char* key : {"flags", "frames", "success_rate_ci95", "duplicated", "check_failed"})
+      EXPECT_TRUE(c.contains(key)) << key;
   }
 }
 
 TEST(BenchSmoke, TalkoffFindsNothingInSilence) {
   // 10 s of silence (raw float32 zeros) on stdin.
-  const auto doc = run("head -c 1920000 /dev/zero | " + std::string(TALKOFF_PATH) + " --profile seed --signal silence",
-                       "talkoff");
+  const auto doc =
+      run("head -c 1920000 /dev/zero | " + std::string(TALKOFF_PATH) + " --profile seed --signal silence", "talkoff");
   EXPECT_NEAR(doc["audio_s"].get<double>(), 10.0, 1e-6);
   for (const char* key : {"accepted_per_hour", "check_failed_per_hour", "acks_per_hour", "nacks_per_hour"}) {
     EXPECT_EQ(doc[key].get<double>(), 0.0) << key;
@@ -85,7 +89,8 @@ TEST(BenchSmoke, TalkoffFindsNothingInSilence) {
 }
 
 TEST_P(BenchSmokeProfile, DecoderIsFasterThanRealTime) {
-  const auto doc = run(std::string(DECODER_PATH) + " --profile " + GetParam() + " --audio-s 5", "decoder-" + GetParam());
+  const auto doc =
+      run(std::string(DECODER_PATH) + " --profile " + GetParam() + " --audio-s 5", "decoder-" + GetParam());
   ASSERT_EQ(doc["signals"].size(), 2u);
   for (const auto& s : doc["signals"]) {
     EXPECT_GT(s["realtime_factor"].get<double>(), 100.0) << s.dump();
@@ -94,7 +99,8 @@ TEST_P(BenchSmokeProfile, DecoderIsFasterThanRealTime) {
 }
 
 TEST_P(BenchSmokeProfile, RoundTripConfirmsEveryCommand) {
-  const auto doc = run(std::string(ROUNDTRIP_PATH) + " --profile " + GetParam() + " --commands 4", "roundtrip-" + GetParam());
+  const auto doc =
+      run(std::string(ROUNDTRIP_PATH) + " --profile " + GetParam() + " --commands 4", "roundtrip-" + GetParam());
   EXPECT_EQ(doc["confirmed"], 4);
   EXPECT_EQ(doc["failed"], 0);
   EXPECT_EQ(doc["latencies_ms"].size(), 4u);

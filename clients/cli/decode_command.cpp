@@ -36,13 +36,15 @@ int run_decode(const DecodeOptions& o) {
     for (const link::Reception& r : receiver->feed(std::span<const float>(block.data(), got))) {
       ++frames;
       intact += r.intact ? 1 : 0;
-      if (o.json) std::cout << reception_json(r).dump() << '\n';
-      else std::printf("%s\n", reception_line(r).c_str());
+      if (o.json)
+        std::cout << reception_json(r).dump() << '\n';
+      else
+        std::printf("%s\n", reception_line(r).c_str());
     }
   }
   if (!o.json) {
-    std::printf("%s: %d frame%s heard, %d intact, %d failed the check (profile %s)\n", source.describe().c_str(), frames,
-                frames == 1 ? "" : "s", intact, frames - intact, profile.name.c_str());
+    std::printf("%s: %d frame%s heard, %d intact, %d failed the check (profile %s)\n", source.describe().c_str(),
+                frames, frames == 1 ? "" : "s", intact, frames - intact, profile.name.c_str());
   }
   return 0;
 }
@@ -79,11 +81,14 @@ int run_decode_replies(const DecodeOptions& o) {
 
 void add_decode_command(CLI::App& app, Action& run, const GlobalOptions& global) {
   auto o = std::make_shared<DecodeOptions>();
-  CLI::App* decode = app.add_subcommand("decode", "Run the robot's receive path on a recording and print each frame heard");
+  CLI::App* decode =
+      app.add_subcommand("decode", "Run the robot's receive path on a recording and print each frame heard");
   decode->add_option("--profile", o->profile, "link profile: " + profile_names())->capture_default_str();
-  decode->add_flag("--replies", o->replies,
-                   "the recording holds the robot's answers: print each ACK / NACK heard (the sender's ear), not frames");
-  decode->add_option("file", o->file, "recording (WAV, FLAC, AIFF; any rate of at least twice the top tone)")->required();
+  decode->add_flag(
+      "--replies", o->replies,
+      "the recording holds the robot's answers: print each ACK / NACK heard (the sender's ear), not frames");
+  decode->add_option("file", o->file, "recording (WAV, FLAC, AIFF; any rate of at least twice the top tone)")
+      ->required();
   decode->callback([o, &global, &run] {
     run = [o, &global] {
       o->json = global.json;  // one JSON object per frame: t_ms, heard_ms, word, frame, crc, crc_ok, tones_hz, event

@@ -48,7 +48,8 @@ int run_encode(const EncodeOptions& o) {
   if (o.word) {
     const auto frame = link.plan_word(static_cast<std::uint32_t>(*o.word));
     if (!frame) {
-      throw std::invalid_argument("--word: the " + link.name() + " profile sends whole commands, not words; "
+      throw std::invalid_argument("--word: the " + link.name() +
+                                  " profile sends whole commands, not words; "
                                   "give a command (drive, turn, stop, reset, sequence)");
     }
     frames.push_back(*frame);
@@ -78,8 +79,9 @@ int run_encode(const EncodeOptions& o) {
       std::cout << "frame " << i + 1 << '/' << frames.size() << "  " << frame_line(frames[i]) << '\n';
     }
   }
-  if (!o.json) std::cout << "encodes: " << what << ", " << frames.size() << " frame" << (frames.size() == 1 ? "" : "s")
-                         << " (profile " << link.name() << ")\n";
+  if (!o.json)
+    std::cout << "encodes: " << what << ", " << frames.size() << " frame" << (frames.size() == 1 ? "" : "s")
+              << " (profile " << link.name() << ")\n";
   if (!o.wav.empty()) {
     const std::vector<float> audio = link.render(frames);
     physical::write_wav_file(o.wav, audio, link.profile().sample_rate_hz);
@@ -95,18 +97,21 @@ int run_encode(const EncodeOptions& o) {
 
 void add_encode_command(CLI::App& app, Action& run, const GlobalOptions& global) {
   auto o = std::make_shared<EncodeOptions>();
-  CLI::App* encode = app.add_subcommand(
-      "encode", "Print the frames of a command (word, frame bits, CRC, tones); --wav renders them");
-  encode->add_option("--wav", o->wav, "also write the chords to this WAV file (profile timing; fast: each frame then 100 ms for its answer)");
+  CLI::App* encode =
+      app.add_subcommand("encode", "Print the frames of a command (word, frame bits, CRC, tones); --wav renders them");
+  encode->add_option(
+      "--wav", o->wav,
+      "also write the chords to this WAV file (profile timing; fast: each frame then 100 ms for its answer)");
   encode->add_option("--profile", o->profile, "link profile: " + profile_names())->capture_default_str();
-  encode->add_option("--word", o->word, "encode one raw 12-bit word instead of a command")
-      ->check(CLI::Range(0, 4095));
+  encode->add_option("--word", o->word, "encode one raw 12-bit word instead of a command")->check(CLI::Range(0, 4095));
 
-  CLI::App* drive = encode->add_subcommand("drive", "drive forward: DRIVE_FOR_DURATION, or DRIVE_FORWARD without --duration");
+  CLI::App* drive =
+      encode->add_subcommand("drive", "drive forward: DRIVE_FOR_DURATION, or DRIVE_FORWARD without --duration");
   drive->add_option("--speed", o->speed, "speed, percent of the robot's maximum (0..100)")->required();
   drive->add_option("--duration", o->duration, "seconds (0..8); omit to drive until the next command");
   CLI::App* turn = encode->add_subcommand("turn", "turn on the spot: TURN_FOR_DURATION, or TURN without --duration");
-  turn->add_option("--rotation", o->rotation, "rotation, percent of the maximum; positive turns left (-100..100)")->required();
+  turn->add_option("--rotation", o->rotation, "rotation, percent of the maximum; positive turns left (-100..100)")
+      ->required();
   turn->add_option("--duration", o->duration, "seconds (0..8); omit to turn until the next command");
   encode->add_subcommand("stop", "stop the robot (RESET, STOP)");
   encode->add_subcommand("reset", "return the robot to MODE_SELECT (RESET)");

@@ -53,8 +53,10 @@ std::string describe(const v1::Progress& p) {
   }
   // A seed frame carries a word; a fast frame a whole command, named by its sequence number.
   char label[24];
-  if (p.has_word()) std::snprintf(label, sizeof label, "word %4u", p.word());
-  else std::snprintf(label, sizeof label, "seq %2u", p.sequence());
+  if (p.has_word())
+    std::snprintf(label, sizeof label, "word %4u", p.word());
+  else
+    std::snprintf(label, sizeof label, "seq %2u", p.sequence());
   std::snprintf(text, sizeof text, "frame %u/%u %s %s tones%s Hz  %s", p.frame_index() + 1, p.frame_count(), label,
                 p.frame_bits().c_str(), tones.c_str(), state.c_str());
   return text;
@@ -77,14 +79,20 @@ void ProgressView::finish_line() {
 
 void ProgressView::show(const v1::Progress& p, const std::optional<SequencePosition>& sequence) {
   if (json_) {
-    nlohmann::json event{{"event", event_name(p.event())}, {"command_id", p.command_id()}, {"command", p.command()},
-                         {"frame_index", p.frame_index()}, {"frame_count", p.frame_count()}, {"attempt", p.attempt()},
-                         {"profile", p.profile()}, {"frame", p.frame_bits()},
+    nlohmann::json event{{"event", event_name(p.event())},
+                         {"command_id", p.command_id()},
+                         {"command", p.command()},
+                         {"frame_index", p.frame_index()},
+                         {"frame_count", p.frame_count()},
+                         {"attempt", p.attempt()},
+                         {"profile", p.profile()},
+                         {"frame", p.frame_bits()},
                          {"tones_hz", std::vector<double>(p.tones_hz().begin(), p.tones_hz().end())},
                          {"time_unix_ms", p.time_unix_ms()}};
     if (p.has_word()) event["word"] = p.word();
     if (p.has_sequence()) event["sequence"] = p.sequence();
-    if (p.event() == v1::FRAME_EVENT_ACK || p.event() == v1::FRAME_EVENT_NACK) event["response_time_ms"] = p.response_time_ms();
+    if (p.event() == v1::FRAME_EVENT_ACK || p.event() == v1::FRAME_EVENT_NACK)
+      event["response_time_ms"] = p.response_time_ms();
     if (!p.detail().empty()) event["detail"] = p.detail();
     if (sequence) {
       event["run_id"] = sequence->run_id;

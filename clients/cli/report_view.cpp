@@ -43,16 +43,23 @@ std::string when(std::int64_t unix_ms) {
 // The report's figures in the seed's order, as (name, value) pairs for JSON and CSV.
 nlohmann::ordered_json report_json(const v1::GetReportResponse& r) {
   const auto optional = [](bool has, double v) { return has ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  return {{"run_number", r.run().number()}, {"run_id", r.run().run_id()}, {"label", r.run().label()},
-          {"profile", r.run().profile()}, {"transmissions_sent", r.transmissions_sent()},
-          {"transmissions_received", r.transmissions_received()}, {"successfully_matched", r.successfully_matched()},
-          {"dropped", r.dropped()}, {"false_positives", r.false_positives()},
+  return {{"run_number", r.run().number()},
+          {"run_id", r.run().run_id()},
+          {"label", r.run().label()},
+          {"profile", r.run().profile()},
+          {"transmissions_sent", r.transmissions_sent()},
+          {"transmissions_received", r.transmissions_received()},
+          {"successfully_matched", r.successfully_matched()},
+          {"dropped", r.dropped()},
+          {"false_positives", r.false_positives()},
           {"false_positive_rate_pct", optional(r.has_false_positive_rate_pct(), r.false_positive_rate_pct())},
-          {"duplicates", r.duplicates()}, {"successful_transmissions", r.successful_transmissions()},
+          {"duplicates", r.duplicates()},
+          {"successful_transmissions", r.successful_transmissions()},
           {"success_rate_pct", optional(r.has_success_rate_pct(), r.success_rate_pct())},
           {"sender_confirmed", r.sender_confirmed()},
           {"sender_confirmed_rate_pct", optional(r.has_sender_confirmed_rate_pct(), r.sender_confirmed_rate_pct())},
-          {"crc_accepted", r.crc_accepted()}, {"crc_rejected", r.crc_rejected()},
+          {"crc_accepted", r.crc_accepted()},
+          {"crc_rejected", r.crc_rejected()},
           {"negative_confirmations_sent", r.negative_confirmations_sent()},
           {"error_catch_rate_pct", optional(r.has_error_catch_rate_pct(), r.error_catch_rate_pct())},
           {"frame_attempts", r.frame_attempts()},
@@ -67,20 +74,24 @@ nlohmann::ordered_json report_json(const v1::GetReportResponse& r) {
 // The layout of the seed's Appendix A: counts and rates side by side, then the times.
 void print_table(const v1::GetReportResponse& r) {
   std::printf("Test Results - %s   (run %lld, profile %s, %s)\n", r.run().label().c_str(),
-              static_cast<long long>(r.run().number()), r.run().profile().c_str(), when(r.run().started_unix_ms()).c_str());
+              static_cast<long long>(r.run().number()), r.run().profile().c_str(),
+              when(r.run().started_unix_ms()).c_str());
   const auto row = [](const char* a, const std::string& av, const char* b, const std::string& bv) {
     std::printf("  %-30s %10s    %-28s %10s\n", a, av.c_str(), b, bv.c_str());
   };
   const auto n = [](std::int64_t v) { return std::to_string(v); };
-  row("Total transmission sent", n(r.transmissions_sent()), "Successful transmissions", n(r.successful_transmissions()));
-  row("Total transmission received", n(r.transmissions_received()), "Success rate", percent(r.has_success_rate_pct(), r.success_rate_pct()));
+  row("Total transmission sent", n(r.transmissions_sent()), "Successful transmissions",
+      n(r.successful_transmissions()));
+  row("Total transmission received", n(r.transmissions_received()), "Success rate",
+      percent(r.has_success_rate_pct(), r.success_rate_pct()));
   row("Successfully matched", n(r.successfully_matched()), "Sender confirmed rate",
       percent(r.has_sender_confirmed_rate_pct(), r.sender_confirmed_rate_pct()));
   row("Dropped", n(r.dropped()), "CRC accepted", n(r.crc_accepted()));
   row("False positive", n(r.false_positives()), "CRC rejected", n(r.crc_rejected()));
   row("False positive rate", percent(r.has_false_positive_rate_pct(), r.false_positive_rate_pct()),
       "Negative confirmation sent", n(r.negative_confirmations_sent()));
-  row("Duplicates", n(r.duplicates()), "Error catch rate", percent(r.has_error_catch_rate_pct(), r.error_catch_rate_pct()));
+  row("Duplicates", n(r.duplicates()), "Error catch rate",
+      percent(r.has_error_catch_rate_pct(), r.error_catch_rate_pct()));
   std::printf("\n");
   row("Average response time", ms(r.has_response_time_avg_ms(), r.response_time_avg_ms()), "Average latency",
       ms(r.has_latency_avg_ms(), r.latency_avg_ms()));
@@ -95,7 +106,9 @@ void print_csv(const v1::GetReportResponse& r) {
   std::string header, values;
   for (const auto& [name, value] : fields.items()) {
     header += (header.empty() ? "" : ",") + name;
-    values += (values.empty() ? "" : ",") + (value.is_null() ? std::string() : value.is_string() ? value.get<std::string>() : value.dump());
+    values += (values.empty() ? "" : ",") + (value.is_null()     ? std::string()
+                                             : value.is_string() ? value.get<std::string>()
+                                                                 : value.dump());
   }
   std::printf("%s\n%s\n", header.c_str(), values.c_str());
 }
@@ -103,8 +116,10 @@ void print_csv(const v1::GetReportResponse& r) {
 grpc::Status fetch_report(ServerConnection& connection, const std::string& run, v1::GetReportResponse& report) {
   v1::GetReportRequest request;
   if (!run.empty()) {
-    if (run.find_first_not_of("0123456789") == std::string::npos) request.set_run_number(std::stoll(run));
-    else request.set_run_id(run);
+    if (run.find_first_not_of("0123456789") == std::string::npos)
+      request.set_run_number(std::stoll(run));
+    else
+      request.set_run_id(run);
   }
   auto context = connection.context();
   return connection.teleop().GetReport(context.get(), request, &report);
@@ -118,9 +133,12 @@ int run_report(const ReportOptions& o) {
     std::fprintf(stderr, "dtmfctl: %s\n", describe_status(status).c_str());
     return status.error_code() == grpc::StatusCode::UNAVAILABLE ? kExitUnreachable : kExitUnconfirmed;
   }
-  if (o.json) std::printf("%s\n", report_json(report).dump().c_str());
-  else if (o.csv) print_csv(report);
-  else print_table(report);
+  if (o.json)
+    std::printf("%s\n", report_json(report).dump().c_str());
+  else if (o.csv)
+    print_csv(report);
+  else
+    print_table(report);
   return 0;
 }
 
@@ -137,10 +155,15 @@ int run_runs(const ReportOptions& o) {
   }
   for (const auto& run : runs.runs()) {
     if (o.json) {
-      std::printf("%s\n", nlohmann::json{{"number", run.number()}, {"run_id", run.run_id()}, {"label", run.label()},
-                                         {"profile", run.profile()}, {"started_unix_ms", run.started_unix_ms()},
-                                         {"ended_unix_ms", run.ended_unix_ms()}, {"transmissions_sent", run.transmissions_sent()}}
-                                .dump().c_str());
+      std::printf("%s\n", nlohmann::json{{"number", run.number()},
+                                         {"run_id", run.run_id()},
+                                         {"label", run.label()},
+                                         {"profile", run.profile()},
+                                         {"started_unix_ms", run.started_unix_ms()},
+                                         {"ended_unix_ms", run.ended_unix_ms()},
+                                         {"transmissions_sent", run.transmissions_sent()}}
+                              .dump()
+                              .c_str());
     } else {
       std::printf("%4lld  %-12s %-6s %s  %3lld frames  %s\n", static_cast<long long>(run.number()), run.label().c_str(),
                   run.profile().c_str(), when(run.started_unix_ms()).c_str(),
@@ -170,8 +193,10 @@ int run_health(const ReportOptions& o) {
 void print_report_of(ServerConnection& connection, const std::string& run_id) {
   v1::GetReportResponse report;
   const grpc::Status status = fetch_report(connection, run_id, report);
-  if (status.ok()) print_table(report);
-  else std::printf("(no report: %s)\n", describe_status(status).c_str());
+  if (status.ok())
+    print_table(report);
+  else
+    std::printf("(no report: %s)\n", describe_status(status).c_str());
 }
 
 void add_run_commands(CLI::App& app, Action& run, const GlobalOptions& global) {

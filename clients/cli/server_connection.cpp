@@ -40,10 +40,14 @@ std::unique_ptr<grpc::ClientContext> ServerConnection::context() const {
 
 int exit_code_for(const grpc::Status& status) {
   switch (status.error_code()) {
-    case grpc::StatusCode::OK: return program::kExitOk;
-    case grpc::StatusCode::INVALID_ARGUMENT: return program::kExitUsage;
-    case grpc::StatusCode::UNAVAILABLE: return kExitUnreachable;
-    default: return kExitUnconfirmed;
+    case grpc::StatusCode::OK:
+      return program::kExitOk;
+    case grpc::StatusCode::INVALID_ARGUMENT:
+      return program::kExitUsage;
+    case grpc::StatusCode::UNAVAILABLE:
+      return kExitUnreachable;
+    default:
+      return kExitUnconfirmed;
   }
 }
 

@@ -49,14 +49,17 @@ int run_simulate(const SimulateOptions& o) {
     samples += static_cast<long long>(heard.size());
   }
   sink.drain();
-  std::printf("wrote %s: %.2f s heard through %s\n", o.output.c_str(), static_cast<double>(samples) / profile.sample_rate_hz,
+  std::printf("wrote %s: %.2f s heard through %s\n", o.output.c_str(),
+              static_cast<double>(samples) / profile.sample_rate_hz,
               program::describe_channel(setup, *channel).c_str());
   // A clipped recording fails for its level, not for the room: say so.
   if (clipped > 0) {
-    std::fprintf(stderr, "dtmfctl: warning: %lld samples (%.2f %%) were beyond full scale and clipped in %s: play the input "
-                 "quieter or from farther away (a measured room's response, its direct sound scaled to a unit impulse at 1 m, "
-                 "passes 6 to 16 dB more power at 4.5-16 kHz than 1 m of free field: its reverberation)\n",
-                 clipped, 100.0 * static_cast<double>(clipped) / static_cast<double>(std::max(samples, 1LL)), o.output.c_str());
+    std::fprintf(
+        stderr,
+        "dtmfctl: warning: %lld samples (%.2f %%) were beyond full scale and clipped in %s: play the input "
+        "quieter or from farther away (a measured room's response, its direct sound scaled to a unit impulse at 1 m, "
+        "passes 6 to 16 dB more power at 4.5-16 kHz than 1 m of free field: its reverberation)\n",
+        clipped, 100.0 * static_cast<double>(clipped) / static_cast<double>(std::max(samples, 1LL)), o.output.c_str());
   }
   return 0;
 }
@@ -65,10 +68,12 @@ int run_simulate(const SimulateOptions& o) {
 
 void add_simulate_command(CLI::App& app, Action& run) {
   auto o = std::make_shared<SimulateOptions>();
-  CLI::App* sim = app.add_subcommand("simulate", "Play a recording through the simulated acoustic channel into another");
+  CLI::App* sim =
+      app.add_subcommand("simulate", "Play a recording through the simulated acoustic channel into another");
   sim->add_option("input", o->input, "what the loudspeaker plays")->required();
   sim->add_option("output", o->output, "what the microphone records (16-bit WAV)")->required();
-  sim->add_option("--profile", o->profile, "link profile (sets the sample rate): " + profile_names())->capture_default_str();
+  sim->add_option("--profile", o->profile, "link profile (sets the sample rate): " + profile_names())
+      ->capture_default_str();
   program::add_channel_flags(*sim, o->channel);
   sim->footer(
       "The channel: the loudspeaker's response, then free field (delay, 1/d, air absorption) or a room, then the\n"
@@ -81,7 +86,8 @@ void add_simulate_command(CLI::App& app, Action& run) {
       "Examples:\n"
       "  dtmfctl simulate in.wav out.wav --rir bench/rirs/seminar_room_clap.wav --distance 3\n"
       "  dtmfctl simulate in.wav out.wav --room 7x9x3 --room-rt60 1.2 --distance 5 --mic-response cheap-mic\n"
-      "  dtmfctl simulate in.wav out.wav --room 4x5x2.7 --wall-reflection 125:0.8,4000:0.9 --wall-reflection floor=0.98 \\\n"
+      "  dtmfctl simulate in.wav out.wav --room 4x5x2.7 --wall-reflection 125:0.8,4000:0.9 --wall-reflection "
+      "floor=0.98 \\\n"
       "      --speaker-at 3,4,0.8 --mic-at 1,1.5,0.05 --whine 9000:-45 --radial-speed-mps 0.22\n"
       "docs/protocol.md section 7 says what each effect models and why.");
   sim->callback([o, &run] { run = [o] { return run_simulate(*o); }; });

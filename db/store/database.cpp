@@ -42,7 +42,8 @@ std::string with_timeout(const DatabaseUrl& url) {
   std::string conninfo = url.value_or("");
   if (conninfo.find("connect_timeout") != std::string::npos || std::getenv("PGCONNECT_TIMEOUT")) return conninfo;
   const bool is_url = conninfo.rfind("postgres://", 0) == 0 || conninfo.rfind("postgresql://", 0) == 0;
-  if (is_url) return conninfo + (conninfo.find('?') == std::string::npos ? "?" : "&") + "connect_timeout=" + kConnectTimeoutS;
+  if (is_url)
+    return conninfo + (conninfo.find('?') == std::string::npos ? "?" : "&") + "connect_timeout=" + kConnectTimeoutS;
   return conninfo + (conninfo.empty() ? "" : " ") + "connect_timeout=" + kConnectTimeoutS;
 }
 
@@ -83,9 +84,9 @@ MigrationResult migrate(pqxx::connection& connection) {
       const int version = row[0].as<int>();
       result.version_before = std::max(result.version_before, version);
       if (version > newest) {
-        throw DatabaseError("the database schema is at version " + std::to_string(version) +
-                            " (" + row[1].as<std::string>() + "), newer than this program knows (" +
-                            std::to_string(newest) + "): upgrade dtmf-teleop, or use another database");
+        throw DatabaseError("the database schema is at version " + std::to_string(version) + " (" +
+                            row[1].as<std::string>() + "), newer than this program knows (" + std::to_string(newest) +
+                            "): upgrade dtmf-teleop, or use another database");
       }
     }
     for (const Migration& m : migrations) {

@@ -9,10 +9,14 @@ namespace dtmf::store {
 
 std::string_view table_name(Table table) {
   switch (table) {
-    case Table::TestRuns: return "test_runs";
-    case Table::Commands: return "commands";
-    case Table::FrameAttempts: return "frame_attempts";
-    case Table::Receptions: return "receptions";
+    case Table::TestRuns:
+      return "test_runs";
+    case Table::Commands:
+      return "commands";
+    case Table::FrameAttempts:
+      return "frame_attempts";
+    case Table::Receptions:
+      return "receptions";
   }
   return "";
 }
@@ -64,31 +68,60 @@ nlohmann::json text_or_null(const std::string& text) {
 }  // namespace
 
 nlohmann::json to_json(const TestRunRow& r) {
-  return {{"id", r.id}, {"label", r.label}, {"profile", r.profile}, {"started_at", iso_time(r.started_at)},
-          {"ended_at", optional_time(r.ended_at)}, {"notes", text_or_null(r.notes)}, {"host", text_or_null(r.host)}};
+  return {{"id", r.id},
+          {"label", r.label},
+          {"profile", r.profile},
+          {"started_at", iso_time(r.started_at)},
+          {"ended_at", optional_time(r.ended_at)},
+          {"notes", text_or_null(r.notes)},
+          {"host", text_or_null(r.host)}};
 }
 
 nlohmann::json to_json(const CommandRow& r) {
-  return {{"id", r.id}, {"run_id", optional_json(r.run_id)}, {"kind", r.kind}, {"parameters", r.parameters},
-          {"profile", r.profile}, {"frame_count", r.frame_count}, {"requested_at", iso_time(r.requested_at)},
-          {"finished_at", optional_time(r.finished_at)}, {"outcome", r.outcome},
-          {"detail", text_or_null(r.detail)}, {"host", text_or_null(r.host)}};
+  return {{"id", r.id},
+          {"run_id", optional_json(r.run_id)},
+          {"kind", r.kind},
+          {"parameters", r.parameters},
+          {"profile", r.profile},
+          {"frame_count", r.frame_count},
+          {"requested_at", iso_time(r.requested_at)},
+          {"finished_at", optional_time(r.finished_at)},
+          {"outcome", r.outcome},
+          {"detail", text_or_null(r.detail)},
+          {"host", text_or_null(r.host)}};
 }
 
 nlohmann::json to_json(const FrameAttemptRow& r) {
-  return {{"id", r.id}, {"run_id", optional_json(r.run_id)}, {"command_id", r.command_id},
-          {"position", r.position}, {"attempt", r.attempt}, {"word", optional_json(r.word)}, {"frame", r.frame}, {"frame_width", r.frame_width},
-          {"tones_hz", r.tones_hz}, {"chord_started_at", iso_time(r.chord_started_at)},
-          {"chord_ended_at", optional_time(r.chord_ended_at)}, {"answer", optional_json(r.answer)},
+  return {{"id", r.id},
+          {"run_id", optional_json(r.run_id)},
+          {"command_id", r.command_id},
+          {"position", r.position},
+          {"attempt", r.attempt},
+          {"word", optional_json(r.word)},
+          {"frame", r.frame},
+          {"frame_width", r.frame_width},
+          {"tones_hz", r.tones_hz},
+          {"chord_started_at", iso_time(r.chord_started_at)},
+          {"chord_ended_at", optional_time(r.chord_ended_at)},
+          {"answer", optional_json(r.answer)},
           {"answered_at", optional_time(r.answered_at)}};
 }
 
 nlohmann::json to_json(const ReceptionRow& r) {
-  return {{"id", r.id}, {"host", text_or_null(r.host)}, {"profile", r.profile},
-          {"started_at", optional_time(r.started_at)}, {"heard_at", iso_time(r.heard_at)}, {"frame", r.frame}, {"frame_width", r.frame_width},
-          {"crc_ok", r.crc_ok}, {"reply", optional_json(r.reply)}, {"word", optional_json(r.word)},
-          {"event", text_or_null(r.event)}, {"command_state", text_or_null(r.command_state)},
-          {"command", text_or_null(r.command)}, {"linear_mps", optional_json(r.linear_mps)},
+  return {{"id", r.id},
+          {"host", text_or_null(r.host)},
+          {"profile", r.profile},
+          {"started_at", optional_time(r.started_at)},
+          {"heard_at", iso_time(r.heard_at)},
+          {"frame", r.frame},
+          {"frame_width", r.frame_width},
+          {"crc_ok", r.crc_ok},
+          {"reply", optional_json(r.reply)},
+          {"word", optional_json(r.word)},
+          {"event", text_or_null(r.event)},
+          {"command_state", text_or_null(r.command_state)},
+          {"command", text_or_null(r.command)},
+          {"linear_mps", optional_json(r.linear_mps)},
           {"angular_rps", optional_json(r.angular_rps)}};
 }
 

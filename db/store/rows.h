@@ -7,8 +7,8 @@
 // time, so both hosts' clocks must be synchronised (docs/database.md).
 #pragma once
 
-#include <cstdint>
 #include <chrono>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -56,11 +56,11 @@ struct FrameAttemptRow {
   std::string id = new_id();
   std::optional<std::string> run_id;
   std::string command_id;
-  int position = 0;  // frame within its command, from 0
-  int attempt = 1;   // 1 = first transmission
-  std::optional<int> word;   // Word16 frames
-  std::int64_t frame = 0;    // the frame's bits, CRC included
-  int frame_width = 16;      // bits: 16 (seed) or 48 (fast)
+  int position = 0;         // frame within its command, from 0
+  int attempt = 1;          // 1 = first transmission
+  std::optional<int> word;  // Word16 frames
+  std::int64_t frame = 0;   // the frame's bits, CRC included
+  int frame_width = 16;     // bits: 16 (seed) or 48 (fast)
   std::vector<double> tones_hz;
   WallTime chord_started_at{};
   std::optional<WallTime> chord_ended_at;

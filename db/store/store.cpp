@@ -20,7 +20,8 @@ bool is_data_error(const std::string& sqlstate) {
 }
 
 std::string one_line(std::string text) {
-  for (char& c : text) if (c == '\n') c = ' ';
+  for (char& c : text)
+    if (c == '\n') c = ' ';
   while (!text.empty() && text.back() == ' ') text.pop_back();
   return text;
 }
@@ -29,9 +30,12 @@ std::string one_line(std::string text) {
 
 std::string default_spill_path(const std::string& program) {
   std::string dir;
-  if (const char* state = std::getenv("XDG_STATE_HOME"); state && *state) dir = std::string(state) + "/dtmf-teleop";
-  else if (const char* home = std::getenv("HOME"); home && *home) dir = std::string(home) + "/.local/state/dtmf-teleop";
-  else dir = "/tmp/dtmf-teleop-" + std::to_string(::getuid());
+  if (const char* state = std::getenv("XDG_STATE_HOME"); state && *state)
+    dir = std::string(state) + "/dtmf-teleop";
+  else if (const char* home = std::getenv("HOME"); home && *home)
+    dir = std::string(home) + "/.local/state/dtmf-teleop";
+  else
+    dir = "/tmp/dtmf-teleop-" + std::to_string(::getuid());
   return dir + "/" + program + ".spill.jsonl";
 }
 
@@ -44,7 +48,8 @@ Store::Store(StoreOptions options)
     spdlog::info("no database (--db none): transmissions are not logged");
     return;
   }
-  if (spill_.pending()) spdlog::info("rows from an earlier run wait in {}; they go to the database first", spill_.path());
+  if (spill_.pending())
+    spdlog::info("rows from an earlier run wait in {}; they go to the database first", spill_.path());
   worker_ = std::thread([this] { run(); });
 }
 
@@ -61,8 +66,8 @@ Store::~Store() {
 
 void Store::enqueue(Table table, nlohmann::json row) {
   if (!enabled_) return;
-  const auto now_us = std::chrono::duration_cast<std::chrono::microseconds>(
-                          WallClock::now().time_since_epoch()).count();
+  const auto now_us =
+      std::chrono::duration_cast<std::chrono::microseconds>(WallClock::now().time_since_epoch()).count();
   std::string line;
   bool overflow = false;
   {
@@ -229,7 +234,8 @@ void Store::run() {
     if (!queue_.empty()) continue;
     if (connection_ && spill_.pending()) continue;
     // Nothing queued: sleep until a row comes, or until it is time to try the database again.
-    const auto wake_at = (!connection_ && spill_.pending()) ? next_attempt_ : SteadyClock::now() + std::chrono::seconds(5);
+    const auto wake_at =
+        (!connection_ && spill_.pending()) ? next_attempt_ : SteadyClock::now() + std::chrono::seconds(5);
     wake_.wait_until(lock, wake_at, [this] { return stopping_ || !queue_.empty(); });
   }
 }

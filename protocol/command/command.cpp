@@ -6,12 +6,18 @@ namespace dtmf::command {
 
 std::string mode_name(Mode mode) {
   switch (mode) {
-    case Mode::ModeSelect: return "mode_select";
-    case Mode::DriveForDuration: return "drive_for_duration";
-    case Mode::TurnForDuration: return "turn_for_duration";
-    case Mode::DriveForward: return "drive_forward";
-    case Mode::Turn: return "turn";
-    case Mode::Stop: return "stop";
+    case Mode::ModeSelect:
+      return "mode_select";
+    case Mode::DriveForDuration:
+      return "drive_for_duration";
+    case Mode::TurnForDuration:
+      return "turn_for_duration";
+    case Mode::DriveForward:
+      return "drive_forward";
+    case Mode::Turn:
+      return "turn";
+    case Mode::Stop:
+      return "stop";
   }
   return "unknown";
 }
@@ -38,15 +44,10 @@ struct Describer {
     return format("drive_for_duration speed=%.1f%% duration=%.2fs", c.speed_percent, c.duration_s);
   }
   std::string operator()(const TurnForDuration& c) const {
-    return format("turn_for_duration rotation=%.1f%% duration=%.2fs", c.rotation_percent,
-                  c.duration_s);
+    return format("turn_for_duration rotation=%.1f%% duration=%.2fs", c.rotation_percent, c.duration_s);
   }
-  std::string operator()(const DriveForward& c) const {
-    return format("drive_forward speed=%.2f%%", c.speed_percent);
-  }
-  std::string operator()(const Turn& c) const {
-    return format("turn rotation=%.2f%%", c.rotation_percent);
-  }
+  std::string operator()(const DriveForward& c) const { return format("drive_forward speed=%.2f%%", c.speed_percent); }
+  std::string operator()(const Turn& c) const { return format("turn rotation=%.2f%%", c.rotation_percent); }
 };
 
 struct KindNamer {

@@ -51,8 +51,10 @@ ParameterDecode decode_payload(std::uint32_t payload) {
   };
   if (payload >> kPayloadBits) return refuse("wider than a payload");
   switch (kind) {
-    case PayloadKind::Reset: return a == 0 && b == 0 ? ParameterDecode{Reset{}, {}} : refuse("RESET with fields");
-    case PayloadKind::Stop: return a == 0 && b == 0 ? ParameterDecode{Stop{}, {}} : refuse("STOP with fields");
+    case PayloadKind::Reset:
+      return a == 0 && b == 0 ? ParameterDecode{Reset{}, {}} : refuse("RESET with fields");
+    case PayloadKind::Stop:
+      return a == 0 && b == 0 ? ParameterDecode{Stop{}, {}} : refuse("STOP with fields");
     case PayloadKind::DriveForDuration:
     case PayloadKind::TurnForDuration: {
       const bool drive = kind == PayloadKind::DriveForDuration;
@@ -71,7 +73,8 @@ ParameterDecode decode_payload(std::uint32_t payload) {
       return {Turn{*value}, {}};
     }
     case PayloadKind::Velocity:
-    case PayloadKind::Extended: return refuse("a kind this robot does not know yet (reserved)");
+    case PayloadKind::Extended:
+      return refuse("a kind this robot does not know yet (reserved)");
   }
   return refuse("kind is not a command");
 }

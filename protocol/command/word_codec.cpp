@@ -27,19 +27,16 @@ Word pack_pair(Word duration_code, Word velocity_code) {
 ParameterError::ParameterError(std::string field, const std::string& message)
     : std::invalid_argument(message), field_(std::move(field)) {}
 
-double field_step(const FieldSpec& field) {
-  return (field.max - field.min) / static_cast<double>(max_code(field) - 1);
-}
+double field_step(const FieldSpec& field) { return (field.max - field.min) / static_cast<double>(max_code(field) - 1); }
 
 Word encode_field(const FieldSpec& field, double value) {
   if (!std::isfinite(value)) {
-    throw ParameterError(field.name, std::string(field.name) + " must be a number in " +
-                                         range_text(field) + ", got " + std::to_string(value));
+    throw ParameterError(field.name, std::string(field.name) + " must be a number in " + range_text(field) + ", got " +
+                                         std::to_string(value));
   }
   if (value < field.min || value > field.max) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "%s %g is out of range: allowed %s", field.name, value,
-                  range_text(field).c_str());
+    std::snprintf(buf, sizeof buf, "%s %g is out of range: allowed %s", field.name, value, range_text(field).c_str());
     throw ParameterError(field.name, buf);
   }
   const double steps = std::round((value - field.min) / field_step(field));
@@ -57,40 +54,38 @@ struct ParameterEncoder {
   std::optional<Word> operator()(const Reset&) const { return std::nullopt; }
   std::optional<Word> operator()(const Stop&) const { return std::nullopt; }
   std::optional<Word> operator()(const DriveForDuration& c) const {
-    return pack_pair(encode_field(kDurationField, c.duration_s),
-                     encode_field(kSpeedField6, c.speed_percent));
+    return pack_pair(encode_field(kDurationField, c.duration_s), encode_field(kSpeedField6, c.speed_percent));
   }
   std::optional<Word> operator()(const TurnForDuration& c) const {
-    return pack_pair(encode_field(kDurationField, c.duration_s),
-                     encode_field(kRotationField6, c.rotation_percent));
+    return pack_pair(encode_field(kDurationField, c.duration_s), encode_field(kRotationField6, c.rotation_percent));
   }
-  std::optional<Word> operator()(const DriveForward& c) const {
-    return encode_field(kSpeedField12, c.speed_percent);
-  }
-  std::optional<Word> operator()(const Turn& c) const {
-    return encode_field(kRotationField12, c.rotation_percent);
-  }
+  std::optional<Word> operator()(const DriveForward& c) const { return encode_field(kSpeedField12, c.speed_percent); }
+  std::optional<Word> operator()(const Turn& c) const { return encode_field(kRotationField12, c.rotation_percent); }
 };
 
 std::optional<Mode> mode_of(const Command& command) {
   return std::visit(
       [](const auto& c) -> std::optional<Mode> {
         using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, Reset>) return std::nullopt;
-        else if constexpr (std::is_same_v<T, DriveForDuration>) return Mode::DriveForDuration;
-        else if constexpr (std::is_same_v<T, TurnForDuration>) return Mode::TurnForDuration;
-        else if constexpr (std::is_same_v<T, DriveForward>) return Mode::DriveForward;
-        else if constexpr (std::is_same_v<T, Turn>) return Mode::Turn;
-        else return Mode::Stop;
+        if constexpr (std::is_same_v<T, Reset>)
+          return std::nullopt;
+        else if constexpr (std::is_same_v<T, DriveForDuration>)
+          return Mode::DriveForDuration;
+        else if constexpr (std::is_same_v<T, TurnForDuration>)
+          return Mode::TurnForDuration;
+        else if constexpr (std::is_same_v<T, DriveForward>)
+          return Mode::DriveForward;
+        else if constexpr (std::is_same_v<T, Turn>)
+          return Mode::Turn;
+        else
+          return Mode::Stop;
       },
       command);
 }
 
 }  // namespace
 
-std::optional<Word> parameter_word(const Command& command) {
-  return std::visit(ParameterEncoder{}, command);
-}
+std::optional<Word> parameter_word(const Command& command) { return std::visit(ParameterEncoder{}, command); }
 
 void validate(const Command& command) { (void)parameter_word(command); }
 
@@ -106,8 +101,8 @@ ParameterDecode decode_parameters(Mode mode, Word word) {
   const Word low = word & 0x3F;
   auto missing = [&](const FieldSpec& field) {
     char buf[128];
-    std::snprintf(buf, sizeof buf, "parameter word 0x%03X has no valid %s field for %s", word,
-                  field.name, mode_name(mode).c_str());
+    std::snprintf(buf, sizeof buf, "parameter word 0x%03X has no valid %s field for %s", word, field.name,
+                  mode_name(mode).c_str());
     return ParameterDecode{std::nullopt, buf};
   };
   switch (mode) {

@@ -125,7 +125,9 @@ std::vector<float> FastLink::answer_audio(const Reception& reception) const {
 
 int FastLink::receiver_block_samples() const { return profile().hops.hop_samples; }
 
-std::unique_ptr<AnswerListener> FastLink::answer_listener() const { return std::make_unique<FastAnswerListener>(profile()); }
+std::unique_ptr<AnswerListener> FastLink::answer_listener() const {
+  return std::make_unique<FastAnswerListener>(profile());
+}
 
 int FastLink::answer_block_samples() const { return profile().hops.reply_hop_samples; }
 

@@ -50,7 +50,8 @@ void HopFramePath::none_taken(const signal::HopCandidate& first) {
   int clear = 0;
   for (const auto& tone : first.tones) clear += tone.heard && tone.certainty >= hops_.clear_certainty ? 1 : 0;
   if (clear < reliability::kCodeSymbols - hops_.max_erasures) return;
-  if (const auto verdict = gate_.on_candidate(first.start_ms, first.heard_ms, std::nullopt, reliability::read_bits(readings_of(first)))) {
+  if (const auto verdict = gate_.on_candidate(first.start_ms, first.heard_ms, std::nullopt,
+                                              reliability::read_bits(readings_of(first)))) {
     deliver(*verdict, first.offset_ppm);
   }
 }

@@ -28,8 +28,10 @@ const std::vector<const Link*>& all_links() {
   static const std::vector<const Link*> links = [] {
     std::vector<const Link*> out;
     for (const LinkProfile* p : all_profiles()) {
-      if (p->frame_format == FrameFormat::HoppedCommand) out.push_back(new FastLink(*p));
-      else out.push_back(new SeedLink(*p));
+      if (p->frame_format == FrameFormat::HoppedCommand)
+        out.push_back(new FastLink(*p));
+      else
+        out.push_back(new SeedLink(*p));
     }
     return out;
   }();

@@ -25,8 +25,8 @@ namespace dtmf::link {
 
 // A frame the robot reached a verdict on: intact (answer ACK) or not (answer NACK).
 struct Reception {
-  double start_ms = 0;  // when the frame began sounding (within an analysis hop)
-  double heard_ms = 0;  // when the verdict was reached: the robot's decision time
+  double start_ms = 0;     // when the frame began sounding (within an analysis hop)
+  double heard_ms = 0;     // when the verdict was reached: the robot's decision time
   std::uint64_t bits = 0;  // the frame as accepted, or as first read when broken
   int bit_count = 0;
   int check_bit_count = 0;  // the low bits that are the check
@@ -39,8 +39,8 @@ struct Reception {
   // "command", "repeat" (answered, not executed again), "refused" (intact but no command
   // a sender makes), or "" for a broken frame.
   std::string event;
-  std::string state_after;  // word formats: the command state machine afterwards
-  std::string detail;       // for people: what it did, or why it was refused
+  std::string state_after;       // word formats: the command state machine afterwards
+  std::string detail;            // for people: what it did, or why it was refused
   std::vector<double> tones_hz;  // the tones that carry `bits`, in order
 };
 

@@ -25,8 +25,7 @@ double frame_start_ms(const LinkProfile& profile, std::size_t index) {
 
 std::vector<float> render_frames(const LinkProfile& profile, const std::vector<PlannedFrame>& frames) {
   const auto chord = static_cast<std::size_t>(profile.samples_for_ms(profile.timing.chord_ms));
-  const auto slot = static_cast<std::size_t>(
-      profile.samples_for_ms(profile.timing.chord_ms + profile.timing.gap_ms));
+  const auto slot = static_cast<std::size_t>(profile.samples_for_ms(profile.timing.chord_ms + profile.timing.gap_ms));
   std::vector<float> audio(slot * frames.size(), 0.0f);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     signal::add_chord(std::span<float>(audio).subspan(i * slot, chord), frames[i].tones_hz,

@@ -67,8 +67,9 @@ struct AcousticChannel::Transmitter {
 };
 
 AcousticChannel::AcousticChannel(int sample_rate_hz, ChannelConfig config)
-    : AcousticChannel(sample_rate_hz, config,
-                      config.room.enabled() ? std::make_shared<const RoomModel>(config.room, sample_rate_hz) : nullptr) {}
+    : AcousticChannel(
+          sample_rate_hz, config,
+          config.room.enabled() ? std::make_shared<const RoomModel>(config.room, sample_rate_hz) : nullptr) {}
 
 AcousticChannel::AcousticChannel(int sample_rate_hz, ChannelConfig config, std::shared_ptr<const RoomModel> room)
     : sample_rate_hz_(sample_rate_hz),
@@ -77,7 +78,8 @@ AcousticChannel::AcousticChannel(int sample_rate_hz, ChannelConfig config, std::
       noise_(config_.noise, sample_rate_hz, config_.seed),
       whines_(config_.whines, sample_rate_hz, config_.seed) {
   if (config_.reverb.rt60_s > 0 && room_) {
-    throw std::invalid_argument("a room already reverberates: give either a room or the diffuse reverberator's RT60, not both");
+    throw std::invalid_argument(
+        "a room already reverberates: give either a room or the diffuse reverberator's RT60, not both");
   }
   if (config_.reverb.rt60_s > 0) reverb_ = std::make_unique<SchroederReverb>(config_.reverb, sample_rate_hz);
   if (config_.clock_offset_ppm != 0) drift_ = std::make_unique<ClockDrift>(config_.clock_offset_ppm);
@@ -90,13 +92,15 @@ AcousticChannel::~AcousticChannel() = default;
 std::size_t AcousticChannel::add_transmitter(double distance_m, bool moves) {
   check_distance(distance_m);
   if (!room_) return add_path({distance_m, nullptr, 1, moves});
-  if (room_->kind() == RoomModel::Kind::Measured) return add_path({distance_m, room_->measured(), 1 / distance_m, moves});
+  if (room_->kind() == RoomModel::Kind::Measured)
+    return add_path({distance_m, room_->measured(), 1 / distance_m, moves});
   return add_transmitter_at(room_->speaker_at_distance(distance_m), moves);
 }
 
 std::size_t AcousticChannel::add_transmitter_at(const Point3& speaker, bool moves) {
   if (!room_ || room_->kind() != RoomModel::Kind::ImageSource) {
-    throw std::invalid_argument("a loudspeaker position needs an image-source room (a shoebox); give a distance otherwise");
+    throw std::invalid_argument(
+        "a loudspeaker position needs an image-source room (a shoebox); give a distance otherwise");
   }
   const Point3 mic = room_->microphone();
   return add_path({distance_m(speaker, mic), room_->between(speaker, mic), 1, moves});
@@ -120,18 +124,21 @@ std::size_t AcousticChannel::add_path(const PathSpec& path) {
     const auto padding = std::max(tx->delay_samples, static_cast<std::size_t>(kFirHalf)) + kFirHalf;
     tx->fifo.assign(padding, 0.0f);
     if (moving) {
-      tx->motion = std::make_unique<MovingDelay>(config_.motion, path.distance_m,
-                                                 static_cast<double>(std::max<std::size_t>(tx->delay_samples, kFirHalf)), sample_rate_hz_);
+      tx->motion = std::make_unique<MovingDelay>(
+          config_.motion, path.distance_m, static_cast<double>(std::max<std::size_t>(tx->delay_samples, kFirHalf)),
+          sample_rate_hz_);
     }
   } else {
     tx->gain = static_cast<float>(path.gain);
     if (moving) {
       // A room's response is that of the starting position; the motion moves all of it.
       tx->motion = std::make_unique<MovingDelay>(config_.motion, path.distance_m,
-                                                 config_.motion.min_distance_m * samples_per_m - kMovingDelayHalfTaps, sample_rate_hz_);
+                                                 config_.motion.min_distance_m * samples_per_m - kMovingDelayHalfTaps,
+                                                 sample_rate_hz_);
     }
   }
-  if (moving) tx->max_motion_delay_s = (config_.motion.max_distance_m - config_.motion.min_distance_m) / kSpeedOfSoundMps;
+  if (moving)
+    tx->max_motion_delay_s = (config_.motion.max_distance_m - config_.motion.min_distance_m) / kSpeedOfSoundMps;
   // One convolution for the loudspeaker, the room and the microphone together.
   std::vector<float> response = path.response ? *path.response : std::vector<float>{};
   if (!speaker_fir_.empty()) response = response.empty() ? speaker_fir_ : convolve(speaker_fir_, response);
@@ -147,8 +154,9 @@ std::size_t AcousticChannel::add_path(const PathSpec& path) {
 double AcousticChannel::ring_out_s() const {
   double longest = 0;
   for (const auto& tx : transmitters_) {
-    longest = std::max(longest, static_cast<double>(tx->delay_samples + tx->response_samples + kFirTaps) / sample_rate_hz_ +
-                                    tx->max_motion_delay_s);
+    longest =
+        std::max(longest, static_cast<double>(tx->delay_samples + tx->response_samples + kFirTaps) / sample_rate_hz_ +
+                              tx->max_motion_delay_s);
   }
   return longest;
 }
@@ -160,9 +168,8 @@ void AcousticChannel::process(std::span<const float> block, std::vector<float>& 
 
 void AcousticChannel::process(std::span<const std::span<const float>> blocks, std::vector<float>& out) {
   if (blocks.size() != transmitters_.size()) {
-    throw std::invalid_argument("process() needs one block per transmitter: " +
-                                std::to_string(transmitters_.size()) + " transmitters, " +
-                                std::to_string(blocks.size()) + " blocks");
+    throw std::invalid_argument("process() needs one block per transmitter: " + std::to_string(transmitters_.size()) +
+                                " transmitters, " + std::to_string(blocks.size()) + " blocks");
   }
   const std::size_t n = blocks.empty() ? 0 : blocks[0].size();
   mix_.assign(n, 0.0f);
@@ -186,7 +193,8 @@ void AcousticChannel::process(std::span<const std::span<const float>> blocks, st
       const float* window = tx.fifo.data() + tx.read;
       for (std::size_t i = 0; i < n; ++i) {
         float acc = 0;
-        for (int k = 0; k < kFirTaps; ++k) acc += tx.taps[static_cast<std::size_t>(k)] * window[i + static_cast<std::size_t>(k)];
+        for (int k = 0; k < kFirTaps; ++k)
+          acc += tx.taps[static_cast<std::size_t>(k)] * window[i + static_cast<std::size_t>(k)];
         target[i] += tx.gain * acc;
       }
       tx.read += n;
@@ -203,8 +211,10 @@ void AcousticChannel::process(std::span<const std::span<const float>> blocks, st
   if (reverb_) reverb_->process(mix_);
   noise_.add_to(mix_);
   whines_.add_to(mix_);
-  if (drift_) drift_->process(mix_, out);
-  else out.insert(out.end(), mix_.begin(), mix_.end());
+  if (drift_)
+    drift_->process(mix_, out);
+  else
+    out.insert(out.end(), mix_.begin(), mix_.end());
 }
 
 }  // namespace dtmf::physical

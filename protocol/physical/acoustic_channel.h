@@ -42,14 +42,14 @@ namespace dtmf::physical {
 
 struct ChannelConfig {
   NoiseConfig noise;
-  ReverbConfig reverb;                  // the diffuse reverberator; not with a room
-  RoomConfig room;                      // a measured or image-source room; none: free field
-  FrequencyResponse speaker_response;   // every transmitter's loudspeaker
+  ReverbConfig reverb;                 // the diffuse reverberator; not with a room
+  RoomConfig room;                     // a measured or image-source room; none: free field
+  FrequencyResponse speaker_response;  // every transmitter's loudspeaker
   FrequencyResponse mic_response;
-  std::vector<Whine> whines;            // at the microphone
-  RadialMotion motion;                  // for the transmitters added as moving
-  double clock_offset_ppm = 0;          // microphone clock against the loudspeakers' clock
-  std::uint64_t seed = 1;               // noise and whine phases
+  std::vector<Whine> whines;    // at the microphone
+  RadialMotion motion;          // for the transmitters added as moving
+  double clock_offset_ppm = 0;  // microphone clock against the loudspeakers' clock
+  std::uint64_t seed = 1;       // noise and whine phases
 };
 
 inline constexpr double kSpeedOfSoundMps = 343.0;
@@ -58,10 +58,10 @@ inline constexpr double kAirAbsorptionDbPerMPerHz2 = 1.8e-9;
 
 // One path from a loudspeaker to the microphone, for add_path().
 struct PathSpec {
-  double distance_m = 1;   // free field: delay, absorption and 1/d; a moving path starts here
-  Response response;       // a room's impulse response; null: free field
-  double gain = 1;         // with a response: 1/d for a measured room, 1 for an image-source one
-  bool moves = true;       // follows config.motion (when its speed is not 0)
+  double distance_m = 1;  // free field: delay, absorption and 1/d; a moving path starts here
+  Response response;      // a room's impulse response; null: free field
+  double gain = 1;        // with a response: 1/d for a measured room, 1 for an image-source one
+  bool moves = true;      // follows config.motion (when its speed is not 0)
 };
 
 class AcousticChannel {

@@ -13,7 +13,8 @@ namespace dtmf::physical {
 
 ClockDrift::ClockDrift(double ppm) : ratio_(1.0 + ppm * 1e-6) {
   if (!std::isfinite(ppm) || std::abs(ppm) > kMaxClockOffsetPpm) {
-    throw std::invalid_argument("clock offset " + number_text(ppm) + " ppm: give at most +-10000 ppm "
+    throw std::invalid_argument("clock offset " + number_text(ppm) +
+                                " ppm: give at most +-10000 ppm "
                                 "(sound cards differ by up to about 100 ppm)");
   }
   int error = 0;

@@ -21,16 +21,16 @@ struct FftConvolver::Stage {
   std::size_t partitions;
   RealFft fft;
   std::size_t bins;
-  std::vector<float> h_re, h_im;      // partitions x bins, split so the multiply-add vectorises
+  std::vector<float> h_re, h_im;        // partitions x bins, split so the multiply-add vectorises
   std::vector<float> ring_re, ring_im;  // spectra of the last input frames, ring of ring_size
   std::size_t ring_size;
-  std::size_t blocks_done = 0;        // complete input blocks so far
-  FftReal frame;                      // [previous block, current block]
-  std::size_t fill = 0;               // samples of the current block received
+  std::size_t blocks_done = 0;  // complete input blocks so far
+  FftReal frame;                // [previous block, current block]
+  std::size_t fill = 0;         // samples of the current block received
   FftBins spectrum;
   FftReal time;
   std::vector<float> acc_re, acc_im;
-  std::vector<float> tail;            // this stage's share of the current output block
+  std::vector<float> tail;  // this stage's share of the current output block
 
   Stage(std::span<const float> h, std::size_t first, std::size_t block_size)
       : block(block_size),
@@ -53,7 +53,8 @@ struct FftConvolver::Stage {
       std::fill(time.begin(), time.end(), 0.0f);
       const std::size_t from = first + k * block;
       const std::size_t to = std::min(h.size(), from + block);
-      std::copy(h.begin() + static_cast<std::ptrdiff_t>(from), h.begin() + static_cast<std::ptrdiff_t>(to), time.begin());
+      std::copy(h.begin() + static_cast<std::ptrdiff_t>(from), h.begin() + static_cast<std::ptrdiff_t>(to),
+                time.begin());
       fft.forward(time.data(), spectrum.data());
       for (std::size_t b = 0; b < bins; ++b) {
         h_re[k * bins + b] = spectrum[b].real();

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "physical/real_fft.h"
 #include "physical/number_text.h"
+#include "physical/real_fft.h"
 
 namespace dtmf::physical {
 
@@ -33,7 +33,8 @@ const std::vector<Preset>& presets() {
 }
 
 std::vector<std::pair<double, double>> checked(std::vector<std::pair<double, double>> points, const std::string& what) {
-  if (points.empty()) throw std::invalid_argument(what + " holds no breakpoints: give Hz:dB pairs such as 200:0,16000:-12");
+  if (points.empty())
+    throw std::invalid_argument(what + " holds no breakpoints: give Hz:dB pairs such as 200:0,16000:-12");
   std::sort(points.begin(), points.end());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto [hz, db] = points[i];
@@ -96,7 +97,8 @@ FrequencyResponse response_preset(const std::string& name) {
   for (const auto& p : presets()) {
     if (name == p.name) return {p.name, p.points};
   }
-  throw std::invalid_argument("no frequency response preset '" + name + "': the presets are " + response_preset_names());
+  throw std::invalid_argument("no frequency response preset '" + name + "': the presets are " +
+                              response_preset_names());
 }
 
 FrequencyResponse parse_response(const std::string& text) {

@@ -27,8 +27,8 @@ namespace dtmf::physical {
 inline constexpr int kResponseTaps = 511;
 
 struct FrequencyResponse {
-  std::string name = "flat";                          // a preset's name, or what was parsed
-  std::vector<std::pair<double, double>> points_db;   // (Hz, dB); empty: flat, no filter
+  std::string name = "flat";                         // a preset's name, or what was parsed
+  std::vector<std::pair<double, double>> points_db;  // (Hz, dB); empty: flat, no filter
 
   bool flat() const { return points_db.empty(); }
 };

@@ -8,9 +8,9 @@
 
 #include "physical/acoustic_channel.h"
 #include "physical/kaiser.h"
+#include "physical/number_text.h"
 #include "physical/real_fft.h"
 #include "physical/room_decay.h"
-#include "physical/number_text.h"
 
 namespace dtmf::physical {
 
@@ -35,7 +35,7 @@ struct AxisImage {
   double offset_m;
   Gains gain;
   int order;
-  std::uint64_t key;  // (n, q): identifies the image for its random displacement
+  std::uint64_t key;    // (n, q): identifies the image for its random displacement
   float loudest_after;  // the largest band gain of this image and every farther one
 };
 
@@ -57,7 +57,8 @@ std::vector<AxisImage> axis_images(double side_m, double source, double mic, con
       out.push_back(image);
     }
   }
-  std::sort(out.begin(), out.end(), [](const AxisImage& a, const AxisImage& b) { return std::abs(a.offset_m) < std::abs(b.offset_m); });
+  std::sort(out.begin(), out.end(),
+            [](const AxisImage& a, const AxisImage& b) { return std::abs(a.offset_m) < std::abs(b.offset_m); });
   float loudest = 0;
   for (auto it = out.rbegin(); it != out.rend(); ++it) {
     loudest = std::max(loudest, *std::max_element(it->gain.begin(), it->gain.end()));
@@ -76,7 +77,8 @@ std::uint64_t mix(std::uint64_t z) {  // splitmix64's finaliser
 // Three uniform numbers in [-1, 1) from 63 random bits, 21 each.
 std::array<double, 3> uniform3_pm1(std::uint64_t bits) {
   constexpr double kScale = 0x1.0p-20;
-  return {static_cast<double>(bits & 0x1fffff) * kScale - 1.0, static_cast<double>((bits >> 21) & 0x1fffff) * kScale - 1.0,
+  return {static_cast<double>(bits & 0x1fffff) * kScale - 1.0,
+          static_cast<double>((bits >> 21) & 0x1fffff) * kScale - 1.0,
           static_cast<double>((bits >> 42) & 0x1fffff) * kScale - 1.0};
 }
 
@@ -109,7 +111,8 @@ std::string surface_name(Surface s) {
 void check_room(const ShoeboxRoom& room) {
   for (double side : {room.size_m.x, room.size_m.y, room.size_m.z}) {
     if (!std::isfinite(side) || side < kMinRoomSideM || side > kMaxRoomSideM) {
-      throw std::invalid_argument("room side " + number_text(side) + " m: give sides between 0.5 and 200 m, e.g. 7x9x3");
+      throw std::invalid_argument("room side " + number_text(side) +
+                                  " m: give sides between 0.5 and 200 m, e.g. 7x9x3");
     }
   }
   for (std::size_t s = 0; s < kSurfaces; ++s) {
@@ -136,8 +139,8 @@ void check_inside(const ShoeboxRoom& room, const Point3& p, const std::string& w
   for (int a = 0; a < 3; ++a) {
     if (!std::isfinite(at[a]) || at[a] < kMinInsideM || at[a] > sides[a] - kMinInsideM) {
       throw std::invalid_argument(what + " at (" + number_text(p.x) + ", " + number_text(p.y) + ", " +
-                                  number_text(p.z) + ") m is not inside the " + number_text(room.size_m.x) +
-                                  " x " + number_text(room.size_m.y) + " x " + number_text(room.size_m.z) +
+                                  number_text(p.z) + ") m is not inside the " + number_text(room.size_m.x) + " x " +
+                                  number_text(room.size_m.y) + " x " + number_text(room.size_m.z) +
                                   " m room: give a position at least 1 cm from every wall, floor and ceiling");
     }
   }
@@ -168,9 +171,12 @@ std::vector<float> image_source_response(const ShoeboxRoom& room, const Point3& 
   const auto length = static_cast<std::size_t>(std::ceil(generate_s * fs));
   const double reach_m = static_cast<double>(length) / fs * kSpeedOfSoundMps;
 
-  const auto xs = axis_images(room.size_m.x, speaker.x, mic.x, room.reflection[kWallX0], room.reflection[kWallX1], reach_m + 1);
-  const auto ys = axis_images(room.size_m.y, speaker.y, mic.y, room.reflection[kWallY0], room.reflection[kWallY1], reach_m + 1);
-  const auto zs = axis_images(room.size_m.z, speaker.z, mic.z, room.reflection[kFloor], room.reflection[kCeiling], reach_m + 1);
+  const auto xs =
+      axis_images(room.size_m.x, speaker.x, mic.x, room.reflection[kWallX0], room.reflection[kWallX1], reach_m + 1);
+  const auto ys =
+      axis_images(room.size_m.y, speaker.y, mic.y, room.reflection[kWallY0], room.reflection[kWallY1], reach_m + 1);
+  const auto zs =
+      axis_images(room.size_m.z, speaker.z, mic.z, room.reflection[kFloor], room.reflection[kCeiling], reach_m + 1);
 
   // Air absorption by arrival time, per band, 10^(-alpha(f) * d / 20), in steps of
   // kAirStep samples (5 cm at 48 kHz: 0.02 dB at 16 kHz), small enough to stay in cache.
@@ -180,7 +186,8 @@ std::vector<float> image_source_response(const ShoeboxRoom& room, const Point3& 
     const double d = static_cast<double>(i * kAirStep) / fs * kSpeedOfSoundMps;
     for (std::size_t b = 0; b < B; ++b) {
       const double f = kOctaveCentresHz[b];
-      air[i][b] = room.air_absorption ? static_cast<float>(std::pow(10.0, -kAirAbsorptionDbPerMPerHz2 * f * f * d / 20)) : 1.0f;
+      air[i][b] =
+          room.air_absorption ? static_cast<float>(std::pow(10.0, -kAirAbsorptionDbPerMPerHz2 * f * f * d / 20)) : 1.0f;
     }
   }
   std::vector<float> trains(length * B, 0.0f);  // [sample][band]: float halves the cache misses
@@ -256,11 +263,13 @@ std::vector<float> image_source_response(const ShoeboxRoom& room, const Point3& 
   std::vector<float> h(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(length));
 
   if (automatic) {
-    const std::size_t end = std::max(decay_point(h, 60.0), static_cast<std::size_t>((direct_s + kFractionalDelayS) * fs));
+    const std::size_t end =
+        std::max(decay_point(h, 60.0), static_cast<std::size_t>((direct_s + kFractionalDelayS) * fs));
     if (end < h.size()) h.resize(end);
     const auto fade = std::min(h.size() / 4, static_cast<std::size_t>(kFadeOutS * fs));
     for (std::size_t i = 0; i < fade; ++i) {
-      h[h.size() - fade + i] *= static_cast<float>(0.5 + 0.5 * std::cos(std::numbers::pi * static_cast<double>(i + 1) / static_cast<double>(fade + 1)));
+      h[h.size() - fade + i] *= static_cast<float>(
+          0.5 + 0.5 * std::cos(std::numbers::pi * static_cast<double>(i + 1) / static_cast<double>(fade + 1)));
     }
   }
   return h;

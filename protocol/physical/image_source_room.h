@@ -42,18 +42,18 @@ enum Surface : std::size_t { kWallX0, kWallX1, kWallY0, kWallY1, kFloor, kCeilin
 inline constexpr double kFractionalDelayS = 0.05;
 inline constexpr double kMaxImages = 4e7;
 inline constexpr double kMinRoomSideM = 0.5, kMaxRoomSideM = 200;
-inline constexpr double kDefaultWallReflection = 0.9;   // walls and ceiling: a furnished room
-inline constexpr double kDefaultFloorReflection = 0.97; // a hard floor: tiles, wood, concrete (absorbs 6 %)
+inline constexpr double kDefaultWallReflection = 0.9;    // walls and ceiling: a furnished room
+inline constexpr double kDefaultFloorReflection = 0.97;  // a hard floor: tiles, wood, concrete (absorbs 6 %)
 
 struct ShoeboxRoom {
   Point3 size_m{7, 9, 3};
   // Amplitude (pressure) reflection coefficient of each surface in each octave band, in
   // [0, 1); absorption is 1 - r^2.
   std::array<BandValues, kSurfaces> reflection = {
-      uniform_bands(kDefaultWallReflection), uniform_bands(kDefaultWallReflection),
-      uniform_bands(kDefaultWallReflection), uniform_bands(kDefaultWallReflection),
+      uniform_bands(kDefaultWallReflection),  uniform_bands(kDefaultWallReflection),
+      uniform_bands(kDefaultWallReflection),  uniform_bands(kDefaultWallReflection),
       uniform_bands(kDefaultFloorReflection), uniform_bands(kDefaultWallReflection)};
-  bool air_absorption = true;     // the channel's fit to ISO 9613-1, per band centre
+  bool air_absorption = true;  // the channel's fit to ISO 9613-1, per band centre
   double max_length_s = 2.5;
   double randomization_m = 0.08;  // 0: the plain image method
 };

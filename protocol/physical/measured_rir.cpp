@@ -80,7 +80,8 @@ MeasuredRir load_measured_rir(const std::string& path, int sample_rate_hz) {
   }
 
   const auto onset = static_cast<std::size_t>(
-      std::find_if(h.begin(), h.end(), [&](float s) { return std::abs(s) >= kDirectWithinOfLoudest * loudest; }) - h.begin());
+      std::find_if(h.begin(), h.end(), [&](float s) { return std::abs(s) >= kDirectWithinOfLoudest * loudest; }) -
+      h.begin());
   std::size_t peak = onset;
   const auto search_end = std::min(h.size(), onset + static_cast<std::size_t>(kDirectPeakSearchS * sample_rate_hz));
   for (std::size_t i = onset; i < search_end; ++i) {
@@ -104,8 +105,8 @@ MeasuredRir load_measured_rir(const std::string& path, int sample_rate_hz) {
   for (float& s : rir.samples) s *= scale;
   rir.direct_index = peak - start;
 
-  const auto fade = std::min(rir.samples.size() - rir.direct_index - 1,
-                             static_cast<std::size_t>(kFadeOutS * sample_rate_hz));
+  const auto fade =
+      std::min(rir.samples.size() - rir.direct_index - 1, static_cast<std::size_t>(kFadeOutS * sample_rate_hz));
   for (std::size_t i = 0; i < fade; ++i) {
     const double t = static_cast<double>(i + 1) / static_cast<double>(fade + 1);  // 0 .. 1 towards the end
     rir.samples[rir.samples.size() - fade + i] *= static_cast<float>(0.5 + 0.5 * std::cos(std::numbers::pi * t));

@@ -29,9 +29,12 @@ double pink_rms() {
 NoiseConfig parse_noise(const std::string& text, double level_dbfs) {
   NoiseConfig config;
   config.level_dbfs = level_dbfs;
-  if (text.empty() || text == "none") config.kind = NoiseKind::None;
-  else if (text == "white") config.kind = NoiseKind::White;
-  else if (text == "pink") config.kind = NoiseKind::Pink;
+  if (text.empty() || text == "none")
+    config.kind = NoiseKind::None;
+  else if (text == "white")
+    config.kind = NoiseKind::White;
+  else if (text == "pink")
+    config.kind = NoiseKind::Pink;
   else {
     config.kind = NoiseKind::File;
     config.file = text;
@@ -56,7 +59,8 @@ NoiseSource::NoiseSource(const NoiseConfig& config, int sample_rate_hz, std::uin
 
 void NoiseSource::add_to(std::span<float> out) {
   switch (config_.kind) {
-    case NoiseKind::None: return;
+    case NoiseKind::None:
+      return;
     case NoiseKind::White:
       for (float& s : out) s += scale_ * gauss_(rng_);
       return;

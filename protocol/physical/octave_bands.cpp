@@ -12,8 +12,7 @@ namespace dtmf::physical {
 double band_weight(std::size_t band, double frequency_hz) {
   const double lowest = kOctaveCentresHz.front(), highest = kOctaveCentresHz.back();
   // Position on the log2 axis, in octaves above the lowest centre, clamped to the bank.
-  const double octave = std::clamp(std::log2(std::max(frequency_hz, 1e-9) / lowest), 0.0,
-                                   std::log2(highest / lowest));
+  const double octave = std::clamp(std::log2(std::max(frequency_hz, 1e-9) / lowest), 0.0, std::log2(highest / lowest));
   const double distance = std::abs(octave - static_cast<double>(band));
   // Flat to a third of an octave from the centre, then a cos^2 crossover centred on the band
   // edge (half an octave out), where the neighbour takes over with the matching sin^2.

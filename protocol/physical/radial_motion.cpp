@@ -47,7 +47,8 @@ const std::vector<std::array<float, kTaps>>& sinc_table() {
 
 MovingDelay::MovingDelay(const RadialMotion& motion, double start_distance_m, double offset_samples, int sample_rate_hz)
     : motion_(motion), start_m_(start_distance_m), offset_samples_(offset_samples), sample_rate_hz_(sample_rate_hz) {
-  if (!(motion.min_distance_m > 0) || !(motion.max_distance_m > motion.min_distance_m) || !std::isfinite(motion.max_distance_m)) {
+  if (!(motion.min_distance_m > 0) || !(motion.max_distance_m > motion.min_distance_m) ||
+      !std::isfinite(motion.max_distance_m)) {
     throw std::invalid_argument("radial motion range " + number_text(motion.min_distance_m) + " .. " +
                                 number_text(motion.max_distance_m) + " m: give 0 < min < max");
   }

@@ -46,9 +46,9 @@ class MovingDelay {
   double start_m_;
   double offset_samples_;
   int sample_rate_hz_;
-  long long produced_ = 0;       // output samples so far
-  long long base_ = 0;           // stream index of history_[0]
-  std::vector<float> history_;   // input not yet passed by every read position
+  long long produced_ = 0;      // output samples so far
+  long long base_ = 0;          // stream index of history_[0]
+  std::vector<float> history_;  // input not yet passed by every read position
 };
 
 }  // namespace dtmf::physical

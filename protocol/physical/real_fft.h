@@ -30,7 +30,9 @@ struct FftwAllocator {
   T* allocate(std::size_t n);
   void deallocate(T* p, std::size_t) noexcept;
   template <typename U>
-  bool operator==(const FftwAllocator<U>&) const { return true; }
+  bool operator==(const FftwAllocator<U>&) const {
+    return true;
+  }
 };
 
 using FftReal = std::vector<float, FftwAllocator<float>>;

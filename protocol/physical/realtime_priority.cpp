@@ -30,7 +30,8 @@ ThreadPriority raise_audio_thread_priority(std::string* why) {
   // setpriority on a thread id changes that thread only (Linux).
   const auto tid = static_cast<id_t>(::syscall(SYS_gettid));
   if (::setpriority(PRIO_PROCESS, tid, kAudioNiceLevel) == 0) {
-    if (why) *why = "nice " + std::to_string(kAudioNiceLevel) + " (real time refused: " + std::strerror(fifo_error) + ")";
+    if (why)
+      *why = "nice " + std::to_string(kAudioNiceLevel) + " (real time refused: " + std::strerror(fifo_error) + ")";
     return ThreadPriority::Raised;
   }
   if (why) {

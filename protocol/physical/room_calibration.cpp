@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "physical/room_decay.h"
 #include "physical/number_text.h"
+#include "physical/room_decay.h"
 
 namespace dtmf::physical {
 
@@ -48,8 +48,8 @@ CalibratedRoom calibrate_rt60(const ShoeboxRoom& room, const Point3& speaker, co
                               int sample_rate_hz, std::uint64_t seed) {
   check_room(room);
   if (!std::isfinite(rt60_s) || rt60_s < kMinRt60S || rt60_s > room.max_length_s) {
-    throw std::invalid_argument("RT60 " + number_text(rt60_s) + " s: give 0.1 s to " +
-                                number_text(room.max_length_s) + " s (the longest response generated)");
+    throw std::invalid_argument("RT60 " + number_text(rt60_s) + " s: give 0.1 s to " + number_text(room.max_length_s) +
+                                " s (the longest response generated)");
   }
   // T20 ends at -25 dB, 0.42 RT60 into an exponential decay: 0.75 RT60 leaves room for a
   // slower one, and what is cut off (-45 dB) bends the curve by less than 0.05 dB there.
@@ -75,8 +75,10 @@ CalibratedRoom calibrate_rt60(const ShoeboxRoom& room, const Point3& speaker, co
       best = {trial, std::exp(-a), reached, 0};
     }
     if (error <= kTolerance) break;
-    if (reached > rt60_s) low = a;
-    else high = a;
+    if (reached > rt60_s)
+      low = a;
+    else
+      high = a;
     double next = a * std::min(reached / rt60_s, 4.0);
     if (!(next > low && next < high)) next = std::sqrt(low * high);  // overshot: bisect the bracket
     if (high / low < 1.0005) break;

@@ -20,9 +20,9 @@
 namespace dtmf::physical {
 
 struct CalibratedRoom {
-  ShoeboxRoom room;        // walls and ceiling set to `reflection`
-  double reflection = 0;   // the coefficient found
-  double rt60_s = 0;       // T20 of the response it gives (what was reached)
+  ShoeboxRoom room;       // walls and ceiling set to `reflection`
+  double reflection = 0;  // the coefficient found
+  double rt60_s = 0;      // T20 of the response it gives (what was reached)
   int tries = 0;
 };
 

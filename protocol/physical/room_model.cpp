@@ -8,9 +8,9 @@
 #include <tuple>
 
 #include "physical/measured_rir.h"
+#include "physical/number_text.h"
 #include "physical/room_calibration.h"
 #include "physical/room_decay.h"
-#include "physical/number_text.h"
 
 namespace dtmf::physical {
 
@@ -27,7 +27,8 @@ std::string point_text(const Point3& p) { return "(" + fixed(p.x) + ", " + fixed
 std::string bands_text(const BandValues& v) {
   if (std::all_of(v.begin(), v.end(), [&](double x) { return x == v[0]; })) return fixed(v[0], 3);
   std::string text;
-  for (std::size_t b = 0; b < v.size(); ++b) text += (b ? "," : "") + fixed(kOctaveCentresHz[b], 0) + ":" + fixed(v[b], 3);
+  for (std::size_t b = 0; b < v.size(); ++b)
+    text += (b ? "," : "") + fixed(kOctaveCentresHz[b], 0) + ":" + fixed(v[b], 3);
   return text;
 }
 
@@ -36,7 +37,8 @@ std::string bands_text(const BandValues& v) {
 RoomModel::RoomModel(const RoomConfig& config, int sample_rate_hz) : config_(config), sample_rate_hz_(sample_rate_hz) {
   if (!config.enabled()) throw std::invalid_argument("no room given: a measured response file or a shoebox room");
   if (!config.rir_file.empty() && config.shoebox) {
-    throw std::invalid_argument("a room is either measured (a response file) or simulated (a shoebox), not both: choose one");
+    throw std::invalid_argument(
+        "a room is either measured (a response file) or simulated (a shoebox), not both: choose one");
   }
   if (!config.rir_file.empty()) {
     kind_ = Kind::Measured;
@@ -52,10 +54,13 @@ RoomModel::RoomModel(const RoomConfig& config, int sample_rate_hz) : config_(con
   kind_ = Kind::ImageSource;
   check_room(*config.shoebox);
   const Point3 size = config.shoebox->size_m;
-  mic_ = config.mic_at.value_or(Point3{std::min(1.0, size.x / 4), 0.4 * size.y, std::min(kDefaultMicHeightM, size.z / 2)});
+  mic_ =
+      config.mic_at.value_or(Point3{std::min(1.0, size.x / 4), 0.4 * size.y, std::min(kDefaultMicHeightM, size.z / 2)});
   check_inside(*config.shoebox, mic_, "the microphone");
-  if (config.target_rt60_s == 0) room_ = config.shoebox;
-  else if (!(config.target_rt60_s > 0)) throw std::invalid_argument("RT60 " + number_text(config.target_rt60_s) + " s: give a time above 0");
+  if (config.target_rt60_s == 0)
+    room_ = config.shoebox;
+  else if (!(config.target_rt60_s > 0))
+    throw std::invalid_argument("RT60 " + number_text(config.target_rt60_s) + " s: give a time above 0");
 }
 
 Point3 RoomModel::speaker_at_distance(double distance_m) const {
@@ -83,8 +88,9 @@ Point3 RoomModel::speaker_at_distance(double distance_m) const {
   if (!fits(distance_m)) {
     double lo = 0.01, hi = distance_m;  // the farthest that fits, for the message
     for (int i = 0; i < 40; ++i) (fits((lo + hi) / 2) ? lo : hi) = (lo + hi) / 2;
-    throw std::invalid_argument("a loudspeaker " + number_text(distance_m) + " m from the microphone does not fit in the " +
-                                number_text(box.size_m.x) + " x " + number_text(box.size_m.y) + " x " + number_text(box.size_m.z) +
+    throw std::invalid_argument("a loudspeaker " + number_text(distance_m) +
+                                " m from the microphone does not fit in the " + number_text(box.size_m.x) + " x " +
+                                number_text(box.size_m.y) + " x " + number_text(box.size_m.z) +
                                 " m room (towards its farthest corner at most " + fixed(lo) +
                                 " m fit): give a shorter distance, a larger room, or the loudspeaker's position");
   }
@@ -101,9 +107,11 @@ Response RoomModel::between(const Point3& speaker, const Point3& mic) const {
   if (kind_ != Kind::ImageSource) throw std::logic_error("between() is for image-source rooms");
   std::lock_guard lock(mutex_);
   if (!room_) {
-    const CalibratedRoom c = calibrate_rt60(*config_.shoebox, speaker, mic, config_.target_rt60_s, sample_rate_hz_, config_.seed);
+    const CalibratedRoom c =
+        calibrate_rt60(*config_.shoebox, speaker, mic, config_.target_rt60_s, sample_rate_hz_, config_.seed);
     room_ = c.room;
-    calibration_note_ = " (tuned to RT60 " + fixed(config_.target_rt60_s) + " s in " + std::to_string(c.tries) + " tries)";
+    calibration_note_ =
+        " (tuned to RT60 " + fixed(config_.target_rt60_s) + " s in " + std::to_string(c.tries) + " tries)";
   }
   // The pair in a fixed order: A to B and B to A are one response (reciprocity).
   std::array<double, 6> key = {speaker.x, speaker.y, speaker.z, mic.x, mic.y, mic.z};
@@ -111,7 +119,8 @@ Response RoomModel::between(const Point3& speaker, const Point3& mic) const {
     key = {mic.x, mic.y, mic.z, speaker.x, speaker.y, speaker.z};
   }
   if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
-  auto h = std::make_shared<const std::vector<float>>(image_source_response(*room_, speaker, mic, sample_rate_hz_, config_.seed));
+  auto h = std::make_shared<const std::vector<float>>(
+      image_source_response(*room_, speaker, mic, sample_rate_hz_, config_.seed));
   if (!rt60_s_) rt60_s_ = rt60_t20_s(*h, sample_rate_hz_);
   cache_.emplace(key, h);
   return h;
@@ -127,14 +136,17 @@ std::string RoomModel::describe() const {
   const std::string rt60 = rt60_s_ ? ", RT60 (T20) " + fixed(*rt60_s_) + " s" : "";
   if (kind_ == Kind::Measured) return measured_note_ + rt60;
   const ShoeboxRoom& r = room_ ? *room_ : *config_.shoebox;
-  const bool same_walls = r.reflection[kWallX0] == r.reflection[kWallX1] && r.reflection[kWallX0] == r.reflection[kWallY0] &&
+  const bool same_walls = r.reflection[kWallX0] == r.reflection[kWallX1] &&
+                          r.reflection[kWallX0] == r.reflection[kWallY0] &&
                           r.reflection[kWallX0] == r.reflection[kWallY1];
-  const std::string walls = same_walls ? "walls " + bands_text(r.reflection[kWallX0])
-                                       : "walls x0 " + bands_text(r.reflection[kWallX0]) + ", x1 " + bands_text(r.reflection[kWallX1]) +
-                                             ", y0 " + bands_text(r.reflection[kWallY0]) + ", y1 " + bands_text(r.reflection[kWallY1]);
-  return "image-source room " + number_text(r.size_m.x) + " x " + number_text(r.size_m.y) + " x " + number_text(r.size_m.z) +
-         " m, reflection: " + walls + ", floor " + bands_text(r.reflection[kFloor]) +
-         ", ceiling " + bands_text(r.reflection[kCeiling]) + calibration_note_ + ", microphone at " + point_text(mic_) + rt60;
+  const std::string walls =
+      same_walls ? "walls " + bands_text(r.reflection[kWallX0])
+                 : "walls x0 " + bands_text(r.reflection[kWallX0]) + ", x1 " + bands_text(r.reflection[kWallX1]) +
+                       ", y0 " + bands_text(r.reflection[kWallY0]) + ", y1 " + bands_text(r.reflection[kWallY1]);
+  return "image-source room " + number_text(r.size_m.x) + " x " + number_text(r.size_m.y) + " x " +
+         number_text(r.size_m.z) + " m, reflection: " + walls + ", floor " + bands_text(r.reflection[kFloor]) +
+         ", ceiling " + bands_text(r.reflection[kCeiling]) + calibration_note_ + ", microphone at " + point_text(mic_) +
+         rt60;
 }
 
 }  // namespace dtmf::physical

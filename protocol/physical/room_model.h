@@ -91,7 +91,7 @@ class RoomModel {
   std::string measured_note_;
   Point3 mic_;
   mutable std::mutex mutex_;
-  mutable std::optional<ShoeboxRoom> room_;   // after calibration
+  mutable std::optional<ShoeboxRoom> room_;  // after calibration
   mutable std::string calibration_note_;
   mutable std::optional<double> rt60_s_;
   mutable std::map<std::array<double, 6>, Response> cache_;

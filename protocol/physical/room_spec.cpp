@@ -69,17 +69,26 @@ std::vector<Surface> apply_reflection(ShoeboxRoom& room, const std::string& text
     surfaces.clear();
     values = text.substr(eq + 1);
     for (const std::string& name : split(text.substr(0, eq), '+')) {
-      if (name == "walls") surfaces.insert(surfaces.end(), {kWallX0, kWallX1, kWallY0, kWallY1});
-      else if (name == "all") surfaces.insert(surfaces.end(), {kWallX0, kWallX1, kWallY0, kWallY1, kFloor, kCeiling});
-      else if (name == "floor") surfaces.push_back(kFloor);
-      else if (name == "ceiling") surfaces.push_back(kCeiling);
-      else if (name == "x0") surfaces.push_back(kWallX0);
-      else if (name == "x1") surfaces.push_back(kWallX1);
-      else if (name == "y0") surfaces.push_back(kWallY0);
-      else if (name == "y1") surfaces.push_back(kWallY1);
+      if (name == "walls")
+        surfaces.insert(surfaces.end(), {kWallX0, kWallX1, kWallY0, kWallY1});
+      else if (name == "all")
+        surfaces.insert(surfaces.end(), {kWallX0, kWallX1, kWallY0, kWallY1, kFloor, kCeiling});
+      else if (name == "floor")
+        surfaces.push_back(kFloor);
+      else if (name == "ceiling")
+        surfaces.push_back(kCeiling);
+      else if (name == "x0")
+        surfaces.push_back(kWallX0);
+      else if (name == "x1")
+        surfaces.push_back(kWallX1);
+      else if (name == "y0")
+        surfaces.push_back(kWallY0);
+      else if (name == "y1")
+        surfaces.push_back(kWallY1);
       else {
-        throw std::invalid_argument("reflection '" + text + "': no surface '" + name +
-                                    "' (walls, ceiling, floor, x0, x1, y0, y1, all; join with +, e.g. walls+ceiling=0.8)");
+        throw std::invalid_argument(
+            "reflection '" + text + "': no surface '" + name +
+            "' (walls, ceiling, floor, x0, x1, y0, y1, all; join with +, e.g. walls+ceiling=0.8)");
       }
     }
   }
@@ -87,7 +96,8 @@ std::vector<Surface> apply_reflection(ShoeboxRoom& room, const std::string& text
   double single = 0;
   if (values.find(':') == std::string::npos) {
     if (!number(values, single)) {
-      throw std::invalid_argument("reflection '" + text + "': '" + values + "' is not a coefficient such as 0.9 or per band 125:0.7,4000:0.9");
+      throw std::invalid_argument("reflection '" + text + "': '" + values +
+                                  "' is not a coefficient such as 0.9 or per band 125:0.7,4000:0.9");
     }
     bands = uniform_bands(single);
   } else {

@@ -11,7 +11,8 @@ constexpr double kAllpassMs[2] = {5.0, 1.7};
 constexpr double kAllpassGain = 0.7;
 }  // namespace
 
-SchroederReverb::SchroederReverb(const ReverbConfig& config, int sample_rate_hz) : wet_(static_cast<float>(config.wet)) {
+SchroederReverb::SchroederReverb(const ReverbConfig& config, int sample_rate_hz)
+    : wet_(static_cast<float>(config.wet)) {
   for (double ms : kCombMs) {
     const auto length = static_cast<std::size_t>(ms * sample_rate_hz / 1000.0);
     // Feedback that decays by 60 dB in rt60_s.

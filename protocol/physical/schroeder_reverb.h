@@ -13,8 +13,8 @@
 namespace dtmf::physical {
 
 struct ReverbConfig {
-  double rt60_s = 0;   // 0: no reverberation
-  double wet = 0.3;    // level of the reverberant sound against the direct sound
+  double rt60_s = 0;  // 0: no reverberation
+  double wet = 0.3;   // level of the reverberant sound against the direct sound
 };
 
 class SchroederReverb {

@@ -37,7 +37,8 @@ namespace {
 
 class AirSpeaker : public AudioSink {
  public:
-  AirSpeaker(std::shared_ptr<SimulatedAir::Shared> shared, std::size_t index) : shared_(std::move(shared)), index_(index) {}
+  AirSpeaker(std::shared_ptr<SimulatedAir::Shared> shared, std::size_t index)
+      : shared_(std::move(shared)), index_(index) {}
   void write(std::span<const float> samples) override {
     std::unique_lock lock(shared_->mutex);
     check();
@@ -64,7 +65,8 @@ class AirSpeaker : public AudioSink {
 
 class AirMicrophone : public AudioSource {
  public:
-  AirMicrophone(std::shared_ptr<SimulatedAir::Shared> shared, std::size_t index) : shared_(std::move(shared)), index_(index) {}
+  AirMicrophone(std::shared_ptr<SimulatedAir::Shared> shared, std::size_t index)
+      : shared_(std::move(shared)), index_(index) {}
   std::size_t read(std::span<float> out) override {
     std::unique_lock lock(shared_->mutex);
     auto& recorded = shared_->stations[index_].recorded;
@@ -88,7 +90,8 @@ SimulatedAir::SimulatedAir(int sample_rate_hz, ChannelConfig config, double bloc
     : shared_(std::make_shared<Shared>()) {
   shared_->sample_rate_hz = sample_rate_hz;
   shared_->config = std::move(config);
-  if (shared_->config.room.enabled()) shared_->room = std::make_shared<const RoomModel>(shared_->config.room, sample_rate_hz);
+  if (shared_->config.room.enabled())
+    shared_->room = std::make_shared<const RoomModel>(shared_->config.room, sample_rate_hz);
   shared_->block = static_cast<std::size_t>(std::lround(block_ms * sample_rate_hz / 1000.0));
 }
 
@@ -127,8 +130,9 @@ void SimulatedAir::start() {
       auto channel = std::make_unique<AcousticChannel>(shared_->sample_rate_hz, config, room);
       for (std::size_t s = 0; s < stations.size(); ++s) {
         const bool own = s == listener;
-        const double d = own ? kOwnSpeakerDistanceM
-                             : std::max(std::abs(stations[s].position_m - stations[listener].position_m), kOwnSpeakerDistanceM);
+        const double d =
+            own ? kOwnSpeakerDistanceM
+                : std::max(std::abs(stations[s].position_m - stations[listener].position_m), kOwnSpeakerDistanceM);
         if (shoebox) {
           // Reciprocity: between stations A and B the room's one response serves both ways.
           const Point3 from = own ? own_speaker[s] : at[s];
@@ -161,7 +165,8 @@ void SimulatedAir::run() {
   std::vector<std::vector<float>> played;
   std::vector<float> heard;
   for (long long tick = 1;; ++tick) {
-    std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(period * static_cast<double>(tick)));
+    std::this_thread::sleep_until(start +
+                                  std::chrono::duration_cast<Clock::duration>(period * static_cast<double>(tick)));
     std::unique_lock lock(shared_->mutex);
     if (shared_->stopped) return;
     auto& stations = shared_->stations;
@@ -178,8 +183,9 @@ void SimulatedAir::run() {
       station.channel->process(blocks, heard);
       station.recorded.insert(station.recorded.end(), heard.begin(), heard.end());
       if (station.recorded.size() > max_backlog) {
-        station.recorded.erase(station.recorded.begin(),
-                               station.recorded.begin() + static_cast<std::ptrdiff_t>(station.recorded.size() - max_backlog));
+        station.recorded.erase(
+            station.recorded.begin(),
+            station.recorded.begin() + static_cast<std::ptrdiff_t>(station.recorded.size() - max_backlog));
       }
     }
     lock.unlock();

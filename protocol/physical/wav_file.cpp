@@ -36,9 +36,8 @@ WavFileSource::WavFileSource(const std::string& path, int sample_rate_hz, int mi
     sf_close(handles_->file);
     handles_->file = nullptr;
     throw AudioError("audio file '" + path + "' is sampled at " + std::to_string(file_rate_hz_) +
-                     " Hz, too slow to carry the link's tones: record at " +
-                     std::to_string(sample_rate_hz) + " Hz (at least " +
-                     std::to_string(min_file_rate_hz) + " Hz)");
+                     " Hz, too slow to carry the link's tones: record at " + std::to_string(sample_rate_hz) +
+                     " Hz (at least " + std::to_string(min_file_rate_hz) + " Hz)");
   }
   handles_->interleaved.resize(kBlockFrames * static_cast<std::size_t>(file_channels_));
   handles_->mono.reserve(kBlockFrames);
@@ -59,15 +58,15 @@ WavFileSource::~WavFileSource() {
 }
 
 std::string WavFileSource::describe() const {
-  return "wav:" + path_ + " (" + std::to_string(file_rate_hz_) + " Hz, " +
-         std::to_string(file_channels_) + " channel" + (file_channels_ == 1 ? "" : "s") + ")";
+  return "wav:" + path_ + " (" + std::to_string(file_rate_hz_) + " Hz, " + std::to_string(file_channels_) + " channel" +
+         (file_channels_ == 1 ? "" : "s") + ")";
 }
 
 std::size_t WavFileSource::read_mono(std::span<float> out) {
   const std::size_t frames_wanted = std::min(out.size(), kBlockFrames);
   const auto channels = static_cast<std::size_t>(file_channels_);
-  const sf_count_t got = sf_readf_float(handles_->file, handles_->interleaved.data(),
-                                        static_cast<sf_count_t>(frames_wanted));
+  const sf_count_t got =
+      sf_readf_float(handles_->file, handles_->interleaved.data(), static_cast<sf_count_t>(frames_wanted));
   if (got <= 0) return 0;
   for (std::size_t i = 0; i < static_cast<std::size_t>(got); ++i) {
     float sum = 0;
@@ -106,8 +105,7 @@ std::size_t WavFileSource::read(std::span<float> out) {
   return produced;
 }
 
-WavFileSink::WavFileSink(const std::string& path, int sample_rate_hz)
-    : path_(path), sample_rate_hz_(sample_rate_hz) {
+WavFileSink::WavFileSink(const std::string& path, int sample_rate_hz) : path_(path), sample_rate_hz_(sample_rate_hz) {
   SF_INFO info{};
   info.samplerate = sample_rate_hz;
   info.channels = 1;
@@ -124,8 +122,8 @@ WavFileSink::WavFileSink(const std::string& path, int sample_rate_hz)
 WavFileSink::~WavFileSink() { sf_close(static_cast<SNDFILE*>(file_)); }
 
 void WavFileSink::write(std::span<const float> samples) {
-  const sf_count_t written = sf_writef_float(static_cast<SNDFILE*>(file_), samples.data(),
-                                             static_cast<sf_count_t>(samples.size()));
+  const sf_count_t written =
+      sf_writef_float(static_cast<SNDFILE*>(file_), samples.data(), static_cast<sf_count_t>(samples.size()));
   if (written != static_cast<sf_count_t>(samples.size())) {
     throw AudioError("writing '" + path_ + "' failed: " + sf_strerror(static_cast<SNDFILE*>(file_)));
   }
@@ -147,8 +145,7 @@ void RealTimeWavSink::write(std::span<const float> samples) {
   written_ += static_cast<long long>(samples.size());
 }
 
-std::vector<float> read_audio_file(const std::string& path, int sample_rate_hz,
-                                   int min_file_rate_hz) {
+std::vector<float> read_audio_file(const std::string& path, int sample_rate_hz, int min_file_rate_hz) {
   WavFileSource source(path, sample_rate_hz, min_file_rate_hz);
   std::vector<float> samples;
   std::vector<float> block(kBlockFrames);

@@ -23,7 +23,8 @@ Whine parse_whine(const std::string& text) {
   }
 }
 
-WhineSource::WhineSource(std::vector<Whine> whines, int sample_rate_hz, std::uint64_t seed) : whines_(std::move(whines)) {
+WhineSource::WhineSource(std::vector<Whine> whines, int sample_rate_hz, std::uint64_t seed)
+    : whines_(std::move(whines)) {
   std::mt19937_64 rng(seed ^ 0x5748494e45ull);  // its own stream: adding a whine leaves the noise as it was
   std::uniform_real_distribution<double> phase(0.0, 1.0);
   for (const Whine& w : whines_) {
@@ -35,7 +36,8 @@ WhineSource::WhineSource(std::vector<Whine> whines, int sample_rate_hz, std::uin
       throw std::invalid_argument("whine level " + number_text(w.level_dbfs) +
                                   " dBFS: give an RMS level at or below 0 dBFS (a full-scale sine is -3 dBFS)");
     }
-    tones_.push_back({w.frequency_hz / sample_rate_hz, std::sqrt(2.0) * std::pow(10.0, w.level_dbfs / 20.0), phase(rng)});
+    tones_.push_back(
+        {w.frequency_hz / sample_rate_hz, std::sqrt(2.0) * std::pow(10.0, w.level_dbfs / 20.0), phase(rng)});
   }
 }
 
@@ -43,8 +45,8 @@ void WhineSource::add_to(std::span<float> out) {
   for (const Tone& t : tones_) {
     for (std::size_t i = 0; i < out.size(); ++i) {
       // The phase in cycles, reduced before it multiplies 2 pi: exact for streams of any length.
-      const double cycles = std::fmod(t.cycles_per_sample * static_cast<double>(position_ + static_cast<long long>(i)) +
-                                      t.phase_cycles, 1.0);
+      const double cycles = std::fmod(
+          t.cycles_per_sample * static_cast<double>(position_ + static_cast<long long>(i)) + t.phase_cycles, 1.0);
       out[i] += static_cast<float>(t.amplitude * std::sin(2 * std::numbers::pi * cycles));
     }
   }

@@ -20,21 +20,21 @@ LinkProfile make_seed_profile() {
   p.tones.band_low_hz = {4500, 7500, 10500, 13500};
   p.tones.step_hz = 2500.0 / 15.0;
   p.tones.tones_per_band = 16;
-  p.tones.ack_hz = {2500, 3500};   // seed section 9
+  p.tones.ack_hz = {2500, 3500};  // seed section 9
   p.tones.nack_hz = {2000, 3000};
-  p.tones.tone_amplitude = 0.2;    // four tones sum to at most 0.8 full scale
-  p.tones.edge_ms = 5;             // long enough to keep clicks out of the tone bands
+  p.tones.tone_amplitude = 0.2;  // four tones sum to at most 0.8 full scale
+  p.tones.edge_ms = 5;           // long enough to keep clicks out of the tone bands
 
-  p.timing.chord_ms = 800;         // seed section 9
+  p.timing.chord_ms = 800;  // seed section 9
   p.timing.gap_ms = 200;
   p.timing.ack_ms = 300;
   p.timing.ack_timeout_ms = 1500;
   p.timing.auto_retransmissions = 1;  // seed section 7, Fig. 8
 
-  p.analysis.fft_size = 4096;       // seed section 8
+  p.analysis.fft_size = 4096;  // seed section 8
   p.analysis.analyses_per_s = 20;
 
-  p.robot_detector.bandpass_low_hz = 4000;   // seed section 8
+  p.robot_detector.bandpass_low_hz = 4000;  // seed section 8
   p.robot_detector.bandpass_high_hz = 17000;
   p.robot_detector.peak_count = 10;
   p.robot_detector.noise_gate_dbfs = -60;
@@ -58,7 +58,7 @@ LinkProfile make_seed_profile() {
   // ACK tones sit below 3.5 kHz: 3000 ppm moves them 10.5 Hz, within the tolerance.
   p.sender_detector.background_rise_db_per_s = 10;
 
-  p.debounce.min_detections = 2;   // seed section 8
+  p.debounce.min_detections = 2;  // seed section 8
   p.debounce.window_ms = 300;
   // The seed's 0.8 s, plus 0.1 s: a chord passes 0.1-0.15 s after it starts, so 0.8 s let
   // a reverberant tail 8-10 dB down pass it again just after it ended (2 frames in 1000 in
@@ -89,25 +89,25 @@ LinkProfile make_fast_profile() {
   for (int c = 0; c < 2; ++c) {
     for (int b = 0; b < HopLink::kBandsPerChord; ++b) h.band_first_bin[c][b] = 160 + 34 * (2 * b + c);
   }
-  h.tone_amplitude = 0.1;    // eight tones sum to at most 0.8 full scale
-  h.gate_db = 7.5;           // noise bands pass 1 in 5, a frame's at -10 dB SNR 24 in 25
-  h.gate_bands = 5;          // of 8: noise passes both chords 1 window in 20 000, a frame at -10 dB 999 in 1000
+  h.tone_amplitude = 0.1;  // eight tones sum to at most 0.8 full scale
+  h.gate_db = 7.5;         // noise bands pass 1 in 5, a frame's at -10 dB SNR 24 in 25
+  h.gate_bands = 5;        // of 8: noise passes both chords 1 window in 20 000, a frame at -10 dB 999 in 1000
   h.presence_db = 6;
   h.onset_db = 3;
-  h.clear_certainty = 3;     // 4.8 dB: a noise band's best beats its second by this 1 time in 30
+  h.clear_certainty = 3;  // 4.8 dB: a noise band's best beats its second by this 1 time in 30
   h.background_rise_db_per_s = 10;
-  h.max_erasures = 4;        // RS(16, 10) keeps 2 of its 6 parity symbols for detection
+  h.max_erasures = 4;  // RS(16, 10) keeps 2 of its 6 parity symbols for detection
   h.max_offset_ppm = 3000;
   h.lockout_hops = 7;
   h.cluster_gap_hops = 2.5;
   h.nack_settle_hops = 8;
-  h.repeat_guard_ms = 400;   // a retransmission comes no sooner than the 500 ms ACK timeout
+  h.repeat_guard_ms = 400;       // a retransmission comes no sooner than the 500 ms ACK timeout
   h.reply_window_samples = 768;  // 16 ms; reply tones 62.5 Hz apart
   h.reply_hop_samples = 192;     // 4 ms; a reply is 768 + 2 * 48 + 2 * 192 = 1248 samples (26 ms)
   h.reply_edge_samples = 48;
   h.reply_band_first_bin = {32, 40, 48, 56};  // 2000-3937.5 Hz, below the chords
   h.reply_tones_per_band = 8;
-  h.reply_amplitude = 0.2;       // four tones sum to at most 0.8 full scale
+  h.reply_amplitude = 0.2;  // four tones sum to at most 0.8 full scale
   h.reply_presence_db = 6;
   h.reply_onset_db = 1.5;
   h.reply_bands_needed = 3;
@@ -131,13 +131,9 @@ LinkProfile make_fast_profile() {
 
 }  // namespace
 
-int LinkProfile::hop_samples() const {
-  return static_cast<int>(std::lround(sample_rate_hz / analysis.analyses_per_s));
-}
+int LinkProfile::hop_samples() const { return static_cast<int>(std::lround(sample_rate_hz / analysis.analyses_per_s)); }
 
-int LinkProfile::samples_for_ms(double ms) const {
-  return static_cast<int>(std::lround(ms * sample_rate_hz / 1000.0));
-}
+int LinkProfile::samples_for_ms(double ms) const { return static_cast<int>(std::lround(ms * sample_rate_hz / 1000.0)); }
 
 int LinkProfile::min_recording_rate_hz() const {
   double top_hz = tones.band_low_hz[3] + (tones.tones_per_band - 1) * tones.step_hz;
@@ -175,8 +171,7 @@ const LinkProfile& profile_by_name(std::string_view name) {
   for (const LinkProfile* p : all_profiles()) {
     if (p->name == name) return *p;
   }
-  throw std::invalid_argument("unknown link profile '" + std::string(name) +
-                              "': choose one of " + profile_names());
+  throw std::invalid_argument("unknown link profile '" + std::string(name) + "': choose one of " + profile_names());
 }
 
 }  // namespace dtmf

@@ -28,10 +28,10 @@ struct TonePlan {
 
 // How long things sound and how long the sender waits.
 struct LinkTiming {
-  double chord_ms = 0;        // one command frame on air
-  double gap_ms = 0;          // silence between two frames from the sender
-  double ack_ms = 0;          // the robot's ACK / NACK chord
-  double ack_timeout_ms = 0;  // from the start of a frame's chord until it counts as unanswered
+  double chord_ms = 0;           // one command frame on air
+  double gap_ms = 0;             // silence between two frames from the sender
+  double ack_ms = 0;             // the robot's ACK / NACK chord
+  double ack_timeout_ms = 0;     // from the start of a frame's chord until it counts as unanswered
   int auto_retransmissions = 0;  // retransmissions before the caller is asked
 };
 
@@ -45,10 +45,10 @@ struct AnalysisParams {
 struct DetectorParams {
   double bandpass_low_hz = 0;
   double bandpass_high_hz = 0;
-  int peak_count = 0;           // the N loudest peaks considered
-  double noise_gate_dbfs = 0;   // peaks below this (as a sine amplitude) are ignored
-  double tone_tolerance_hz = 0; // how far a peak may sit from a plan tone and still match it
-  double dominance_db = 0;      // a band's tone must stand this far above its other plan tones
+  int peak_count = 0;            // the N loudest peaks considered
+  double noise_gate_dbfs = 0;    // peaks below this (as a sine amplitude) are ignored
+  double tone_tolerance_hz = 0;  // how far a peak may sit from a plan tone and still match it
+  double dominance_db = 0;       // a band's tone must stand this far above its other plan tones
   // The sender's and the robot's clocks differ and the robot moves: every tone of a chord is
   // off by the same factor. The decoder tries factors within this many ppm and keeps the
   // one under which the peaks sit closest to plan tones (0: none tried).
@@ -63,10 +63,10 @@ struct DetectorParams {
 
 // When a detected chord becomes a frame.
 struct DebounceParams {
-  int min_detections = 0;   // detections of the same chord needed ...
-  double window_ms = 0;     // ... within this time
-  double lockout_ms = 0;    // after a pass, the same chord is ignored this long ...
-  double rearm_drop_db = 0; // ... and until it has faded this far (or gone) in some window
+  int min_detections = 0;    // detections of the same chord needed ...
+  double window_ms = 0;      // ... within this time
+  double lockout_ms = 0;     // after a pass, the same chord is ignored this long ...
+  double rearm_drop_db = 0;  // ... and until it has faded this far (or gone) in some window
 };
 
 // How a command travels. Word16: the seed's — RESET, mode and parameter words, one 16-bit
@@ -92,15 +92,15 @@ struct HopLink {
   // band_first_bin[c][b]: chord c's band b carries symbol values at first_bin + v.
   std::array<std::array<int, kBandsPerChord>, 2> band_first_bin{};
   double tone_amplitude = 0;  // linear, per tone
-  double gate_db = 0;         // a candidate when gate_bands of each chord's bands have a bin this far over the band's mean
+  double gate_db = 0;  // a candidate when gate_bands of each chord's bands have a bin this far over the band's mean
   int gate_bands = 0;
-  double presence_db = 0;     // a band is heard when its best bin stands this far over the band's median
-  double onset_db = 0;        // ... and rose this much since the window a chord earlier (no tail)
-  float clear_certainty = 0;  // a tone over its band's runner-up by this much is clearly heard:
-                              // a cluster that fails to decode NACKs only with 16 - max_erasures such
+  double presence_db = 0;               // a band is heard when its best bin stands this far over the band's median
+  double onset_db = 0;                  // ... and rose this much since the window a chord earlier (no tail)
+  float clear_certainty = 0;            // a tone over its band's runner-up by this much is clearly heard:
+                                        // a cluster that fails to decode NACKs only with 16 - max_erasures such
   double background_rise_db_per_s = 0;  // how fast a bin's steady background may rise (whines)
-  int max_erasures = 0;       // tones the decoder may erase (unheard, or least certain first)
-  int max_offset_ppm = 0;     // the frequency offsets (clocks, Doppler) searched for
+  int max_erasures = 0;                 // tones the decoder may erase (unheard, or least certain first)
+  int max_offset_ppm = 0;               // the frequency offsets (clocks, Doppler) searched for
   // One verdict per frame (reliability/frame_gate.h), in analysis hops.
   double lockout_hops = 0;
   double cluster_gap_hops = 0;

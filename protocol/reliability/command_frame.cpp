@@ -20,9 +20,10 @@ constexpr int kCheckedBits = kCommandFrameBits - kCommandCrcBits;  // 34
 }
 
 std::uint64_t pack(const CommandFrame& frame) {
-  const std::uint64_t checked = (static_cast<std::uint64_t>(frame.address & kAddressMask) << (kSequenceBits + kFramePayloadBits)) |
-                                (static_cast<std::uint64_t>(frame.sequence & kSequenceMask) << kFramePayloadBits) |
-                                (frame.payload & kFramePayloadMask);
+  const std::uint64_t checked =
+      (static_cast<std::uint64_t>(frame.address & kAddressMask) << (kSequenceBits + kFramePayloadBits)) |
+      (static_cast<std::uint64_t>(frame.sequence & kSequenceMask) << kFramePayloadBits) |
+      (frame.payload & kFramePayloadMask);
   return (checked << kCommandCrcBits) | crc16(checked, kCheckedBits);
 }
 
@@ -38,8 +39,8 @@ std::optional<CommandFrame> unpack(std::uint64_t bits) {
 CodeSymbols encode_symbols(std::uint64_t bits) {
   std::array<std::uint8_t, kCodeDataSymbols> data{};
   for (int i = 0; i < kCodeDataSymbols; ++i) {
-    data[static_cast<std::size_t>(i)] =
-        static_cast<std::uint8_t>((bits >> (kCodeSymbolBits * (kCodeDataSymbols - 1 - i))) & ((1u << kCodeSymbolBits) - 1));
+    data[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(
+        (bits >> (kCodeSymbolBits * (kCodeDataSymbols - 1 - i))) & ((1u << kCodeSymbolBits) - 1));
   }
   CodeSymbols symbols{};
   frame_code().encode(data, symbols);
@@ -48,7 +49,8 @@ CodeSymbols encode_symbols(std::uint64_t bits) {
 
 std::uint64_t data_bits(std::span<const std::uint8_t> data_symbols) {
   std::uint64_t bits = 0;
-  for (int i = 0; i < kCodeDataSymbols; ++i) bits = (bits << kCodeSymbolBits) | data_symbols[static_cast<std::size_t>(i)];
+  for (int i = 0; i < kCodeDataSymbols; ++i)
+    bits = (bits << kCodeSymbolBits) | data_symbols[static_cast<std::size_t>(i)];
   return bits;
 }
 

@@ -13,9 +13,7 @@ std::uint8_t crc4(Word word) {
   return crc_remainder(static_cast<std::uint32_t>(word & 0x0FFF) << kCrcBits, kFrameBits);
 }
 
-Frame make_frame(Word word) {
-  return static_cast<Frame>(((word & 0x0FFF) << kCrcBits) | crc4(word));
-}
+Frame make_frame(Word word) { return static_cast<Frame>(((word & 0x0FFF) << kCrcBits) | crc4(word)); }
 
 bool frame_ok(Frame frame) { return crc_remainder(frame, kFrameBits) == 0; }
 

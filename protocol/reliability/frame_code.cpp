@@ -36,8 +36,8 @@ std::optional<DecodedFrame> decode_frame(std::span<const SymbolReading, kCodeSym
   const int limit = std::min(max_erasures, kCodeSymbols - kCodeDataSymbols - kCodeReserveSymbols);
   for (int erased = unheard; erased <= limit; ++erased) {
     std::array<std::uint8_t, kCodeDataSymbols> data{};
-    const auto errors = frame_code().decode(received, std::span<const int>(order.data(), static_cast<std::size_t>(erased)),
-                                            data, kCodeReserveSymbols);
+    const auto errors = frame_code().decode(
+        received, std::span<const int>(order.data(), static_cast<std::size_t>(erased)), data, kCodeReserveSymbols);
     if (!errors) continue;
     const std::uint64_t bits = data_bits(data);
     if (const auto frame = unpack(bits)) return DecodedFrame{*frame, bits, erased, *errors};

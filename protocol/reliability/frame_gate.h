@@ -23,10 +23,10 @@
 namespace dtmf::reliability {
 
 struct Verdict {
-  double start_ms = 0;  // when the frame began sounding
-  double heard_ms = 0;  // when the verdict was reached
+  double start_ms = 0;                   // when the frame began sounding
+  double heard_ms = 0;                   // when the verdict was reached
   std::optional<DecodedFrame> accepted;  // nullopt: NACK
-  std::uint64_t read_bits = 0;          // NACK: what the cluster's first candidate read (for logs)
+  std::uint64_t read_bits = 0;           // NACK: what the cluster's first candidate read (for logs)
 };
 
 class FrameGate {

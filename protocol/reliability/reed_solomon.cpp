@@ -15,13 +15,20 @@ namespace {
 // Primitive polynomials of GF(2^m), lowest coefficient in the lowest bit.
 int primitive_polynomial(int symbol_bits) {
   switch (symbol_bits) {
-    case 3: return 0xb;    // x^3 + x + 1
-    case 4: return 0x13;   // x^4 + x + 1
-    case 5: return 0x25;   // x^5 + x^2 + 1
-    case 6: return 0x43;   // x^6 + x + 1
-    case 7: return 0x89;   // x^7 + x^3 + 1
-    case 8: return 0x11d;  // x^8 + x^4 + x^3 + x^2 + 1
-    default: throw std::invalid_argument("Reed-Solomon symbols of " + std::to_string(symbol_bits) + " bits: use 3..8");
+    case 3:
+      return 0xb;  // x^3 + x + 1
+    case 4:
+      return 0x13;  // x^4 + x + 1
+    case 5:
+      return 0x25;  // x^5 + x^2 + 1
+    case 6:
+      return 0x43;  // x^6 + x + 1
+    case 7:
+      return 0x89;  // x^7 + x^3 + 1
+    case 8:
+      return 0x11d;  // x^8 + x^4 + x^3 + x^2 + 1
+    default:
+      throw std::invalid_argument("Reed-Solomon symbols of " + std::to_string(symbol_bits) + " bits: use 3..8");
   }
 }
 }  // namespace
@@ -34,7 +41,8 @@ ReedSolomon::ReedSolomon(int symbol_bits, int n, int k) : n_(n), k_(k) {
   }
   // First consecutive root 1, primitive element 1; shortened by full - n leading zeros.
   rs_ = init_rs_char(symbol_bits, primitive_polynomial(symbol_bits), 1, 1, n - k, full - n);
-  if (!rs_) throw std::runtime_error("libfec could not set up RS(" + std::to_string(n) + ", " + std::to_string(k) + ")");
+  if (!rs_)
+    throw std::runtime_error("libfec could not set up RS(" + std::to_string(n) + ", " + std::to_string(k) + ")");
 }
 
 ReedSolomon::~ReedSolomon() { free_rs_char(rs_); }

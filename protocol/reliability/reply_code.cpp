@@ -39,7 +39,8 @@ std::optional<NamedReply> read_reply(const std::array<int, 4>& tones, int bands_
     const ReplyTones& word = codewords()[static_cast<std::size_t>(r)];
     int agree = 0;
     for (std::size_t b = 0; b < 4; ++b) agree += tones[b] == word[b] ? 1 : 0;
-    if (agree >= bands_needed) return r == kNack ? NamedReply{false, 0} : NamedReply{true, static_cast<std::uint8_t>(r)};
+    if (agree >= bands_needed)
+      return r == kNack ? NamedReply{false, 0} : NamedReply{true, static_cast<std::uint8_t>(r)};
   }
   return std::nullopt;
 }

@@ -4,13 +4,20 @@ namespace dtmf::reliability {
 
 std::string retry_state_name(RetryState state) {
   switch (state) {
-    case RetryState::Idle: return "idle";
-    case RetryState::TransmitPending: return "transmit_pending";
-    case RetryState::AwaitingAnswer: return "awaiting_answer";
-    case RetryState::AwaitingDecision: return "awaiting_decision";
-    case RetryState::Confirmed: return "confirmed";
-    case RetryState::Continued: return "continued";
-    case RetryState::Failed: return "failed";
+    case RetryState::Idle:
+      return "idle";
+    case RetryState::TransmitPending:
+      return "transmit_pending";
+    case RetryState::AwaitingAnswer:
+      return "awaiting_answer";
+    case RetryState::AwaitingDecision:
+      return "awaiting_decision";
+    case RetryState::Confirmed:
+      return "confirmed";
+    case RetryState::Continued:
+      return "continued";
+    case RetryState::Failed:
+      return "failed";
   }
   return "unknown";
 }
@@ -18,8 +25,7 @@ std::string retry_state_name(RetryState state) {
 RetryController::RetryController(RetryPolicy policy) : policy_(policy) {}
 
 bool RetryController::finished() const {
-  return state_ == RetryState::Confirmed || state_ == RetryState::Continued ||
-         state_ == RetryState::Failed;
+  return state_ == RetryState::Confirmed || state_ == RetryState::Continued || state_ == RetryState::Failed;
 }
 
 std::optional<double> RetryController::deadline_ms() const {
@@ -58,8 +64,7 @@ RetryState RetryController::miss(Miss why) {
 RetryState RetryController::on_answer(Answer answer, double now_ms) {
   if (answer == Answer::Ack) {
     // A late ACK still proves the frame arrived, even once a retry or a question is pending.
-    const bool answerable = state_ == RetryState::AwaitingAnswer ||
-                            state_ == RetryState::TransmitPending ||
+    const bool answerable = state_ == RetryState::AwaitingAnswer || state_ == RetryState::TransmitPending ||
                             state_ == RetryState::AwaitingDecision;
     if (answerable && attempt_ > 0) {
       response_time_ms_ = now_ms - chord_started_ms_;
@@ -84,12 +89,16 @@ RetryState RetryController::on_tick(double now_ms) {
 RetryState RetryController::on_decision(Decision decision) {
   if (state_ != RetryState::AwaitingDecision) return state_;
   switch (decision) {
-    case Decision::Continue: state_ = RetryState::Continued; break;
+    case Decision::Continue:
+      state_ = RetryState::Continued;
+      break;
     case Decision::Retransmit:
       ++attempt_;
       state_ = RetryState::TransmitPending;
       break;
-    case Decision::GiveUp: state_ = RetryState::Failed; break;
+    case Decision::GiveUp:
+      state_ = RetryState::Failed;
+      break;
   }
   return state_;
 }

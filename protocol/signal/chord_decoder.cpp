@@ -78,7 +78,7 @@ std::optional<ChordMatch> decode_chord(const TonePlan& plan, std::span<const Pea
   }
   std::uint16_t frame = 0;
   for (std::size_t band = 0; band < 4; ++band) {
-    if (nibble[band] < 0) return std::nullopt;                // a band without a tone
+    if (nibble[band] < 0) return std::nullopt;                   // a band without a tone
     if (other[band] > level[band] * ratio) return std::nullopt;  // two tones in one band
     frame = static_cast<std::uint16_t>(frame | (nibble[band] << (12 - 4 * band)));
   }

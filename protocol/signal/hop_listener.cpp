@@ -26,24 +26,28 @@ HopListener::HopListener(const LinkProfile& profile)
       presence_ratio_(static_cast<float>(std::pow(10.0, profile.hops.presence_db / 10.0))),
       onset_ratio_(static_cast<float>(std::pow(10.0, profile.hops.onset_db / 10.0))),
       gate_ratio_(static_cast<float>(std::pow(10.0, profile.hops.gate_db / 10.0))),
-      rise_per_hop_(static_cast<float>(
-          std::pow(10.0, profile.hops.background_rise_db_per_s * profile.hops.hop_samples / profile.sample_rate_hz / 10.0))),
+      rise_per_hop_(static_cast<float>(std::pow(
+          10.0, profile.hops.background_rise_db_per_s * profile.hops.hop_samples / profile.sample_rate_hz / 10.0))),
       lo_bin_([&] {
         int lo = std::numeric_limits<int>::max();
-        for (const auto& chord : profile.hops.band_first_bin) lo = std::min(lo, *std::min_element(chord.begin(), chord.end()));
+        for (const auto& chord : profile.hops.band_first_bin)
+          lo = std::min(lo, *std::min_element(chord.begin(), chord.end()));
         return lo - kMarginBins;
       }()),
       hi_bin_([&] {
         int hi = 0;
-        for (const auto& chord : profile.hops.band_first_bin) hi = std::max(hi, *std::max_element(chord.begin(), chord.end()));
+        for (const auto& chord : profile.hops.band_first_bin)
+          hi = std::max(hi, *std::max_element(chord.begin(), chord.end()));
         const int top = hi + profile.hops.tones_per_band;
         return top + kMarginBins + static_cast<int>(std::ceil(top * profile.hops.max_offset_ppm * 1e-6));
       }()),
       bins_(profile.hops.window_samples, lo_bin_, hi_bin_ - lo_bin_),
-      window_(static_cast<std::size_t>(profile.hops.window_samples), static_cast<std::size_t>(profile.hops.hop_samples)) {
+      window_(static_cast<std::size_t>(profile.hops.window_samples),
+              static_cast<std::size_t>(profile.hops.hop_samples)) {
   if (profile.frame_format != FrameFormat::HoppedCommand || hops_.chords_per_frame != 2 ||
       hops_.chord_samples() % hop_ != 0) {
-    throw std::invalid_argument("profile '" + profile.name + "' has no two-chord hopped plan with chords a whole number of hops long");
+    throw std::invalid_argument("profile '" + profile.name +
+                                "' has no two-chord hopped plan with chords a whole number of hops long");
   }
   const auto bins = static_cast<std::size_t>(hi_bin_ - lo_bin_);
   background_.assign(bins, std::numeric_limits<float>::max());
@@ -167,7 +171,8 @@ int HopListener::blind_offset_ppm(const Window& first, const Window& second) con
       const float d = ap > am ? ap / (a0 + ap + 1e-30f) : -am / (a0 + am + 1e-30f);
       const std::size_t t = static_cast<std::size_t>(tone_index(c, b));
       position[t] = static_cast<float>(lo_bin_ + lo + p) + d;
-      weight[t] = std::clamp(std::log2(std::max(w.band_score[t], 1.0f)) - 2.0f, 0.0f, 10.0f);  // strong peaks count, noise does not
+      weight[t] = std::clamp(std::log2(std::max(w.band_score[t], 1.0f)) - 2.0f, 0.0f,
+                             10.0f);  // strong peaks count, noise does not
     }
   }
   int best_ppm = 0;
@@ -188,7 +193,8 @@ int HopListener::blind_offset_ppm(const Window& first, const Window& second) con
   return best_ppm;
 }
 
-HopCandidate HopListener::make_candidate(const Window& before_first, const Window& first, const Window& second, int offset_ppm) {
+HopCandidate HopListener::make_candidate(const Window& before_first, const Window& first, const Window& second,
+                                         int offset_ppm) {
   HopCandidate c;
   c.offset_ppm = offset_ppm;
   const double scale = 1.0 + offset_ppm * 1e-6;
@@ -243,7 +249,8 @@ HopCandidate HopListener::make_candidate(const Window& before_first, const Windo
   c.heard_ms = analysed_until_ms_;
   // The first chord's window started one chord and one window before now; the chord itself
   // began an edge (and up to a hop) before that window.
-  c.start_ms = c.heard_ms - (hops_.chord_samples() + hops_.window_samples + hops_.edge_samples + hop_ / 2.0) * ms_per_sample;
+  c.start_ms =
+      c.heard_ms - (hops_.chord_samples() + hops_.window_samples + hops_.edge_samples + hop_ / 2.0) * ms_per_sample;
   return c;
 }
 

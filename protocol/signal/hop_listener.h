@@ -47,11 +47,11 @@ struct ToneReading {
 };
 
 struct HopCandidate {
-  double start_ms = 0;    // when the first chord began (within a hop)
-  double heard_ms = 0;    // end of the window inside the second chord
-  int offset_ppm = 0;     // the frequency offset these readings assume
+  double start_ms = 0;                           // when the first chord began (within a hop)
+  double heard_ms = 0;                           // end of the window inside the second chord
+  int offset_ppm = 0;                            // the frequency offset these readings assume
   std::array<ToneReading, kFrameTones> tones{};  // first chord's bands, then the second's
-  std::array<float, kFrameTones> peak_bins{};  // each band's peak, in fractional bins (offset tracking)
+  std::array<float, kFrameTones> peak_bins{};    // each band's peak, in fractional bins (offset tracking)
 };
 
 // Where a window's candidates go, hypothesis after hypothesis.
@@ -85,8 +85,8 @@ class HopListener {
 
  private:
   struct Window {
-    std::vector<float> power;   // raw |X|^2 of bins [lo_bin_, hi_bin_)
-    std::vector<float> excess;  // power over the background
+    std::vector<float> power;                     // raw |X|^2 of bins [lo_bin_, hi_bin_)
+    std::vector<float> excess;                    // power over the background
     std::array<float, kFrameTones> band_score{};  // the band's best excess over its mean power
   };
   void analyze_window(CandidateSink& sink);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 namespace dtmf::signal {
 
 namespace {
@@ -16,13 +15,16 @@ HopReplyListener::HopReplyListener(const LinkProfile& profile, Read read)
       sample_rate_hz_(profile.sample_rate_hz),
       presence_ratio_(static_cast<float>(std::pow(10.0, profile.hops.reply_presence_db / 10.0))),
       onset_ratio_(static_cast<float>(std::pow(10.0, profile.hops.reply_onset_db / 10.0))),
-      lo_bin_(*std::min_element(profile.hops.reply_band_first_bin.begin(), profile.hops.reply_band_first_bin.end()) - kMarginBins),
+      lo_bin_(*std::min_element(profile.hops.reply_band_first_bin.begin(), profile.hops.reply_band_first_bin.end()) -
+              kMarginBins),
       windows_back_(profile.hops.reply_samples() / profile.hops.reply_hop_samples + 1),
       bins_(profile.hops.reply_window_samples, lo_bin_,
             *std::max_element(profile.hops.reply_band_first_bin.begin(), profile.hops.reply_band_first_bin.end()) +
                 profile.hops.reply_tones_per_band + kMarginBins - lo_bin_),
-      window_(static_cast<std::size_t>(profile.hops.reply_window_samples), static_cast<std::size_t>(profile.hops.reply_hop_samples)) {
-  ring_.assign(static_cast<std::size_t>(windows_back_ + 1), std::vector<float>(static_cast<std::size_t>(bins_.bins()), 0.0f));
+      window_(static_cast<std::size_t>(profile.hops.reply_window_samples),
+              static_cast<std::size_t>(profile.hops.reply_hop_samples)) {
+  ring_.assign(static_cast<std::size_t>(windows_back_ + 1),
+               std::vector<float>(static_cast<std::size_t>(bins_.bins()), 0.0f));
   heard_.reserve(4);
 }
 
@@ -66,7 +68,8 @@ void HopReplyListener::analyze_window() {
     HeardReply h;
     h.reply = reading;
     h.heard_ms = static_cast<double>(window_.samples_fed()) * ms_per_sample;
-    h.start_ms = h.heard_ms - (hops_.reply_window_samples + hops_.reply_hop_samples + hops_.reply_edge_samples) * ms_per_sample;
+    h.start_ms =
+        h.heard_ms - (hops_.reply_window_samples + hops_.reply_hop_samples + hops_.reply_edge_samples) * ms_per_sample;
     heard_.push_back(h);
   }
   last_ = reading;

@@ -18,7 +18,8 @@ void add_tone(std::span<float> out, double bin, int window, int edge, double amp
   for (std::size_t i = 0; i < n; ++i) {
     double gain = amplitude;
     const std::size_t near = std::min(i, n - 1 - i);
-    if (near < static_cast<std::size_t>(edge)) gain *= 0.5 - 0.5 * std::cos(std::numbers::pi * (static_cast<double>(near) + 0.5) / edge);
+    if (near < static_cast<std::size_t>(edge))
+      gain *= 0.5 - 0.5 * std::cos(std::numbers::pi * (static_cast<double>(near) + 0.5) / edge);
     out[i] += static_cast<float>(gain * s);
     const double next_s = s * cos_step + c * sin_step;
     c = c * cos_step - s * sin_step;
@@ -52,7 +53,8 @@ std::vector<float> synthesize_hopped_frame(const LinkProfile& profile, const Hop
     for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
       const auto t = static_cast<std::size_t>(c * HopLink::kBandsPerChord + b);
       const int bin = h.band_first_bin[static_cast<std::size_t>(c)][static_cast<std::size_t>(b)] + symbols[t];
-      add_tone(chord, bin, h.window_samples, h.edge_samples, h.tone_amplitude, newman_phase(b, HopLink::kBandsPerChord));
+      add_tone(chord, bin, h.window_samples, h.edge_samples, h.tone_amplitude,
+               newman_phase(b, HopLink::kBandsPerChord));
     }
   }
   return audio;

@@ -81,7 +81,7 @@ class SlidingWindow {
   std::size_t hop_;
   std::vector<float> storage_;  // 5N samples, plus room to align them
   float* buffer_;               // the 5N samples, 64-byte aligned, in storage_
-  std::size_t end_;  // one past the newest sample
+  std::size_t end_;             // one past the newest sample
   std::size_t since_hop_ = 0;
   long long samples_fed_ = 0;
 };

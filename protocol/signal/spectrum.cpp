@@ -18,8 +18,7 @@ std::mutex& planner_mutex() {
 SpectrumAnalyzer::SpectrumAnalyzer(int fft_size, int sample_rate_hz)
     : fft_size_(fft_size), sample_rate_hz_(sample_rate_hz), window_(static_cast<std::size_t>(fft_size)) {
   if (fft_size < 16 || (fft_size & (fft_size - 1)) != 0) {
-    throw std::invalid_argument("FFT size must be a power of two of at least 16, got " +
-                                std::to_string(fft_size));
+    throw std::invalid_argument("FFT size must be a power of two of at least 16, got " + std::to_string(fft_size));
   }
   double sum = 0;
   for (int i = 0; i < fft_size; ++i) {
@@ -33,8 +32,7 @@ SpectrumAnalyzer::SpectrumAnalyzer(int fft_size, int sample_rate_hz)
   std::lock_guard lock(planner_mutex());
   input_ = fftwf_alloc_real(static_cast<std::size_t>(fft_size));
   output_ = fftwf_alloc_complex(static_cast<std::size_t>(fft_size / 2 + 1));
-  plan_ = fftwf_plan_dft_r2c_1d(fft_size, input_, static_cast<fftwf_complex*>(output_),
-                                FFTW_ESTIMATE);
+  plan_ = fftwf_plan_dft_r2c_1d(fft_size, input_, static_cast<fftwf_complex*>(output_), FFTW_ESTIMATE);
 }
 
 SpectrumAnalyzer::~SpectrumAnalyzer() {
@@ -46,10 +44,11 @@ SpectrumAnalyzer::~SpectrumAnalyzer() {
 
 std::span<const float> SpectrumAnalyzer::analyze(std::span<const float> window) {
   if (window.size() != static_cast<std::size_t>(fft_size_)) {
-    throw std::invalid_argument("analysis window must hold " + std::to_string(fft_size_) +
-                                " samples, got " + std::to_string(window.size()));
+    throw std::invalid_argument("analysis window must hold " + std::to_string(fft_size_) + " samples, got " +
+                                std::to_string(window.size()));
   }
-  for (int i = 0; i < fft_size_; ++i) input_[i] = window[static_cast<std::size_t>(i)] * window_[static_cast<std::size_t>(i)];
+  for (int i = 0; i < fft_size_; ++i)
+    input_[i] = window[static_cast<std::size_t>(i)] * window_[static_cast<std::size_t>(i)];
   fftwf_execute(plan_);
   const auto* bins = static_cast<const fftwf_complex*>(output_);
   for (std::size_t k = 0; k < magnitudes_.size(); ++k) {

@@ -14,8 +14,9 @@ SteadyBackground::SteadyBackground(std::size_t bins, double rise_db_per_s, doubl
       background_(bins, floor),
       excess_(bins, 0.0f) {
   if (rise_db_per_s < 0 || windows_per_s <= 0) {
-    throw std::invalid_argument("a steady background needs a rise of 0 dB/s or more and windows per second over 0, got " +
-                                std::to_string(rise_db_per_s) + " dB/s and " + std::to_string(windows_per_s));
+    throw std::invalid_argument(
+        "a steady background needs a rise of 0 dB/s or more and windows per second over 0, got " +
+        std::to_string(rise_db_per_s) + " dB/s and " + std::to_string(windows_per_s));
   }
 }
 

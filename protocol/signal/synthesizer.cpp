@@ -7,11 +7,11 @@
 
 namespace dtmf::signal {
 
-void add_chord(std::span<float> out, std::span<const double> tones_hz, double amplitude,
-               double edge_ms, int sample_rate_hz) {
+void add_chord(std::span<float> out, std::span<const double> tones_hz, double amplitude, double edge_ms,
+               int sample_rate_hz) {
   const std::size_t n = out.size();
-  const std::size_t edge = std::min<std::size_t>(
-      n / 2, static_cast<std::size_t>(std::lround(edge_ms * sample_rate_hz / 1000.0)));
+  const std::size_t edge =
+      std::min<std::size_t>(n / 2, static_cast<std::size_t>(std::lround(edge_ms * sample_rate_hz / 1000.0)));
   // Only the chord is faded, not what `out` already holds.
   auto envelope = [&](std::size_t i) {
     const std::size_t from_edge = std::min(i, n - 1 - i);
@@ -33,11 +33,9 @@ void add_chord(std::span<float> out, std::span<const double> tones_hz, double am
   }
 }
 
-std::vector<float> synthesize_chord(const LinkProfile& profile, std::span<const double> tones_hz,
-                                    double duration_ms) {
+std::vector<float> synthesize_chord(const LinkProfile& profile, std::span<const double> tones_hz, double duration_ms) {
   std::vector<float> samples(static_cast<std::size_t>(profile.samples_for_ms(duration_ms)), 0.0f);
-  add_chord(samples, tones_hz, profile.tones.tone_amplitude, profile.tones.edge_ms,
-            profile.sample_rate_hz);
+  add_chord(samples, tones_hz, profile.tones.tone_amplitude, profile.tones.edge_ms, profile.sample_rate_hz);
   return samples;
 }
 

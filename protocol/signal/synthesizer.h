@@ -14,12 +14,11 @@
 namespace dtmf::signal {
 
 // Adds (mixes) a chord of `tones_hz` lasting `out.size()` samples into `out`.
-void add_chord(std::span<float> out, std::span<const double> tones_hz, double amplitude,
-               double edge_ms, int sample_rate_hz);
+void add_chord(std::span<float> out, std::span<const double> tones_hz, double amplitude, double edge_ms,
+               int sample_rate_hz);
 
 // A fresh buffer holding one chord of `duration_ms`.
-std::vector<float> synthesize_chord(const LinkProfile& profile, std::span<const double> tones_hz,
-                                    double duration_ms);
+std::vector<float> synthesize_chord(const LinkProfile& profile, std::span<const double> tones_hz, double duration_ms);
 
 // The command chord of `frame` with the profile's chord length.
 std::vector<float> synthesize_frame(const LinkProfile& profile, std::uint16_t frame);

@@ -4,13 +4,13 @@
 
 namespace dtmf::signal {
 
-ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& detector,
-                           Decode decode)
+ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& detector, Decode decode)
     : sample_rate_hz_(profile.sample_rate_hz),
       fft_size_(profile.analysis.fft_size),
       analyzer_(profile.analysis.fft_size, profile.sample_rate_hz),
       background_(static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1), detector.background_rise_db_per_s,
-                  static_cast<double>(profile.sample_rate_hz) / profile.hop_samples(), static_cast<float>(amplitude_from_dbfs(detector.noise_gate_dbfs))),
+                  static_cast<double>(profile.sample_rate_hz) / profile.hop_samples(),
+                  static_cast<float>(amplitude_from_dbfs(detector.noise_gate_dbfs))),
       peaks_(detector, analyzer_.bin_hz(), static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1)),
       decode_(std::move(decode)),
       debouncer_(profile.debounce),
@@ -37,8 +37,7 @@ void ToneListener::analyze_window() {
   const double end_ms = static_cast<double>(window_.samples_fed()) * 1000.0 / sample_rate_hz_;
   if (const auto pass = debouncer_.on_window(end_ms, decode_(last_peaks_))) {
     const double half_window_ms = 500.0 * fft_size_ / sample_rate_hz_;
-    heard_.push_back(Heard{pass->symbol, std::max(0.0, pass->first_detection_ms - half_window_ms),
-                           pass->pass_ms});
+    heard_.push_back(Heard{pass->symbol, std::max(0.0, pass->first_detection_ms - half_window_ms), pass->pass_ms});
   }
 }
 
@@ -54,13 +53,13 @@ ToneListener chord_listener(const LinkProfile& profile) {
 
 ToneListener reply_listener(const LinkProfile& profile) {
   return ToneListener(profile, profile.sender_detector,
-                [plan = profile.tones, tolerance = profile.sender_detector.tone_tolerance_hz,
-                 dominance = profile.sender_detector.dominance_db](
-                    std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
-                  const auto reply = decode_reply(plan, peaks, tolerance, dominance);
-                  if (!reply) return std::nullopt;
-                  return Debouncer::Detection{static_cast<std::uint32_t>(reply->reply), reply->level};
-                });
+                      [plan = profile.tones, tolerance = profile.sender_detector.tone_tolerance_hz,
+                       dominance = profile.sender_detector.dominance_db](
+                          std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
+                        const auto reply = decode_reply(plan, peaks, tolerance, dominance);
+                        if (!reply) return std::nullopt;
+                        return Debouncer::Detection{static_cast<std::uint32_t>(reply->reply), reply->level};
+                      });
 }
 
 }  // namespace dtmf::signal

@@ -8,8 +8,7 @@ Chord chord_for(const TonePlan& plan, std::uint16_t frame) {
   Chord chord{};
   for (int band = 0; band < 4; ++band) {
     const int nibble = (frame >> (12 - 4 * band)) & 0xF;
-    chord[static_cast<std::size_t>(band)] = plan.band_low_hz[static_cast<std::size_t>(band)] +
-                                            nibble * plan.step_hz;
+    chord[static_cast<std::size_t>(band)] = plan.band_low_hz[static_cast<std::size_t>(band)] + nibble * plan.step_hz;
   }
   return chord;
 }
@@ -26,8 +25,7 @@ std::uint16_t frame_for(const TonePlan& plan, const Chord& chord) {
   return frame;
 }
 
-std::optional<PlanTone> match_plan_tone(const TonePlan& plan, double frequency_hz,
-                                        double tolerance_hz) {
+std::optional<PlanTone> match_plan_tone(const TonePlan& plan, double frequency_hz, double tolerance_hz) {
   for (int band = 0; band < 4; ++band) {
     const double offset = frequency_hz - plan.band_low_hz[static_cast<std::size_t>(band)];
     const long nibble = std::lround(offset / plan.step_hz);

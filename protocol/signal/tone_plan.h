@@ -28,8 +28,7 @@ Chord chord_for(const TonePlan& plan, std::uint16_t frame);
 // The frame whose tones are `chord` (each rounded to the nearest plan tone of its band).
 std::uint16_t frame_for(const TonePlan& plan, const Chord& chord);
 // The plan tone within `tolerance_hz` of `frequency_hz`, if any.
-std::optional<PlanTone> match_plan_tone(const TonePlan& plan, double frequency_hz,
-                                        double tolerance_hz);
+std::optional<PlanTone> match_plan_tone(const TonePlan& plan, double frequency_hz, double tolerance_hz);
 // The two tones of an ACK or NACK.
 const std::array<double, 2>& reply_tones(const TonePlan& plan, Reply reply);
 

@@ -103,8 +103,8 @@ DdsCmdVel::DdsCmdVel(const DdsOptions& options) : options_(options) {
     std::string hint = kNetworkHint;
     if (domain > kMaxDomainId) {
       hint = "Domain ids above " + std::to_string(kMaxDomainId) +
-             " give UDP ports above 65535 with the default port mapping; ROS 2 uses 0-" +
-             std::to_string(kMaxDomainId) + " (TurtleBot3's default is 30). " + hint;
+             " give UDP ports above 65535 with the default port mapping; ROS 2 uses 0-" + std::to_string(kMaxDomainId) +
+             " (TurtleBot3's default is 30). " + hint;
     }
     fail("creating the DDS participant on domain " + std::to_string(domain), rc, hint);
   }
@@ -126,7 +126,8 @@ DdsCmdVel::DdsCmdVel(const DdsOptions& options) : options_(options) {
   }
 
   dds_qos_t* qos = dds_create_qos();
-  dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));  // a stuck network must not stall the agent for long
+  dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE,
+                       DDS_MSECS(100));               // a stuck network must not stall the agent for long
   dds_qset_durability(qos, DDS_DURABILITY_VOLATILE);  // a late robot must not act on stale velocities
   dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, 10);
   const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;

@@ -36,10 +36,10 @@ class DdsError : public std::runtime_error {
 };
 
 struct DdsOptions {
-  std::string topic = "cmd_vel";    // the ROS name; "/cmd_vel" is the same topic
-  bool stamped = true;              // TwistStamped (Jazzy) or Twist (Humble)
-  std::optional<int> domain_id;     // else ROS_DOMAIN_ID, else 0
-  std::string frame_id;             // header.frame_id of TwistStamped
+  std::string topic = "cmd_vel";  // the ROS name; "/cmd_vel" is the same topic
+  bool stamped = true;            // TwistStamped (Jazzy) or Twist (Humble)
+  std::optional<int> domain_id;   // else ROS_DOMAIN_ID, else 0
+  std::string frame_id;           // header.frame_id of TwistStamped
 };
 
 // The DDS topic ROS 2 uses for a topic name: "cmd_vel" and "/cmd_vel" are "rt/cmd_vel".

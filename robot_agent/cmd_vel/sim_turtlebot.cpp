@@ -38,8 +38,10 @@ void SimTurtlebot::publish(const Velocity& requested, double audio_ms, std::chro
   const bool moving = held != Velocity{};
   velocity_ = held;
   last_ms_ = audio_ms;
-  if (was_moving && !moving) say(audio_ms, "stopped");
-  else if (moving && (!was_moving || audio_ms - last_report_ms_ >= 1000)) say(audio_ms, "moving");
+  if (was_moving && !moving)
+    say(audio_ms, "stopped");
+  else if (moving && (!was_moving || audio_ms - last_report_ms_ >= 1000))
+    say(audio_ms, "moving");
 }
 
 }  // namespace dtmf::agent

@@ -30,16 +30,24 @@ TEST(AgentAir, HearsChordsFromTheAirAnswersIntoItAndDrives) {
   std::filesystem::create_directories(dir);
   const std::string x = (dir / "x.wav").string(), rec = (dir / "air.wav").string();
   const std::string out = (dir / "agent.out").string(), err = (dir / "agent.err").string();
-  ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + x + " drive --speed 50 --duration 1").exit_code, 0);
+  ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + x + " drive --speed 50 --duration 1").exit_code,
+            0);
 
   const std::string script =
-      std::string(DTMF_AGENT_PATH) + " --audio default --ack-out default --cmd-vel log --db none > " + out + " 2> " + err +
+      std::string(DTMF_AGENT_PATH) + " --audio default --ack-out default --cmd-vel log --db none > " + out + " 2> " +
+      err +
       " & agent=$!; "
-      "parecord --device=air.monitor --rate=48000 --channels=1 --file-format=wav " + rec + " & recorder=$!; "
+      "parecord --device=air.monitor --rate=48000 --channels=1 --file-format=wav " +
+      rec +
+      " & recorder=$!; "
       // The chords start once the agent listens, plus 0.5 s: a fixed 1.5 s was not always
       // enough for a loaded machine, and an agent that starts mid-chord hears a fragment.
-      "for i in $(seq 200); do grep -q 'audio threads' " + err + " && break; sleep 0.1; done; "
-      "sleep 0.5; paplay --device=air " + x + "; sleep 2; "
+      "for i in $(seq 200); do grep -q 'audio threads' " +
+      err +
+      " && break; sleep 0.1; done; "
+      "sleep 0.5; paplay --device=air " +
+      x +
+      "; sleep 2; "
       "kill -INT $recorder; kill -TERM $agent; wait $agent; status=$?; wait $recorder; exit $status";
   const auto r = run_command(script);
   const auto agent_log = run_command("cat " + err).out;

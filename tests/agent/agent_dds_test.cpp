@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <thread>
@@ -29,26 +29,31 @@ class AgentDds : public ::testing::Test {
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::filesystem::path dir_ = std::filesystem::path(::testing::TempDir()) / ("agent-dds-" + std::to_string(::getpid()));
+  std::filesystem::path dir_ =
+      std::filesystem::path(::testing::TempDir()) / ("agent-dds-" + std::to_string(::getpid()));
   const int domain_ = 150 + ::getpid() % 50;
 };
 
 }  // namespace
 
 TEST_F(AgentDds, DrivesOverTwistStampedAndStopsWhenTheDurationEnds) {
-  ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + path("x.wav") + " drive --speed 50 --duration 2").exit_code, 0);
+  ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + path("x.wav") + " drive --speed 50 --duration 2")
+                .exit_code,
+            0);
   const std::string topic = "cmd_vel_" + std::to_string(::getpid());
   test_support::CmdVelSubscriber subscriber(domain_, "rt/" + topic, true);
 
   // --realtime: the recording is heard as if live, so the stream is paced like a robot's.
-  const auto r = run_command("ROS_DOMAIN_ID=" + std::to_string(domain_) + " " + DTMF_AGENT_PATH + " --audio wav:" +
-                             path("x.wav") + " --cmd-vel dds --topic /" + topic + " --db none --realtime --frame-id base_link");
+  const auto r =
+      run_command("ROS_DOMAIN_ID=" + std::to_string(domain_) + " " + DTMF_AGENT_PATH + " --audio wav:" + path("x.wav") +
+                  " --cmd-vel dds --topic /" + topic + " --db none --realtime --frame-id base_link");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   ASSERT_TRUE(subscriber.wait_for(60, std::chrono::seconds(5))) << subscriber.samples().size() << " samples\n" << r.out;
   const auto samples = subscriber.samples();
 
   const double period_s = 1.0 / 20;
-  const double duration_s = std::get<command::DriveForDuration>(command::quantised(command::DriveForDuration{50, 2})).duration_s;
+  const double duration_s =
+      std::get<command::DriveForDuration>(command::quantised(command::DriveForDuration{50, 2})).duration_s;
   int first_move = -1, first_stop = -1;
   for (int i = 0; i < static_cast<int>(samples.size()); ++i) {
     const auto& s = samples[static_cast<std::size_t>(i)];
@@ -67,22 +72,25 @@ TEST_F(AgentDds, DrivesOverTwistStampedAndStopsWhenTheDurationEnds) {
   }
   ASSERT_GE(first_move, 0);
   ASSERT_GT(first_stop, first_move);
-  const double moved_s = stamp_s(samples[static_cast<std::size_t>(first_stop)]) - stamp_s(samples[static_cast<std::size_t>(first_move)]);
+  const double moved_s =
+      stamp_s(samples[static_cast<std::size_t>(first_stop)]) - stamp_s(samples[static_cast<std::size_t>(first_move)]);
   EXPECT_GE(moved_s, duration_s - period_s);
   EXPECT_LE(moved_s, duration_s + period_s);
   EXPECT_EQ(samples.back().linear.x, 0.0);
   // Stamps are wall-clock times of now, not of some epoch.
-  EXPECT_NEAR(stamp_s(samples.back()), std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count(), 30);
+  EXPECT_NEAR(stamp_s(samples.back()),
+              std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count(), 30);
 }
 
 TEST_F(AgentDds, SigtermPublishesZeroBeforeExiting) {
   // A continuous drive in an endless stream of silence after it: stop it with SIGTERM.
-  ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + path("d.wav") + " drive --speed 100").exit_code, 0);
+  ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + path("d.wav") + " drive --speed 100").exit_code,
+            0);
   ASSERT_EQ(run_command("sox " + path("d.wav") + " " + path("long.wav") + " pad 0 60").exit_code, 0);
   const std::string topic = "cmd_vel_term_" + std::to_string(::getpid());
   test_support::CmdVelSubscriber subscriber(domain_, "rt/" + topic, false);
-  const std::string command = "ROS_DOMAIN_ID=" + std::to_string(domain_) + " " + DTMF_AGENT_PATH + " --audio wav:" +
-                              path("long.wav") + " --cmd-vel dds --message twist --topic " + topic +
+  const std::string command = "ROS_DOMAIN_ID=" + std::to_string(domain_) + " " + DTMF_AGENT_PATH +
+                              " --audio wav:" + path("long.wav") + " --cmd-vel dds --message twist --topic " + topic +
                               " --db none --realtime & pid=$!; sleep 5; kill -TERM $pid; wait $pid";
   const auto r = run_command(command);
   ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -97,8 +105,9 @@ TEST_F(AgentDds, SigtermPublishesZeroBeforeExiting) {
 
 TEST_F(AgentDds, ABadDomainFailsBeforeListening) {
   ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + path("s.wav") + " stop").exit_code, 0);
-  const auto r = run_command(std::string(DTMF_AGENT_PATH) + " --audio wav:" + path("s.wav") + " --cmd-vel dds --db none --ros-domain-id 232 2>&1; ROS_DOMAIN_ID=abc " +
-                             DTMF_AGENT_PATH + " --audio wav:" + path("s.wav") + " --cmd-vel dds --db none");
+  const auto r = run_command(std::string(DTMF_AGENT_PATH) + " --audio wav:" + path("s.wav") +
+                             " --cmd-vel dds --db none --ros-domain-id 232 2>&1; ROS_DOMAIN_ID=abc " + DTMF_AGENT_PATH +
+                             " --audio wav:" + path("s.wav") + " --cmd-vel dds --db none");
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_NE(r.out.find("ROS_DOMAIN_ID"), std::string::npos) << r.out;
 }
@@ -107,13 +116,14 @@ TEST_F(AgentDds, ABadDomainFailsBeforeListening) {
 // (robot_agent/stop_guard.h, a second process) must put zero on cmd_vel. Prints the time from
 // the kill to the first zero (the target is 0.5 s; bench/ has no timed assertions, nor does this).
 TEST_F(AgentDds, AKilledAgentsStopGuardPutsZeroOnCmdVel) {
-  ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + path("d.wav") + " drive --speed 100").exit_code, 0);
+  ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + path("d.wav") + " drive --speed 100").exit_code,
+            0);
   ASSERT_EQ(run_command("sox " + path("d.wav") + " " + path("long.wav") + " pad 0 60").exit_code, 0);
   const std::string topic = "cmd_vel_kill_" + std::to_string(::getpid());
   test_support::CmdVelSubscriber subscriber(domain_, "rt/" + topic, true);
   const int agent = test_support::start_process("ROS_DOMAIN_ID=" + std::to_string(domain_) + " " + DTMF_AGENT_PATH +
-                                                    " --audio wav:" + path("long.wav") + " --cmd-vel dds --topic " + topic +
-                                                    " --db none --realtime",
+                                                    " --audio wav:" + path("long.wav") + " --cmd-vel dds --topic " +
+                                                    topic + " --db none --realtime",
                                                 path("agent.log"));
   const auto moving = [&] {
     for (const auto& s : subscriber.samples()) {
@@ -137,7 +147,8 @@ TEST_F(AgentDds, AKilledAgentsStopGuardPutsZeroOnCmdVel) {
     }
     if (!first_zero) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  ASSERT_TRUE(first_zero) << "no zero on cmd_vel within 5 s of SIGKILL\n" << run_command("cat " + path("agent.log")).out;
+  ASSERT_TRUE(first_zero) << "no zero on cmd_vel within 5 s of SIGKILL\n"
+                          << run_command("cat " + path("agent.log")).out;
   std::printf("first zero on cmd_vel %.1f ms after SIGKILL\n",
               std::chrono::duration<double, std::milli>(*first_zero - killed).count());
 
@@ -146,7 +157,8 @@ TEST_F(AgentDds, AKilledAgentsStopGuardPutsZeroOnCmdVel) {
   const auto at = log.find("stop guard pid ");
   ASSERT_NE(at, std::string::npos) << log;
   const int guard = std::stoi(log.substr(at + 15));
-  for (int i = 0; i < 50 && test_support::process_running(guard); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  for (int i = 0; i < 50 && test_support::process_running(guard); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   EXPECT_FALSE(test_support::process_running(guard));
   log = run_command("cat " + path("agent.log")).out;
   EXPECT_NE(log.find("stop guard: the agent has ended; zero published on rt/" + topic), std::string::npos) << log;

@@ -69,7 +69,8 @@ TEST_F(AgentOffline, DrivesAbout011MpsForAbout2SecondsThenZeroAndAcksEveryFrame)
 
 TEST_F(AgentOffline, ACorruptedChordIsNackedAndNothingMoves) {
   // A real command whose parameter chord gets one tone moved: the CRC no longer fits.
-  const auto sent = run_command(std::string(DTMFCTL_PATH) + " encode --json --wav " + path("good.wav") + " drive --speed 80");
+  const auto sent =
+      run_command(std::string(DTMFCTL_PATH) + " encode --json --wav " + path("good.wav") + " drive --speed 80");
   const auto frames = json_lines(sent.out);
   ASSERT_EQ(frames.size(), 3u);
   auto audio = physical::read_audio_file(path("good.wav"), 48000);
@@ -78,7 +79,8 @@ TEST_F(AgentOffline, ACorruptedChordIsNackedAndNothingMoves) {
   tones[3] += tones[3] + step < 16001 ? step : -step;  // the CRC nibble one off
   const LinkProfile& p = seed_profile();
   const auto start = static_cast<std::size_t>(p.samples_for_ms(2000));
-  std::fill(audio.begin() + static_cast<long>(start), audio.begin() + static_cast<long>(start) + p.samples_for_ms(800), 0.0f);
+  std::fill(audio.begin() + static_cast<long>(start), audio.begin() + static_cast<long>(start) + p.samples_for_ms(800),
+            0.0f);
   signal::add_chord(std::span(audio).subspan(start, static_cast<std::size_t>(p.samples_for_ms(800))), tones,
                     p.tones.tone_amplitude, p.tones.edge_ms, p.sample_rate_hz);
   physical::write_wav_file(path("bad.wav"), audio, 48000);
@@ -100,7 +102,8 @@ TEST_F(AgentOffline, StereoAnd44kRecordingsWork) {
   const auto r = agent(path("t44s.wav"));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   bool turned = false;
-  for (const auto& line : json_lines(r.out)) turned = turned || std::abs(line["angular_rps"].get<double>() - 1.42) < 0.05;
+  for (const auto& line : json_lines(r.out))
+    turned = turned || std::abs(line["angular_rps"].get<double>() - 1.42) < 0.05;
   EXPECT_TRUE(turned) << r.out;
 }
 
@@ -171,10 +174,12 @@ TEST_F(AgentOffline, NoAudioDeviceStopsTheAgentWithWhatToDo) {
 // number, in order; and a seed drive's three ACKs.
 TEST_F(AgentOffline, DecodeRepliesHearsTheAgentsAnswersNamingEachFrame) {
   const auto sent = json_lines(
-      run_command(std::string(DTMFCTL_PATH) + " encode --json --profile fast --wav " + path("f.wav") + " sequence").out);
+      run_command(std::string(DTMFCTL_PATH) + " encode --json --profile fast --wav " + path("f.wav") + " sequence")
+          .out);
   ASSERT_EQ(sent.size(), 27u);
   ASSERT_EQ(agent(path("f.wav"), "--profile fast --ack-out wav:" + path("f_acks.wav")).exit_code, 0);
-  const auto r = run_command(std::string(DTMFCTL_PATH) + " decode --json --replies --profile fast " + path("f_acks.wav"));
+  const auto r =
+      run_command(std::string(DTMFCTL_PATH) + " decode --json --replies --profile fast " + path("f_acks.wav"));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto replies = json_lines(r.out);
   ASSERT_EQ(replies.size(), sent.size()) << r.out;

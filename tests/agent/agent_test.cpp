@@ -3,8 +3,8 @@
 
 #include "agent.h"
 #include "command/word_codec.h"
-#include "link/sender_path.h"
 #include "link/link.h"
+#include "link/sender_path.h"
 #include "physical/wav_file.h"
 #include "reliability/command_frame.h"
 #include "signal/hop_synthesizer.h"
@@ -29,7 +29,8 @@ class RecordingOutput : public CmdVelOutput {
 };
 
 // What the agent plays for an intact (ACK) or broken (NACK) frame of `profile`.
-std::vector<float> answer(const LinkProfile& profile, bool intact, std::optional<std::uint8_t> sequence = std::nullopt) {
+std::vector<float> answer(const LinkProfile& profile, bool intact,
+                          std::optional<std::uint8_t> sequence = std::nullopt) {
   link::Reception r;
   r.intact = intact;
   r.sequence = sequence;

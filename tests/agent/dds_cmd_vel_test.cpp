@@ -61,9 +61,8 @@ class DdsCmdVelTest : public ::testing::Test {
 };
 
 std::chrono::system_clock::time_point stamp_at(std::int64_t sec, std::int64_t nanosec) {
-  return std::chrono::system_clock::time_point(
-      std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::seconds(sec) +
-                                                                      std::chrono::nanoseconds(nanosec)));
+  return std::chrono::system_clock::time_point(std::chrono::duration_cast<std::chrono::system_clock::duration>(
+      std::chrono::seconds(sec) + std::chrono::nanoseconds(nanosec)));
 }
 
 // Designated initializers would be shorter, but GCC 12 warns on every field left out.

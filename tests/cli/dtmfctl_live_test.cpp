@@ -40,13 +40,16 @@ class DtmfctlLive : public ::testing::Test {
     fs::create_directories(kDir);
     const std::string db = std::getenv("DTMF_DB_URL") ? std::getenv("DTMF_DB_URL") : "none";
     agent_ = start(std::string(DTMF_AGENT_PATH) + " --audio default --ack-out default --cmd-vel sim --db " + db +
-                       " --spill-file " + (kDir / "agent.spill").string(), "agent.log");
+                       " --spill-file " + (kDir / "agent.spill").string(),
+                   "agent.log");
     port_ = free_port();
-    server_ = start(std::string(DTMF_SERVER_PATH) + " --address 127.0.0.1 --port " + std::to_string(port_) + " --db " + db +
-                        " --spill-file " + (kDir / "server.spill").string(), "server.log");
+    server_ = start(std::string(DTMF_SERVER_PATH) + " --address 127.0.0.1 --port " + std::to_string(port_) + " --db " +
+                        db + " --spill-file " + (kDir / "server.spill").string(),
+                    "server.log");
     deaf_port_ = free_port();
     deaf_ = start(std::string(DTMF_SERVER_PATH) + " --address 127.0.0.1 --port " + std::to_string(deaf_port_) +
-                      " --audio-out wav:" + (kDir / "deaf.wav").string() + " --audio-in none --db none", "deaf.log");
+                      " --audio-out wav:" + (kDir / "deaf.wav").string() + " --audio-in none --db none",
+                  "deaf.log");
     wait_healthy(port_);
     wait_healthy(deaf_port_);
     // New PulseAudio streams deliver their first seconds irregularly (see tests/e2e).
@@ -68,7 +71,8 @@ class DtmfctlLive : public ::testing::Test {
 TEST_F(DtmfctlLive, DriveShowsEveryFrameAndExitsZeroWhenConfirmed) {
   const auto r = run_command(ctl("drive --speed 50 --duration 1") + " < /dev/null");
   EXPECT_EQ(r.exit_code, 0) << r.out;
-  for (const char* frame : {"frame 1/3", "frame 2/3", "frame 3/3"}) EXPECT_NE(r.out.find(frame), std::string::npos) << r.out;
+  for (const char* frame : {"frame 1/3", "frame 2/3", "frame 3/3"})
+    EXPECT_NE(r.out.find(frame), std::string::npos) << r.out;
   std::size_t acks = 0;
   for (std::size_t at = r.out.find("ACK after"); at != std::string::npos; at = r.out.find("ACK after", at + 1)) ++acks;
   EXPECT_EQ(acks, 3u) << r.out;
@@ -84,8 +88,8 @@ TEST_F(DtmfctlLive, JsonGivesOneObjectPerEvent) {
     EXPECT_EQ(line["frame_count"], 3);
     EXPECT_EQ(line["frame"].get<std::string>().size(), 16u);
   }
-  EXPECT_EQ(events, (std::vector<std::string>{"queued", "transmitting", "ack", "transmitting", "ack", "transmitting", "ack",
-                                              "confirmed"}));
+  EXPECT_EQ(events, (std::vector<std::string>{"queued", "transmitting", "ack", "transmitting", "ack", "transmitting",
+                                              "ack", "confirmed"}));
 }
 
 TEST_F(DtmfctlLive, WithoutATerminalAnUnconfirmedFrameFailsOrContinuesAsTold) {
@@ -99,11 +103,13 @@ TEST_F(DtmfctlLive, WithoutATerminalAnUnconfirmedFrameFailsOrContinuesAsTold) {
 
 TEST_F(DtmfctlLive, OnATerminalThePersonIsAskedContinueRetransmitAbort) {
   // script(1) gives dtmfctl a pseudo-terminal; the answers come through it: retransmit, then continue.
-  const auto r = run_command("(sleep 4; echo r; sleep 4; echo c) | script -qfec '" + ctl("reset", deaf_port_) + "' /dev/null");
+  const auto r =
+      run_command("(sleep 4; echo r; sleep 4; echo c) | script -qfec '" + ctl("reset", deaf_port_) + "' /dev/null");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   std::size_t asked = 0;
   for (std::size_t at = r.out.find("[c]ontinue / [r]etransmit / [a]bort?"); at != std::string::npos;
-       at = r.out.find("[c]ontinue / [r]etransmit / [a]bort?", at + 1)) ++asked;
+       at = r.out.find("[c]ontinue / [r]etransmit / [a]bort?", at + 1))
+    ++asked;
   EXPECT_EQ(asked, 2u) << r.out;
   EXPECT_NE(r.out.find("attempt 3"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("reset: continued"), std::string::npos) << r.out;
@@ -119,7 +125,8 @@ TEST_F(DtmfctlLive, BadValuesAreUsageErrorsAndAMissingServerIsOneLine) {
   EXPECT_NE(r.out.find("cannot reach dtmf-server at 127.0.0.1:1"), std::string::npos) << r.out;
   EXPECT_EQ(run_command(ctl("health")).exit_code, 0);
   // Connection flags before the subcommand, as kubectl and grpcurl users write them.
-  r = run_command(std::string(DTMFCTL_PATH) + " --server 127.0.0.1:" + std::to_string(port_) + " --json runs --limit 1");
+  r = run_command(std::string(DTMFCTL_PATH) + " --server 127.0.0.1:" + std::to_string(port_) +
+                  " --json runs --limit 1");
   EXPECT_EQ(r.exit_code, 0) << r.out;
 }
 
@@ -127,8 +134,8 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   dtmf::test_support::AirRecording air((kDir / "air.wav").string());
   const auto r = run_command(ctl("sequence --label general") + " < /dev/null");
   const dtmf::LinkProfile& seed = dtmf::seed_profile();
-  const auto split = air.split_chords(seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
-                                      seed.robot_detector.bandpass_high_hz);
+  const auto split =
+      air.split_chords(seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz, seed.robot_detector.bandpass_high_hz);
   for (const auto& s : split) {
     std::printf("the air split a chord %.2f s into the recording: %.0f ms, %.0f ms of silence, %.0f ms\n", s.start_s,
                 s.first_ms, s.gap_ms, s.second_ms);
@@ -154,10 +161,11 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   // extra receptions than split chords, and each of them a frame that was sent.
   EXPECT_LE(report[0]["false_positives"].get<long>(), static_cast<long>(split.size()));
   const std::string run_id = report[0]["run_id"];
-  const auto unsent = run_command(
-      "psql \"$DTMF_DB_URL\" -tAc \"SELECT count(*) FROM run_receptions('" + run_id +
-          "'::uuid) r WHERE r.crc_ok AND NOT EXISTS (SELECT 1 FROM frame_attempts a WHERE a.run_id = '" + run_id +
-          "'::uuid AND a.frame = r.frame)\"", false);
+  const auto unsent =
+      run_command("psql \"$DTMF_DB_URL\" -tAc \"SELECT count(*) FROM run_receptions('" + run_id +
+                      "'::uuid) r WHERE r.crc_ok AND NOT EXISTS (SELECT 1 FROM frame_attempts a WHERE a.run_id = '" +
+                      run_id + "'::uuid AND a.frame = r.frame)\"",
+                  false);
   EXPECT_EQ(unsent.out, "0\n") << "frames heard that were never sent";
   std::printf("%s\n", run_command(ctl("report")).out.c_str());
 

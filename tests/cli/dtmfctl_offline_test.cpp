@@ -145,7 +145,8 @@ TEST_F(Dtmfctl, HelpListsSubcommandsAndExitCodes) {
   // The connection and output flags are the top level's, listed once.
   for (const std::string flag : {"--server", "--tls-ca", "--token-file", "--json"}) {
     int listed = 0;  // option lines: "  --flag ..."
-    for (std::size_t at = r.out.find("\n  " + flag); at != std::string::npos; at = r.out.find("\n  " + flag, at + 1)) ++listed;
+    for (std::size_t at = r.out.find("\n  " + flag); at != std::string::npos; at = r.out.find("\n  " + flag, at + 1))
+      ++listed;
     EXPECT_EQ(listed, 1) << flag << "\n" << r.out;
   }
 }

@@ -49,8 +49,7 @@ TEST(WordCodec, NoParameterWordIsEverTheResetWord) {
 }
 
 TEST(WordCodec, RoundTripIsWithinHalfAStepForEveryField) {
-  for (const FieldSpec* field : {&kDurationField, &kSpeedField6, &kRotationField6, &kSpeedField12,
-                                 &kRotationField12}) {
+  for (const FieldSpec* field : {&kDurationField, &kSpeedField6, &kRotationField6, &kSpeedField12, &kRotationField12}) {
     const double step = field_step(*field);
     for (int i = 0; i <= 1000; ++i) {
       const double value = field->min + (field->max - field->min) * i / 1000.0;

@@ -36,9 +36,11 @@ TEST(Migrations, BuildTheSchemaFromAnEmptyDatabase) {
   for (const char* table : {"test_runs", "commands", "frame_attempts", "receptions", "schema_migrations"}) {
     EXPECT_TRUE(db.query<bool>(std::string("SELECT to_regclass('") + table + "') IS NOT NULL")) << table;
   }
-  EXPECT_TRUE(db.query<bool>("SELECT to_regprocedure('run_report(uuid,double precision,double precision)') IS NOT NULL"));
+  EXPECT_TRUE(
+      db.query<bool>("SELECT to_regprocedure('run_report(uuid,double precision,double precision)') IS NOT NULL"));
   EXPECT_TRUE(db.query<bool>("SELECT to_regprocedure('store_rows(jsonb)') IS NOT NULL"));
-  EXPECT_TRUE(db.query<bool>("SELECT to_regprocedure('run_frames(bigint,double precision,double precision)') IS NOT NULL"));
+  EXPECT_TRUE(
+      db.query<bool>("SELECT to_regprocedure('run_frames(bigint,double precision,double precision)') IS NOT NULL"));
   EXPECT_EQ(db.query<std::string>("SELECT frame_bits(45789)"), "1011001011011101");
 }
 

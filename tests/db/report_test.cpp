@@ -154,8 +154,11 @@ TEST(RunReport, ReproducesTheSeedsNoisePollutedTable) {
 
   // The same report by run number, and the run in the runs view.
   const auto number = tx.exec("SELECT number FROM test_runs WHERE id = '" + run.id + "'")[0][0].as<long>();
-  EXPECT_EQ(tx.exec("SELECT success_rate_pct FROM run_report(" + std::to_string(number) + "::bigint)")[0][0].as<double>(), 98.46);
-  EXPECT_EQ(tx.exec("SELECT transmissions_sent FROM runs WHERE number = " + std::to_string(number))[0][0].as<int>(), 65);
+  EXPECT_EQ(
+      tx.exec("SELECT success_rate_pct FROM run_report(" + std::to_string(number) + "::bigint)")[0][0].as<double>(),
+      98.46);
+  EXPECT_EQ(tx.exec("SELECT transmissions_sent FROM runs WHERE number = " + std::to_string(number))[0][0].as<int>(),
+            65);
 
   // run_frames: every chord once, in order, with the same matches as the report.
   const pqxx::result frames = tx.exec("SELECT * FROM run_frames(" + std::to_string(number) + "::bigint)");

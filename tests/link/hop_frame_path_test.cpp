@@ -35,7 +35,7 @@ std::vector<float> frame_audio(const command::Command& c, std::uint8_t sequence)
 }
 
 const std::vector<command::Command> kEveryKind = {
-    command::Reset{}, command::Stop{}, command::DriveForDuration{50, 2}, command::TurnForDuration{-25, 1.5},
+    command::Reset{},          command::Stop{},    command::DriveForDuration{50, 2}, command::TurnForDuration{-25, 1.5},
     command::DriveForward{80}, command::Turn{33.3}};
 }  // namespace
 
@@ -118,7 +118,8 @@ TEST(HopFramePath, AtMinusTenDbSnrFramesAreHeardWithNoWrongAccept) {
     if (k < 0 || k >= kFrames || bits[static_cast<std::size_t>(k)] != r.bits) {
       ++wrong;
       const bool sent_anywhere = std::find(bits.begin(), bits.end(), r.bits) != bits.end();
-      std::printf("wrong accept at %.1f ms (slot %ld): %s\n", r.start_ms, k, sent_anywhere ? "a frame sent in another slot" : "never sent");
+      std::printf("wrong accept at %.1f ms (slot %ld): %s\n", r.start_ms, k,
+                  sent_anywhere ? "a frame sent in another slot" : "never sent");
     } else {
       ++accepted[static_cast<std::size_t>(k)];
     }
@@ -137,7 +138,8 @@ TEST(HopFramePath, AHeldChordOrSilenceExecutesNothing) {
   for (int i = 0; i < 19; ++i) held.insert(held.end(), frame.begin(), frame.begin() + static_cast<long>(chord));
   held.insert(held.end(), 5000, 0.0f);
   for (const auto& r : receive(held)) {
-    ADD_FAILURE() << "a verdict at " << r.start_ms << " ms: " << (r.frame ? "accepted " + std::to_string(r.bits) : "NACK");
+    ADD_FAILURE() << "a verdict at " << r.start_ms
+                  << " ms: " << (r.frame ? "accepted " + std::to_string(r.bits) : "NACK");
   }
   EXPECT_TRUE(receive(std::vector<float>(96000, 0.0f)).empty());
 }

@@ -23,7 +23,7 @@ std::vector<float> noise(const char* kind, double dbfs, double seconds, std::uin
   config.noise = physical::parse_noise(kind, dbfs);
   config.seed = seed;
   return test_support::through_channel(std::vector<float>(static_cast<std::size_t>(seconds * P().sample_rate_hz), 0.0f),
-                                  P().sample_rate_hz, 1.0, config, 0);
+                                       P().sample_rate_hz, 1.0, config, 0);
 }
 
 int accepted(const std::vector<link::ReceivedFrame>& frames) {
@@ -77,7 +77,8 @@ TEST(NegativeAudio, AChordMissingAnyOneToneYieldsNothing) {
     const signal::Chord chord = signal::chord_for(P().tones, frame);
     for (std::size_t missing = 0; missing < 4; ++missing) {
       std::vector<double> three;
-      for (std::size_t b = 0; b < 4; ++b) if (b != missing) three.push_back(chord[b]);
+      for (std::size_t b = 0; b < 4; ++b)
+        if (b != missing) three.push_back(chord[b]);
       std::vector<float> audio(48000, 0.0f);
       const auto sound = signal::synthesize_chord(P(), three, P().timing.chord_ms);
       audio.insert(audio.end(), sound.begin(), sound.end());

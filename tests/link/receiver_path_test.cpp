@@ -36,7 +36,8 @@ TEST_P(SequenceAtDistance, AllFramesHeardOnceInOrderAndEveryCommandExecuted) {
   room.reverb.rt60_s = 0.3;
   room.reverb.wet = 0.2;
   room.clock_offset_ppm = 50;
-  const auto heard_audio = test_support::through_channel(link::render_frames(p, frames), p.sample_rate_hz, GetParam(), room);
+  const auto heard_audio =
+      test_support::through_channel(link::render_frames(p, frames), p.sample_rate_hz, GetParam(), room);
   const auto received = test_support::receive(p, heard_audio);
 
   ASSERT_EQ(received.size(), frames.size());
@@ -45,7 +46,8 @@ TEST_P(SequenceAtDistance, AllFramesHeardOnceInOrderAndEveryCommandExecuted) {
     EXPECT_EQ(received[i].frame, frames[i].frame) << i;
     EXPECT_TRUE(received[i].crc_ok) << i;
     EXPECT_NEAR(received[i].start_ms, link::frame_start_ms(p, i) + GetParam() / 0.343, 60) << i;
-    if (received[i].event && received[i].event->command) executed.push_back(command::describe(*received[i].event->command));
+    if (received[i].event && received[i].event->command)
+      executed.push_back(command::describe(*received[i].event->command));
   }
   std::vector<std::string> expected;
   for (const auto& c : command::seed_test_sequence()) {
@@ -58,8 +60,9 @@ INSTANTIATE_TEST_SUITE_P(Metres, SequenceAtDistance, ::testing::Values(1.0, 4.0,
 
 TEST(ReceiverPath, ACorruptedChordIsHeardButFailsTheCrcAndChangesNothing) {
   const LinkProfile& p = seed_profile();
-  std::vector<link::PlannedFrame> frames = {link::plan_word(p, command::kResetWord),
-                                            link::plan_word(p, static_cast<command::Word>(command::Mode::DriveForward))};
+  std::vector<link::PlannedFrame> frames = {
+      link::plan_word(p, command::kResetWord),
+      link::plan_word(p, static_cast<command::Word>(command::Mode::DriveForward))};
   // One tone moved: bits 0..3 (the CRC band) changed, so the CRC no longer matches.
   link::PlannedFrame bad = link::plan_word(p, 0x800);
   bad.frame ^= 0x0003;

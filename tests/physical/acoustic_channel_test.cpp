@@ -25,7 +25,8 @@ std::vector<float> run(AcousticChannel& channel, const std::vector<float>& in) {
 
 std::vector<float> tone(double hz, double seconds, double amplitude = 0.5) {
   std::vector<float> x(static_cast<std::size_t>(seconds * kRate));
-  for (std::size_t i = 0; i < x.size(); ++i) x[i] = static_cast<float>(amplitude * std::sin(2 * std::numbers::pi * hz * i / kRate));
+  for (std::size_t i = 0; i < x.size(); ++i)
+    x[i] = static_cast<float>(amplitude * std::sin(2 * std::numbers::pi * hz * i / kRate));
   return x;
 }
 
@@ -47,7 +48,8 @@ TEST(AcousticChannel, SoundArrivesAfterDistanceOverTheSpeedOfSound) {
     const double expected = 1000 + d / kSpeedOfSoundMps * kRate;
     // The FIR spreads the click over a few samples around its centre.
     std::size_t loudest = 0;
-    for (std::size_t i = 0; i < out.size(); ++i) if (std::abs(out[i]) > std::abs(out[loudest])) loudest = i;
+    for (std::size_t i = 0; i < out.size(); ++i)
+      if (std::abs(out[i]) > std::abs(out[loudest])) loudest = i;
     EXPECT_NEAR(static_cast<double>(loudest), expected, 1.0) << d;
   }
 }
@@ -116,7 +118,9 @@ TEST(AcousticChannel, PinkNoiseFallsThreeDecibelsPerOctave) {
   auto band_db = [&](double lo) {
     double sum = 0;
     int n = 0;
-    for (auto k = static_cast<std::size_t>(lo / analyzer.bin_hz()); k < static_cast<std::size_t>(lo * 1.2 / analyzer.bin_hz()); ++k, ++n) sum += power[k];
+    for (auto k = static_cast<std::size_t>(lo / analyzer.bin_hz());
+         k < static_cast<std::size_t>(lo * 1.2 / analyzer.bin_hz()); ++k, ++n)
+      sum += power[k];
     return 10 * std::log10(sum / n);
   };
   // Per-bin power of pink noise halves per octave: -3 dB from 2 to 4 kHz and 4 to 8 kHz.
@@ -151,7 +155,7 @@ TEST(AcousticChannel, ReverberationLeavesATailThatDecaysWithRt60) {
   burst.resize(kRate * 2, 0.0f);
   const auto out = run(channel, burst);
   const auto at = [&](double s) { return rms(std::span(out).subspan(static_cast<std::size_t>(s * kRate), 2400)); };
-  EXPECT_GT(at(0.3), 1e-3);              // still ringing 0.1 s after the burst
+  EXPECT_GT(at(0.3), 1e-3);  // still ringing 0.1 s after the burst
   const double decay_db = 20 * std::log10(at(0.7) / at(0.3));
   EXPECT_NEAR(decay_db, -60 * 0.4 / 0.5, 12);  // about 60 dB per RT60
   AcousticChannel dry(kRate, {});

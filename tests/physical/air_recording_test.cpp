@@ -15,9 +15,13 @@ namespace {
 const dtmf::LinkProfile& seed = dtmf::seed_profile();
 constexpr int kRateHz = 48000;
 
-void append_silence(std::vector<float>& air, double ms) { air.resize(air.size() + static_cast<std::size_t>(ms * kRateHz / 1000)); }
+void append_silence(std::vector<float>& air, double ms) {
+  air.resize(air.size() + static_cast<std::size_t>(ms * kRateHz / 1000));
+}
 
-void append(std::vector<float>& air, const std::vector<float>& audio) { air.insert(air.end(), audio.begin(), audio.end()); }
+void append(std::vector<float>& air, const std::vector<float>& audio) {
+  air.insert(air.end(), audio.begin(), audio.end());
+}
 
 }  // namespace
 
@@ -36,7 +40,7 @@ TEST(AirRecording, AChordWithAnUnderrunInItIsOneSplitChord) {
   append_silence(air, 500);
 
   const auto split = find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
-                                      seed.robot_detector.bandpass_high_hz);
+                                       seed.robot_detector.bandpass_high_hz);
   ASSERT_EQ(split.size(), 1u);
   EXPECT_NEAR(split[0].start_s, 1.5, 0.02);
   EXPECT_NEAR(split[0].first_ms, 300, 20);
@@ -54,5 +58,6 @@ TEST(AirRecording, WholeChordsWithAnAckOverThemAreNotSplit) {
     append_silence(air, 200);
   }
   EXPECT_TRUE(find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
-                                      seed.robot_detector.bandpass_high_hz).empty());
+                                seed.robot_detector.bandpass_high_hz)
+                  .empty());
 }

@@ -11,7 +11,8 @@ using namespace dtmf::physical;
 namespace {
 
 // Parses `args` as a program with the channel flags and one positional argument would.
-program::ChannelSetup setup(const std::vector<std::string>& args, double default_reverb_s = 0, std::string* positional = nullptr) {
+program::ChannelSetup setup(const std::vector<std::string>& args, double default_reverb_s = 0,
+                            std::string* positional = nullptr) {
   CLI::App app{"test"};
   program::ChannelFlags flags;
   flags.reverb_rt60_s = default_reverb_s;
@@ -37,10 +38,31 @@ std::string error_of(const std::vector<std::string>& args) {
 
 TEST(ChannelFlags, AnImageSourceRoomWithEveryPartGiven) {
   std::string file;
-  const auto s = setup({"--room", "4x5x2.7", "--wall-reflection", "0.8", "--wall-reflection", "floor=125:0.9,8000:0.99",
-                        "--mic-at", "1,1.5,0.05", "--speaker-at", "3,4,0.8", "--room-seed", "9", "--mic-response", "cheap-mic",
-                        "--whine", "9000:-40", "--whine", "12000:-50", "in.wav", "--radial-speed-mps", "0.22",
-                        "--radial-range-m", "1:6", "--clock-ppm", "-3000"},
+  const auto s = setup({"--room",
+                        "4x5x2.7",
+                        "--wall-reflection",
+                        "0.8",
+                        "--wall-reflection",
+                        "floor=125:0.9,8000:0.99",
+                        "--mic-at",
+                        "1,1.5,0.05",
+                        "--speaker-at",
+                        "3,4,0.8",
+                        "--room-seed",
+                        "9",
+                        "--mic-response",
+                        "cheap-mic",
+                        "--whine",
+                        "9000:-40",
+                        "--whine",
+                        "12000:-50",
+                        "in.wav",
+                        "--radial-speed-mps",
+                        "0.22",
+                        "--radial-range-m",
+                        "1:6",
+                        "--clock-ppm",
+                        "-3000"},
                        0, &file);
   EXPECT_EQ(file, "in.wav") << "a repeatable flag takes one value each time";
   ASSERT_TRUE(s.config.room.shoebox);
@@ -78,8 +100,9 @@ TEST(ChannelFlags, TheOldFlagsStillWorkAndTheOldReverberatorStepsAsideForARoom) 
 TEST(ChannelFlags, CombinationsThatMakeNoSenseAreRefusedNamingTheFlags) {
   EXPECT_NE(error_of({"--rir", "a.wav", "--room", "4x4x3"}).find("--rir and --room"), std::string::npos);
   EXPECT_NE(error_of({"--mic-at", "1,1,1"}).find("give --room too"), std::string::npos);
-  EXPECT_NE(error_of({"--room", "7x9x3", "--speaker-at", "1,1,1", "--distance", "3"}).find("--distance and --speaker-at"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of({"--room", "7x9x3", "--speaker-at", "1,1,1", "--distance", "3"}).find("--distance and --speaker-at"),
+      std::string::npos);
   EXPECT_NE(error_of({"--room", "7x9x3", "--reverb-rt60", "0.5"}).find("--reverb-rt60 and a room"), std::string::npos);
   EXPECT_NE(error_of({"--room", "7x9x3", "--room-rt60", "1", "--wall-reflection", "0.8"}).find("only the floor's"),
             std::string::npos);

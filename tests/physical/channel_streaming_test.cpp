@@ -40,7 +40,8 @@ std::vector<float> run(const ChannelConfig& config, std::span<const float> in, s
 TEST(ChannelStreaming, AnySplitOfTheStreamGivesTheSameSamplesAndASeedTheSameNoise) {
   const auto in = tone(7000, 1.5, 0.3);
   const auto whole = run(everything(1), in, in.size());
-  for (std::size_t block : {1u, 480u, 1023u, 8192u}) EXPECT_EQ(run(everything(1), in, block), whole) << "blocks of " << block;
+  for (std::size_t block : {1u, 480u, 1023u, 8192u})
+    EXPECT_EQ(run(everything(1), in, block), whole) << "blocks of " << block;
   EXPECT_NE(run(everything(2), in, 480), whole) << "another seed, other noise";
 }
 

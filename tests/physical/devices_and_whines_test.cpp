@@ -17,7 +17,8 @@ double rms_at(std::span<const float> x, double hz) {
   const auto cycles = std::floor(static_cast<double>(x.size()) * hz / kRate);
   const auto n = static_cast<std::size_t>(cycles * kRate / hz);
   std::complex<double> acc = 0;
-  for (std::size_t i = 0; i < n; ++i) acc += static_cast<double>(x[i]) * std::polar(1.0, -2 * std::numbers::pi * hz * static_cast<double>(i) / kRate);
+  for (std::size_t i = 0; i < n; ++i)
+    acc += static_cast<double>(x[i]) * std::polar(1.0, -2 * std::numbers::pi * hz * static_cast<double>(i) / kRate);
   return 2 * std::abs(acc) / static_cast<double>(n) / std::sqrt(2.0);
 }
 

@@ -20,7 +20,8 @@ double worst_spur_db(std::span<const float> x, double hz, double guard_hz) {
   const std::size_t n = std::min(x.size(), fft.size());
   for (std::size_t i = 0; i < n; ++i) {
     const double w = 0.35875 - 0.48829 * std::cos(2 * std::numbers::pi * i / (n - 1)) +
-                     0.14128 * std::cos(4 * std::numbers::pi * i / (n - 1)) - 0.01168 * std::cos(6 * std::numbers::pi * i / (n - 1));
+                     0.14128 * std::cos(4 * std::numbers::pi * i / (n - 1)) -
+                     0.01168 * std::cos(6 * std::numbers::pi * i / (n - 1));
     buffer[i] = static_cast<float>(x[i] * w);
   }
   FftBins bins(fft.bins());
@@ -29,7 +30,8 @@ double worst_spur_db(std::span<const float> x, double hz, double guard_hz) {
   double main = 0, spur = 0;
   for (std::size_t k = 1; k < bins.size(); ++k) {
     const double f = static_cast<double>(k) * bin_hz;
-    (std::abs(f - hz) < guard_hz ? main : spur) = std::max(std::abs(f - hz) < guard_hz ? main : spur, static_cast<double>(std::abs(bins[k])));
+    (std::abs(f - hz) < guard_hz ? main : spur) =
+        std::max(std::abs(f - hz) < guard_hz ? main : spur, static_cast<double>(std::abs(bins[k])));
   }
   return 20 * std::log10(spur / main);
 }

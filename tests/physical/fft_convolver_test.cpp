@@ -74,7 +74,8 @@ TEST(FftConvolver, StreamsATwoAndAHalfSecondResponseManyTimesFasterThanRealTime)
   FftConvolver convolver(h);
   std::vector<float> y(x.size(), 0.0f);
   const auto start = std::chrono::steady_clock::now();
-  for (std::size_t i = 0; i < x.size(); i += 480) convolver.process_add(std::span(x).subspan(i, 480), std::span(y).subspan(i, 480));
+  for (std::size_t i = 0; i < x.size(); i += 480)
+    convolver.process_add(std::span(x).subspan(i, 480), std::span(y).subspan(i, 480));
   const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double speed = 10.0 / took_s;
   std::printf("[ figures  ] 2.5 s response, 10 ms blocks: %.0f x real time\n", speed);

@@ -33,7 +33,8 @@ TEST(ImageSourceRoom, DirectSoundFloorAndWallReflectionsArriveAtPathLengthOverTh
     double reflection;
     Point3 image;
   };
-  const Case cases[] = {{"floor", kFloor, 0.9, mirror(speaker, 2, 0.0)}, {"wall x=0", kWallX0, 0.8, mirror(speaker, 0, 0.0)}};
+  const Case cases[] = {{"floor", kFloor, 0.9, mirror(speaker, 2, 0.0)},
+                        {"wall x=0", kWallX0, 0.8, mirror(speaker, 0, 0.0)}};
   for (const auto& c : cases) {
     ShoeboxRoom room;
     room.size_m = {6, 5, 3};
@@ -102,10 +103,11 @@ TEST(ImageSourceRoom, ARoomWithRt60OfOneAndAHalfSecondsIsMadeInAFewSeconds) {
   const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto rt60 = rt60_t20_s(h, kRate);
   ASSERT_TRUE(rt60);
-  std::printf("[ figures  ] 7x9x3 m, floor 0.97: walls %.4f for RT60 1.5 s (Eyring with them: %.2f s); "
-              "T20 %.3f s, %.2f s long; calibration %.2f s (%d tries), total %.2f s\n",
-              tuned.reflection, eyring_rt60_s(tuned.room), *rt60, static_cast<double>(h.size()) / kRate, calibrate_s,
-              tuned.tries, total_s);
+  std::printf(
+      "[ figures  ] 7x9x3 m, floor 0.97: walls %.4f for RT60 1.5 s (Eyring with them: %.2f s); "
+      "T20 %.3f s, %.2f s long; calibration %.2f s (%d tries), total %.2f s\n",
+      tuned.reflection, eyring_rt60_s(tuned.room), *rt60, static_cast<double>(h.size()) / kRate, calibrate_s,
+      tuned.tries, total_s);
   EXPECT_NEAR(*rt60, 1.5, 0.15);
   EXPECT_LT(total_s, 8.0);
 }

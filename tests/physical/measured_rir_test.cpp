@@ -49,7 +49,8 @@ TEST(MeasuredRir, TheThreeRoomsLoadResampledTrimmedToTheirDirectSoundWithTheirRt
     int channels;
     double rt60_s;  // bench/rirs/README.md
   };
-  for (const Room& r : {Room{"seminar_room_clap.wav", 1, 0.63}, Room{"studio_live_room.wav", 2, 0.22}, Room{"smoking_room.wav", 2, 0.76}}) {
+  for (const Room& r : {Room{"seminar_room_clap.wav", 1, 0.63}, Room{"studio_live_room.wav", 2, 0.22},
+                        Room{"smoking_room.wav", 2, 0.76}}) {
     const MeasuredRir rir = load_measured_rir(rir_path(r.file), kRate);
     EXPECT_EQ(rir.file_rate_hz, 44100) << r.file;
     EXPECT_EQ(rir.file_channels, r.channels) << r.file;
@@ -61,14 +62,17 @@ TEST(MeasuredRir, TheThreeRoomsLoadResampledTrimmedToTheirDirectSoundWithTheirRt
     }
     EXPECT_NEAR(direct, 1.0, 1e-3) << r.file;
     EXPECT_GT(rir.samples[rir.direct_index], 0.0f) << r.file;
-    for (float s : std::span(rir.samples).first(rir.direct_index)) EXPECT_LT(std::abs(s), rir.samples[rir.direct_index]) << r.file;
+    for (float s : std::span(rir.samples).first(rir.direct_index))
+      EXPECT_LT(std::abs(s), rir.samples[rir.direct_index]) << r.file;
     const auto rt60 = rt60_t20_s(rir.samples, kRate);
     ASSERT_TRUE(rt60) << r.file;
     const auto bands = band_rt60_t20_s(rir.samples, kRate);
-    std::printf("[ figures  ] %-22s %.2f s at 48 kHz, RT60 (T20) %.3f s (README %.2f), DRR %.1f dB, T20 1/2/4/8 kHz: %.2f %.2f %.2f %.2f s\n",
-                r.file, static_cast<double>(rir.samples.size()) / kRate, *rt60, r.rt60_s,
-                direct_to_reverberant_db(rir.samples, kRate), bands[3].value_or(0), bands[4].value_or(0),
-                bands[5].value_or(0), bands[6].value_or(0));
+    std::printf(
+        "[ figures  ] %-22s %.2f s at 48 kHz, RT60 (T20) %.3f s (README %.2f), DRR %.1f dB, T20 1/2/4/8 kHz: %.2f %.2f "
+        "%.2f %.2f s\n",
+        r.file, static_cast<double>(rir.samples.size()) / kRate, *rt60, r.rt60_s,
+        direct_to_reverberant_db(rir.samples, kRate), bands[3].value_or(0), bands[4].value_or(0), bands[5].value_or(0),
+        bands[6].value_or(0));
     EXPECT_NEAR(*rt60, r.rt60_s, 0.2 * r.rt60_s) << r.file;
   }
 }
@@ -93,11 +97,13 @@ TEST(MeasuredRir, AStereoFileAtAnyRateGivesItsChannelZeroNotTheAverage) {
   EXPECT_NEAR(near_echo / peak, 0.4f, 0.03f);
   // Nothing of the other channel: averaged, its louder click would have been taken for the
   // direct sound and channel 0's would follow 54 samples later.
-  for (std::size_t i = rir.direct_index + 30; i < rir.direct_index + 80; ++i) EXPECT_LT(std::abs(rir.samples[i]), 0.05f) << i;
+  for (std::size_t i = rir.direct_index + 30; i < rir.direct_index + 80; ++i)
+    EXPECT_LT(std::abs(rir.samples[i]), 0.05f) << i;
 }
 
 TEST(MeasuredRir, UnreadableEmptyAndSilentFilesAreRefusedByName) {
-  EXPECT_NE(error_of("/nonexistent/room.wav").find("cannot read the room impulse response '/nonexistent/room.wav'"), std::string::npos);
+  EXPECT_NE(error_of("/nonexistent/room.wav").find("cannot read the room impulse response '/nonexistent/room.wav'"),
+            std::string::npos);
   const std::string text = ::testing::TempDir() + "/not_audio.wav";
   std::ofstream(text) << "not audio";
   EXPECT_NE(error_of(text).find("cannot read"), std::string::npos);

@@ -126,10 +126,10 @@ TEST_F(PortAudioAir, AChordPlayedIntoTheAirIsHeardOnceWithItsBits) {
   // Sample 0 of the recording was captured about one hop before the first read returned.
   const double play_start_ms = ms_between(first_read, play_start) + hop_ms;
   const double latency_ms = heard[0].start_ms - play_start_ms;
-  std::printf("played at %.0f ms of the recording, chord found starting at %.0f ms "
-              "(latency %.0f ms), passed the debouncer at %.0f ms; write+drain took %.0f ms\n",
-              play_start_ms, heard[0].start_ms, latency_ms, heard[0].heard_ms,
-              ms_between(play_start, play_end));
+  std::printf(
+      "played at %.0f ms of the recording, chord found starting at %.0f ms "
+      "(latency %.0f ms), passed the debouncer at %.0f ms; write+drain took %.0f ms\n",
+      play_start_ms, heard[0].start_ms, latency_ms, heard[0].heard_ms, ms_between(play_start, play_end));
   RecordProperty("latency_ms", static_cast<int>(latency_ms));
   // A late-starting stream (sink still in its first 2 s block) shifts or cuts the chord.
   EXPECT_GT(latency_ms, -100);

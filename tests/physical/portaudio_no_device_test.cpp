@@ -19,8 +19,7 @@ class PortAudioNoDevice : public ::testing::Test {
  protected:
   void SetUp() override {
     const char* server = std::getenv("PULSE_SERVER");
-    ASSERT_TRUE(server && std::string(server) == "unix:/nonexistent")
-        << "run with PULSE_SERVER=unix:/nonexistent";
+    ASSERT_TRUE(server && std::string(server) == "unix:/nonexistent") << "run with PULSE_SERVER=unix:/nonexistent";
     const auto devices = list_audio_devices();
     if (!devices.empty()) {
       GTEST_SKIP() << "this machine has a sound card:\n" << format_device_list(devices);

@@ -40,8 +40,8 @@ TEST(RoomDecay, ATunedRoomMeasuresTheRt60AskedFor) {
     const auto h = image_source_response(tuned.room, speaker, mic, kRate, 3);
     const auto rt60 = rt60_t20_s(h, kRate);
     ASSERT_TRUE(rt60);
-    std::printf("[ figures  ] %gx%gx%g m asked RT60 %.2f s: walls %.4f, T20 %.3f s (Eyring %.2f s), %.2f s long\n", c.size.x,
-                c.size.y, c.size.z, c.rt60_s, tuned.reflection, *rt60, eyring_rt60_s(tuned.room),
+    std::printf("[ figures  ] %gx%gx%g m asked RT60 %.2f s: walls %.4f, T20 %.3f s (Eyring %.2f s), %.2f s long\n",
+                c.size.x, c.size.y, c.size.z, c.rt60_s, tuned.reflection, *rt60, eyring_rt60_s(tuned.room),
                 static_cast<double>(h.size()) / kRate);
     EXPECT_NEAR(*rt60, c.rt60_s, 0.1 * c.rt60_s);
     // Generated until it has decayed 60 dB: the last sample is far below the first.
@@ -71,8 +71,8 @@ TEST(RoomDecay, EachOctaveBandDecaysAsFastAsItsReflectionSays) {
   // 250 Hz to 8 kHz (125 Hz needs a longer response than such a room's to measure well).
   for (std::size_t b = 1; b < 7; ++b) {
     ASSERT_TRUE(rt60[0][b] && rt60[1][b]) << band_name(b);
-    std::printf("[ figures  ] band %-6s T20 %.3f s at reflection %.2f, %.3f s at %.2f\n", band_name(b).c_str(), *rt60[0][b],
-                r[0][b], *rt60[1][b], r[1][b]);
+    std::printf("[ figures  ] band %-6s T20 %.3f s at reflection %.2f, %.3f s at %.2f\n", band_name(b).c_str(),
+                *rt60[0][b], r[0][b], *rt60[1][b], r[1][b]);
     const int less = r[0][b] < r[1][b] ? 0 : 1;
     EXPECT_LT(*rt60[less][b] * 1.5, *rt60[1 - less][b]) << band_name(b);
     for (std::size_t c = 1; c < 7; ++c) {

@@ -17,8 +17,9 @@ using namespace dtmf::room_test;
 namespace {
 
 void print(const char* what, const FadeStats& s) {
-  std::printf("[ figures  ] %-44s %5.1f %% of 4-16 kHz more than 10 dB down, %4.1f %% more than 20 dB (%zu frequencies)\n",
-              what, 100 * s.fraction_10(), 100 * s.fraction_20(), s.frequencies);
+  std::printf(
+      "[ figures  ] %-44s %5.1f %% of 4-16 kHz more than 10 dB down, %4.1f %% more than 20 dB (%zu frequencies)\n",
+      what, 100 * s.fraction_10(), 100 * s.fraction_20(), s.frequencies);
 }
 
 }  // namespace

@@ -21,7 +21,8 @@ inline std::string rir_path(const std::string& name) { return std::string(DTMF_R
 inline std::vector<float> tone(double hz, double seconds, double amplitude = 0.5, int rate = kRate) {
   std::vector<float> x(static_cast<std::size_t>(seconds * rate));
   for (std::size_t i = 0; i < x.size(); ++i) {
-    x[i] = static_cast<float>(amplitude * std::sin(2 * std::numbers::pi * std::fmod(hz * static_cast<double>(i) / rate, 1.0)));
+    x[i] = static_cast<float>(amplitude *
+                              std::sin(2 * std::numbers::pi * std::fmod(hz * static_cast<double>(i) / rate, 1.0)));
   }
   return x;
 }
@@ -61,9 +62,11 @@ inline std::pair<double, double> peak_near(std::span<const float> h, double t, d
 }
 
 // All of `in` through the channel as one transmitter, in blocks of `block` samples.
-inline std::vector<float> through(physical::AcousticChannel& channel, std::span<const float> in, std::size_t block = 4800) {
+inline std::vector<float> through(physical::AcousticChannel& channel, std::span<const float> in,
+                                  std::size_t block = 4800) {
   std::vector<float> out;
-  for (std::size_t i = 0; i < in.size(); i += block) channel.process(in.subspan(i, std::min(block, in.size() - i)), out);
+  for (std::size_t i = 0; i < in.size(); i += block)
+    channel.process(in.subspan(i, std::min(block, in.size() - i)), out);
   return out;
 }
 
@@ -74,15 +77,18 @@ inline double peak_frequency_hz(std::span<const float> x, double low_hz, double 
   physical::FftReal buffer(fft.size(), 0.0f);
   const std::size_t n = std::min(x.size(), fft.size());
   for (std::size_t i = 0; i < n; ++i) {
-    buffer[i] = x[i] * static_cast<float>(0.5 - 0.5 * std::cos(2 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n - 1)));
+    buffer[i] = x[i] * static_cast<float>(0.5 - 0.5 * std::cos(2 * std::numbers::pi * static_cast<double>(i) /
+                                                               static_cast<double>(n - 1)));
   }
   physical::FftBins bins(fft.bins());
   fft.forward(buffer.data(), bins.data());
   const double bin_hz = static_cast<double>(rate) / static_cast<double>(fft.size());
   const auto lo = static_cast<std::size_t>(low_hz / bin_hz), hi = static_cast<std::size_t>(high_hz / bin_hz);
   std::size_t best = lo;
-  for (std::size_t k = lo; k <= hi; ++k) if (std::abs(bins[k]) > std::abs(bins[best])) best = k;
-  const double a = std::log(std::abs(bins[best - 1])), b = std::log(std::abs(bins[best])), c = std::log(std::abs(bins[best + 1]));
+  for (std::size_t k = lo; k <= hi; ++k)
+    if (std::abs(bins[k]) > std::abs(bins[best])) best = k;
+  const double a = std::log(std::abs(bins[best - 1])), b = std::log(std::abs(bins[best])),
+               c = std::log(std::abs(bins[best + 1]));
   return (static_cast<double>(best) + 0.5 * (a - c) / (a - 2 * b + c)) * bin_hz;
 }
 
@@ -115,7 +121,9 @@ inline FadeStats fade_stats(std::span<const float> h, int rate = kRate) {
   std::copy(h.begin(), h.end(), x.begin());
   physical::FftBins bins(fft.bins());
   fft.forward(x.data(), bins.data());
-  auto power = [&](double f) { return static_cast<double>(std::norm(bins[static_cast<std::size_t>(std::lround(f / kStepHz)) * m])); };
+  auto power = [&](double f) {
+    return static_cast<double>(std::norm(bins[static_cast<std::size_t>(std::lround(f / kStepHz)) * m]));
+  };
   FadeStats s;
   for (double f = kLowHz; f <= kHighHz; f += kStepHz) {
     double mean = 0;

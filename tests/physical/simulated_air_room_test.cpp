@@ -22,7 +22,8 @@ ChannelConfig shoebox_air() {
 
 std::size_t loudest(std::span<const float> x) {
   std::size_t best = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) if (std::abs(x[i]) > std::abs(x[best])) best = i;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (std::abs(x[i]) > std::abs(x[best])) best = i;
   return best;
 }
 

@@ -35,7 +35,8 @@ void write_raw(const std::string& path, const std::vector<float>& interleaved, i
   info.format = format;
   SNDFILE* f = sf_open(path.c_str(), SFM_WRITE, &info);
   ASSERT_NE(f, nullptr) << sf_strerror(nullptr);
-  sf_writef_float(f, interleaved.data(), static_cast<sf_count_t>(interleaved.size() / static_cast<std::size_t>(channels)));
+  sf_writef_float(f, interleaved.data(),
+                  static_cast<sf_count_t>(interleaved.size() / static_cast<std::size_t>(channels)));
   sf_close(f);
 }
 

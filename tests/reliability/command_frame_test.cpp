@@ -49,7 +49,8 @@ TEST(CommandFrame, PacksAddressSequencePayloadAndCrcAndUnpacksThem) {
 TEST(FrameCode, CorrectsTwoWrongTonesOrFourUnheardAndRefusesThree) {
   std::mt19937 rng(7);
   for (int trial = 0; trial < 2000; ++trial) {
-    const CommandFrame f{0, static_cast<std::uint8_t>(rng() & 15), static_cast<std::uint32_t>(rng() & kFramePayloadMask)};
+    const CommandFrame f{0, static_cast<std::uint8_t>(rng() & 15),
+                         static_cast<std::uint32_t>(rng() & kFramePayloadMask)};
     const std::uint64_t bits = pack(f);
     const CodeSymbols clean = encode_symbols(bits);
     std::array<int, kCodeSymbols> order{};
@@ -105,7 +106,8 @@ TEST(FrameCode, RandomTonesNeverDecode) {
   int decoded = 0;
   for (int trial = 0; trial < 300000; ++trial) {
     std::array<SymbolReading, kCodeSymbols> r{};
-    for (auto& s : r) s = {static_cast<std::uint8_t>(rng() & 31), 1.0f + static_cast<float>(rng() % 100) / 10.0f, rng() % 8 != 0};
+    for (auto& s : r)
+      s = {static_cast<std::uint8_t>(rng() & 31), 1.0f + static_cast<float>(rng() % 100) / 10.0f, rng() % 8 != 0};
     decoded += decode_frame(r, 4) ? 1 : 0;
   }
   EXPECT_EQ(decoded, 0);

@@ -68,8 +68,8 @@ TEST(RetryController, TheCallerMayRetransmitAsOftenAsItLikes) {
 }
 
 TEST(RetryController, ContinueAndGiveUpEndTheFrame) {
-  for (auto [decision, end] : {std::pair{Decision::Continue, RetryState::Continued},
-                               std::pair{Decision::GiveUp, RetryState::Failed}}) {
+  for (auto [decision, end] :
+       {std::pair{Decision::Continue, RetryState::Continued}, std::pair{Decision::GiveUp, RetryState::Failed}}) {
     RetryController c(kSeedPolicy);
     c.start();
     c.on_transmit_started(0);

@@ -24,12 +24,17 @@ class LiveSystem::Recorder : public agent::CmdVelOutput {
 };
 
 LiveSystem::LiveSystem(LiveSystemOptions options)
-    : options_(std::move(options)), air_(options_.profile->sample_rate_hz, [this] {
-        physical::ChannelConfig air;
-        air.noise = options_.rir_file.empty() ? physical::parse_noise("white", -70) : physical::parse_noise("pink", -50);
-        air.room.rir_file = options_.rir_file;
-        return air;
-      }(), options_.air_block_ms) {
+    : options_(std::move(options)),
+      air_(
+          options_.profile->sample_rate_hz,
+          [this] {
+            physical::ChannelConfig air;
+            air.noise =
+                options_.rir_file.empty() ? physical::parse_noise("white", -70) : physical::parse_noise("pink", -50);
+            air.room.rir_file = options_.rir_file;
+            return air;
+          }(),
+          options_.air_block_ms) {
   const LinkProfile& profile = *options_.profile;
   auto sender = air_.add_station("sender", 0.0);
   auto robot = air_.add_station("robot", options_.distance_m);
@@ -39,8 +44,10 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   no_db.database = std::string();
   robot_store_ = std::make_unique<store::Store>(no_db);
   robot_microphone_ = std::move(robot.microphone);
-  if (options_.robot_answers) robot_replies_ = std::make_unique<agent::LiveReplyPlayer>(std::move(robot.speaker), std::chrono::milliseconds(0));
-  else robot_replies_ = std::make_unique<Mute>();
+  if (options_.robot_answers)
+    robot_replies_ = std::make_unique<agent::LiveReplyPlayer>(std::move(robot.speaker), std::chrono::milliseconds(0));
+  else
+    robot_replies_ = std::make_unique<Mute>();
   recorder_ = std::make_unique<Recorder>();
   timeline_ = std::make_unique<agent::Timeline>(true);
   agent::AgentOptions agent_options;
@@ -52,8 +59,8 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
     if (frame.word) heard_.words.push_back(*frame.word);
     if (frame.command) heard_.commands.push_back(command::describe(*frame.command));
   };
-  agent_ = std::make_unique<agent::Agent>(agent_options, *robot_replies_,
-                                          std::vector<agent::CmdVelOutput*>{recorder_.get()}, *robot_store_, *timeline_);
+  agent_ = std::make_unique<agent::Agent>(
+      agent_options, *robot_replies_, std::vector<agent::CmdVelOutput*>{recorder_.get()}, *robot_store_, *timeline_);
   robot_ = std::thread([this] {
     std::vector<float> block(static_cast<std::size_t>(agent_->block_samples()));
     while (!stopping_) {

@@ -58,7 +58,8 @@ TEST(ServerWithDatabase, RunTestSequenceSendsSixtyFiveFramesAndReportsTheRun) {
               report.response_time_min_ms(), report.response_time_max_ms());
   // The robot side logs nothing here (the in-process agent has no database), so the
   // receptions are the agent tests' business; the sender's rows are all in.
-  EXPECT_EQ(db.query<long>("SELECT count(*) FROM commands WHERE outcome = 'confirmed' AND run_id = '" + run_id + "'"), 27);
+  EXPECT_EQ(db.query<long>("SELECT count(*) FROM commands WHERE outcome = 'confirmed' AND run_id = '" + run_id + "'"),
+            27);
 
   grpc::ClientContext missing_context;
   v1::GetReportRequest missing;
@@ -81,7 +82,8 @@ TEST(ServerWithDatabase, StartAndEndRunFrameManualCommands) {
   EXPECT_EQ(client->StartRun(&again_context, start, &started).error_code(), grpc::StatusCode::FAILED_PRECONDITION);
 
   v1::StopRequest stop;
-  ASSERT_TRUE(read_stream<v1::StopResponse>([&](grpc::ClientContext& c) { return client->Stop(&c, stop); }).status.ok());
+  ASSERT_TRUE(
+      read_stream<v1::StopResponse>([&](grpc::ClientContext& c) { return client->Stop(&c, stop); }).status.ok());
   grpc::ClientContext end_context;
   v1::EndRunRequest end;
   end.set_run_id(started.run_id());

@@ -27,7 +27,8 @@ v1::DriveRequest fast_drive(double speed, double duration_s) {
 TEST(ServerFast, ADriveIsOneNamedFrameConfirmedAndExecutedWhole) {
   LiveSystem system;
   auto client = system.client();
-  const auto result = read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, fast_drive(50, 3)); });
+  const auto result =
+      read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, fast_drive(50, 3)); });
   ASSERT_TRUE(result.status.ok()) << result.status.error_message();
   const std::string expected = command::describe(command::quantised_payload(command::DriveForDuration{50, 3}));
   int transmitted = 0, acked = 0;
@@ -65,7 +66,8 @@ TEST(ServerFast, ConsecutiveCommandsGetConsecutiveSequenceNumbersAndMixWithTheSe
   auto client = system.client();
   std::optional<std::uint8_t> next;  // the number after the previous command's
   for (double speed : {10.0, 20.0, 30.0}) {
-    const auto r = read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, fast_drive(speed, 1)); });
+    const auto r =
+        read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, fast_drive(speed, 1)); });
     ASSERT_TRUE(r.status.ok()) << r.status.error_message();
     const auto sequence = static_cast<std::uint8_t>(r.responses.back().progress().sequence());
     if (next) {
@@ -94,7 +96,8 @@ TEST(ServerFast, AFrameRetransmittedAfterLostAcksIsExecutedOnce) {
   auto client = system.client();
   v1::DriveRequest request = fast_drive(40, 2);
   request.mutable_options()->set_on_unconfirmed(v1::UNCONFIRMED_POLICY_FAIL);
-  const auto result = read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, request); });
+  const auto result =
+      read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, request); });
   EXPECT_EQ(result.status.error_code(), grpc::StatusCode::ABORTED) << result.status.error_message();
   int transmissions = 0;
   for (const auto& r : result.responses) {

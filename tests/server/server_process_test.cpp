@@ -169,7 +169,10 @@ class SecuredServerProcess : public ServerProcess {
   std::string extra_flags() override {
     const std::string cert = path("cert.pem"), key = path("key.pem");
     EXPECT_EQ(test_support::run_command("openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=localhost "
-                                        "-addext subjectAltName=DNS:localhost -keyout " + key + " -out " + cert).exit_code, 0);
+                                        "-addext subjectAltName=DNS:localhost -keyout " +
+                                        key + " -out " + cert)
+                  .exit_code,
+              0);
     std::ofstream(path("token")) << "tok-123\n";
     return "--tls-cert " + cert + " --tls-key " + key + " --auth-token-file " + path("token");
   }
@@ -213,8 +216,9 @@ TEST(ServerFlags, UsageErrorsAndABusyPortAreClear) {
                            "--on-unconfirmed", "--max-queue", "Exit codes"}) {
     EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
   }
-  const auto tls = test_support::run_command(std::string(DTMF_SERVER_PATH) +
-                                             " --audio-out wav:/dev/null --audio-in none --db none --tls-cert /nonexistent.pem --tls-key /nonexistent.key");
+  const auto tls = test_support::run_command(
+      std::string(DTMF_SERVER_PATH) +
+      " --audio-out wav:/dev/null --audio-in none --db none --tls-cert /nonexistent.pem --tls-key /nonexistent.key");
   EXPECT_EQ(tls.exit_code, 1);
   EXPECT_NE(tls.out.find("/nonexistent"), std::string::npos) << tls.out;
 }

@@ -4,8 +4,8 @@
 
 #include <cmath>
 #include <future>
-#include <set>
 #include <limits>
+#include <set>
 
 #include "command/word_codec.h"
 #include "live_system.h"
@@ -31,7 +31,8 @@ TEST(Server, DriveStreamsEveryFrameAndEndsConfirmedWithTheRobotMoving) {
   v1::DriveRequest request;
   request.set_speed_percent(50);
   request.set_duration_s(3);
-  const auto result = read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, request); });
+  const auto result =
+      read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, request); });
   ASSERT_TRUE(result.status.ok()) << result.status.error_message();
   const auto events = events_of(result.responses);
   EXPECT_EQ(events.front(), v1::FRAME_EVENT_QUEUED);
@@ -92,30 +93,40 @@ TEST(Server, BadRequestsAreInvalidArgumentNamingTheFieldAndNeverReachTheAir) {
       {"rotation infinite", [&] { return turn(std::numeric_limits<double>::infinity(), 1.0); }, "rotation_percent"},
       {"policy unspecified", [&] { return drive(50, 1.0, 0); }, "options.on_unconfirmed"},
       {"policy unknown", [&] { return drive(50, 1.0, 42); }, "options.on_unconfirmed"},
-      {"decision unspecified", [&] {
+      {"decision unspecified",
+       [&] {
          v1::DecideRequest r;
          r.set_command_id("x");
          grpc::ClientContext c;
          v1::DecideResponse out;
          return client->Decide(&c, r, &out);
-       }, "decision"},
-      {"decision without command", [&] {
+       },
+       "decision"},
+      {"decision without command",
+       [&] {
          v1::DecideRequest r;
          r.set_decision(v1::DECISION_CONTINUE);
          grpc::ClientContext c;
          v1::DecideResponse out;
          return client->Decide(&c, r, &out);
-       }, "command_id"},
-      {"unknown profile", [&] {
+       },
+       "command_id"},
+      {"unknown profile",
+       [&] {
          v1::DriveRequest r;
          r.set_speed_percent(10);
          r.mutable_options()->set_profile("slow");
          return read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, r); }).status;
-       }, "options.profile"},
-      {"sequence without label", [&] {
+       },
+       "options.profile"},
+      {"sequence without label",
+       [&] {
          v1::RunTestSequenceRequest r;
-         return read_stream<v1::RunTestSequenceResponse>([&](grpc::ClientContext& c) { return client->RunTestSequence(&c, r); }).status;
-       }, "label"},
+         return read_stream<v1::RunTestSequenceResponse>(
+                    [&](grpc::ClientContext& c) { return client->RunTestSequence(&c, r); })
+             .status;
+       },
+       "label"},
   };
   for (const Case& c : cases) {
     const grpc::Status status = c.call();
@@ -256,7 +267,8 @@ TEST(Server, AFullQueueAnswersResourceExhausted) {
     calls.push_back(std::async(std::launch::async, [&system] {
       auto client = system.client();
       v1::ResetRequest r;
-      return read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); }).status.error_code();
+      return read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); })
+          .status.error_code();
     }));
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
@@ -275,9 +287,11 @@ TEST(Server, ABearerTokenIsRequiredWhenConfigured) {
   const auto denied = read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); });
   EXPECT_EQ(denied.status.error_code(), grpc::StatusCode::UNAUTHENTICATED);
   EXPECT_NE(denied.status.error_message().find("Bearer"), std::string::npos);
-  const auto wrong = read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); }, "guess");
+  const auto wrong =
+      read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); }, "guess");
   EXPECT_EQ(wrong.status.error_code(), grpc::StatusCode::UNAUTHENTICATED);
-  const auto allowed = read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); }, "s3cret");
+  const auto allowed =
+      read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); }, "s3cret");
   EXPECT_TRUE(allowed.status.ok()) << allowed.status.error_message();
 }
 

@@ -2,8 +2,8 @@
 // caller sends is either stored verbatim and read back intact, or refused with
 // INVALID_ARGUMENT naming its field, before anything is queued or stored. Nothing may end
 // in the store's `.rejected` file (a row PostgreSQL refused after the API answered OK).
-#include <gtest/gtest.h>
 #include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 
 #include <filesystem>
@@ -85,7 +85,8 @@ TEST_F(ServerText, HostileLabelsAndNotesAreStoredVerbatimOrRefusedNamingTheField
   // Stored verbatim: whatever is valid text, SQL and markup included.
   const std::vector<std::pair<std::string, std::string>> stored = {
       {"Robert'); DROP TABLE test_runs; --", "'; SELECT pg_sleep(10); -- \\x00 $$ $1"},
-      {"\xF0\x9F\xA4\x96 robot \xF0\x9F\x94\x8A 4 m \xE2\x80\x94 \xE6\xB5\x8B\xE8\xAF\x95", "line one\nline two\ttabbed \xF0\x9F\x98\x80"},
+      {"\xF0\x9F\xA4\x96 robot \xF0\x9F\x94\x8A 4 m \xE2\x80\x94 \xE6\xB5\x8B\xE8\xAF\x95",
+       "line one\nline two\ttabbed \xF0\x9F\x98\x80"},
       {"<script>alert(1)</script> %s %n {} \\N", "\"quoted\" \\backslash\\ ${HOME} `ls`"},
       {std::string(100, 'x'), std::string(2000, 'y')},  // exactly the limits
   };

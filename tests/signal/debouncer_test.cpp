@@ -112,11 +112,11 @@ TEST(Debouncer, ARaggedLastWindowDoesNotLetTheTailPassAgain) {
 
 TEST(Debouncer, TheSameChordAgainThroughAReverberantGapPassesAgain) {
   Debouncer d(seed());
-  sound(d, 7, 100, 900);                // an 0.8 s chord, passed at 100 ms
-  EXPECT_FALSE(hit(d, 7, 950, 0.2));    // the 0.2 s gap, filled by the tail
+  sound(d, 7, 100, 900);              // an 0.8 s chord, passed at 100 ms
+  EXPECT_FALSE(hit(d, 7, 950, 0.2));  // the 0.2 s gap, filled by the tail
   EXPECT_FALSE(hit(d, 7, 1000, 0.05));
   EXPECT_FALSE(hit(d, 7, 1050, 0.05));
-  EXPECT_FALSE(hit(d, 7, 1100, 0.8));   // the same chord again, 1 s after the first: its onset re-arms and counts
+  EXPECT_FALSE(hit(d, 7, 1100, 0.8));  // the same chord again, 1 s after the first: its onset re-arms and counts
   EXPECT_TRUE(hit(d, 7, 1150, 1.0));
 }
 

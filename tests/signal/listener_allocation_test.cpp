@@ -117,7 +117,8 @@ TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFram
   noise.add_to(audio);
   std::vector<float> replies;
   for (int s = 0; s <= 16; ++s) {
-    const auto r = signal::synthesize_hopped_reply(profile, reliability::reply_codeword({s < 16, static_cast<std::uint8_t>(s % 16)}));
+    const auto r = signal::synthesize_hopped_reply(
+        profile, reliability::reply_codeword({s < 16, static_cast<std::uint8_t>(s % 16)}));
     replies.insert(replies.end(), r.begin(), r.end());
     replies.resize(replies.size() + 2400, 0.0f);
   }
@@ -133,7 +134,8 @@ TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFram
       frames += path.feed(std::span<const float>(audio).subspan(at, std::min(block, audio.size() - at))).size();
     }
     for (std::size_t at = 0; at < replies.size(); at += block) {
-      answers += reply_listener.feed(std::span<const float>(replies).subspan(at, std::min(block, replies.size() - at))).size();
+      answers +=
+          reply_listener.feed(std::span<const float>(replies).subspan(at, std::min(block, replies.size() - at))).size();
     }
     EXPECT_EQ(g_allocations.load() - before, 0) << "block " << block;
     EXPECT_EQ(frames, sent) << "block " << block;

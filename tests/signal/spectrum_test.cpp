@@ -15,7 +15,8 @@ using namespace dtmf::signal;
 namespace {
 std::vector<float> sine(double hz, double amplitude, int n, int rate) {
   std::vector<float> s(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) s[static_cast<std::size_t>(i)] = static_cast<float>(amplitude * std::sin(2 * std::numbers::pi * hz * i / rate));
+  for (int i = 0; i < n; ++i)
+    s[static_cast<std::size_t>(i)] = static_cast<float>(amplitude * std::sin(2 * std::numbers::pi * hz * i / rate));
   return s;
 }
 }  // namespace

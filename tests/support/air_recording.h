@@ -42,7 +42,8 @@ inline std::vector<SplitChord> find_split_chords(const std::vector<float>& audio
   physical::FftReal in(frame);
   physical::FftBins out(fft.bins());
   std::vector<float> window(frame);
-  for (std::size_t i = 0; i < frame; ++i) window[i] = static_cast<float>(0.5 - 0.5 * std::cos(2 * std::numbers::pi * i / frame));
+  for (std::size_t i = 0; i < frame; ++i)
+    window[i] = static_cast<float>(0.5 - 0.5 * std::cos(2 * std::numbers::pi * i / frame));
   const double tone_power = std::pow(0.2 * static_cast<double>(frame) / 4.0, 2);  // a 0.2-amplitude tone, Hann window
   const double bin_hz = static_cast<double>(rate_hz) / static_cast<double>(frame);
 
@@ -61,8 +62,10 @@ inline std::vector<SplitChord> find_split_chords(const std::vector<float>& audio
   std::vector<Run> runs;
   for (std::size_t i = 0; i < on.size(); ++i) {
     if (!on[i]) continue;
-    if (!runs.empty() && runs.back().start + runs.back().frames == i) ++runs.back().frames;
-    else runs.push_back({i, 1});
+    if (!runs.empty() && runs.back().start + runs.back().frames == i)
+      ++runs.back().frames;
+    else
+      runs.push_back({i, 1});
   }
   std::vector<SplitChord> split;
   for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
@@ -80,8 +83,11 @@ inline std::vector<SplitChord> find_split_chords(const std::vector<float>& audio
 class AirRecording {
  public:
   explicit AirRecording(std::string wav_path) : path_(std::move(wav_path)) {
-    pid_ = start_process("parecord --device=air.monitor --rate=48000 --channels=1 --format=float32le "
-                         "--file-format=wav " + path_, path_ + ".log");
+    pid_ = start_process(
+        "parecord --device=air.monitor --rate=48000 --channels=1 --format=float32le "
+        "--file-format=wav " +
+            path_,
+        path_ + ".log");
   }
   ~AirRecording() { stop(); }
   AirRecording(const AirRecording&) = delete;

@@ -94,7 +94,8 @@ int main(int argc, char** argv) {
   dtmf::program::add_channel_flags(app, f.channel);
   app.add_option("--rate", f.sample_rate_hz, "sample rate, Hz")->check(CLI::Range(8000, 192000))->capture_default_str();
   app.add_option("--block-samples", f.block_samples, "most samples processed at a time")
-      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
   app.footer("Exit codes: 0 end of input, 1 a read or write failed, 2 bad usage.");
   if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
   return dtmf::program::run([&] { return run(f); },

@@ -58,7 +58,8 @@ class BufCurl : public ::testing::Test {
 
   // `buf curl` with gRPC over plaintext HTTP/2, as the README shows it.
   static dtmf::test_support::CommandResult buf_curl(const std::string& args, bool with_stderr = false) {
-    return run_command(std::string(DTMF_BUF_PATH) + " curl --protocol grpc --http2-prior-knowledge " + args, with_stderr);
+    return run_command(std::string(DTMF_BUF_PATH) + " curl --protocol grpc --http2-prior-knowledge " + args,
+                       with_stderr);
   }
   static std::string url(const std::string& method = "") {
     return "http://127.0.0.1:" + std::to_string(port_) + (method.empty() ? "" : "/" + method);
@@ -72,13 +73,14 @@ class BufCurl : public ::testing::Test {
 TEST_F(BufCurl, ListsEveryServiceAndMethodThroughReflection) {
   auto r = buf_curl("--list-services " + url());
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  for (const char* service : {"dtmf.v1.TeleopService", "grpc.health.v1.Health", "grpc.reflection.v1alpha.ServerReflection"}) {
+  for (const char* service :
+       {"dtmf.v1.TeleopService", "grpc.health.v1.Health", "grpc.reflection.v1alpha.ServerReflection"}) {
     EXPECT_NE(r.out.find(service), std::string::npos) << service << "\n" << r.out;
   }
   r = buf_curl("--list-methods " + url());
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  for (const char* method : {"dtmf.v1.TeleopService/Drive", "dtmf.v1.TeleopService/GetReport", "grpc.health.v1.Health/Check",
-                             "grpc.health.v1.Health/Watch"}) {
+  for (const char* method : {"dtmf.v1.TeleopService/Drive", "dtmf.v1.TeleopService/GetReport",
+                             "grpc.health.v1.Health/Check", "grpc.health.v1.Health/Watch"}) {
     EXPECT_NE(r.out.find(method), std::string::npos) << method << "\n" << r.out;
   }
 }
@@ -114,7 +116,8 @@ TEST_F(BufCurl, AFastDriveStreamsToConfirmedAndItsRunHasAReport) {
 
   r = buf_curl("-d '{\"run_id\": \"" + run_id + "\"}' " + url("dtmf.v1.TeleopService/EndRun"));
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  r = buf_curl("-d '{\"run_id\": \"" + run_id + "\", \"include_frames\": true}' " + url("dtmf.v1.TeleopService/GetReport"));
+  r = buf_curl("-d '{\"run_id\": \"" + run_id + "\", \"include_frames\": true}' " +
+               url("dtmf.v1.TeleopService/GetReport"));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto report = json_values(r.out).at(0);
   EXPECT_EQ(report["run"]["runId"], run_id);

@@ -29,21 +29,25 @@ using test_support::run_command;
 
 namespace {
 
-constexpr int kDomain = 30;  // TurtleBot3's ROS_DOMAIN_ID
-constexpr double kPeriodS = 0.050;  // the agent publishes at 20 Hz
+constexpr int kDomain = 30;                // TurtleBot3's ROS_DOMAIN_ID
+constexpr double kPeriodS = 0.050;         // the agent publishes at 20 Hz
 constexpr double kBurgerHalfSpeed = 0.11;  // 50 % of the Burger's 0.22 m/s
 
 double stamp_s(const CmdVelSample& s) { return s.stamp_sec + s.stamp_nanosec * 1e-9; }
-double wall_s(std::chrono::system_clock::time_point t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); }
+double wall_s(std::chrono::system_clock::time_point t) {
+  return std::chrono::duration<double>(t.time_since_epoch()).count();
+}
 bool is_zero(const CmdVelSample& s) {
-  return s.linear.x == 0 && s.linear.y == 0 && s.linear.z == 0 && s.angular.x == 0 && s.angular.y == 0 && s.angular.z == 0;
+  return s.linear.x == 0 && s.linear.y == 0 && s.linear.z == 0 && s.angular.x == 0 && s.angular.y == 0 &&
+         s.angular.z == 0;
 }
 
 // Any interface but lo would let discovery out: ctest runs this through in_netns.sh.
 bool only_loopback() {
   struct if_nameindex* names = if_nameindex();
   bool only_lo = names != nullptr;
-  for (auto* n = names; n != nullptr && n->if_name != nullptr; ++n) only_lo = only_lo && std::string(n->if_name) == "lo";
+  for (auto* n = names; n != nullptr && n->if_name != nullptr; ++n)
+    only_lo = only_lo && std::string(n->if_name) == "lo";
   if (names != nullptr) if_freenameindex(names);
   return only_lo;
 }
@@ -60,7 +64,9 @@ class FastDdsCmdVel : public ::testing::Test {
     ASSERT_TRUE(only_loopback()) << "run in a private network namespace: tests/interop/fastdds/in_netns.sh "
                                     "<this binary> (ctest does)";
     std::filesystem::create_directories(dir_);
-    ASSERT_EQ(run_command(std::string(DTMFCTL_PATH) + " encode --wav " + wav_ + " drive --speed 50 --duration 2").exit_code, 0);
+    ASSERT_EQ(
+        run_command(std::string(DTMFCTL_PATH) + " encode --wav " + wav_ + " drive --speed 50 --duration 2").exit_code,
+        0);
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
@@ -74,13 +80,16 @@ class FastDdsCmdVel : public ::testing::Test {
     interop::FastDdsCmdVelSubscriber strict(kDomain, "rt/cmd_vel", message, interop::ReaderDurability::TransientLocal);
     // No CYCLONEDDS_URI: the agent's DDS as it comes, as on a robot.
     AgentRun run;
-    run.agent = run_command("env -u CYCLONEDDS_URI ROS_DOMAIN_ID=" + std::to_string(kDomain) + " " + DTMF_AGENT_PATH +
-                            " --audio wav:" + wav_ + " --cmd-vel dds --topic /cmd_vel --db none --realtime " + extra_flags);
-    ros.wait([](const CmdVelState& s) {
-      bool moved = false;
-      for (const auto& v : s.samples) moved = moved || !is_zero(v);
-      return moved && is_zero(s.samples.back());
-    }, 2s);
+    run.agent =
+        run_command("env -u CYCLONEDDS_URI ROS_DOMAIN_ID=" + std::to_string(kDomain) + " " + DTMF_AGENT_PATH +
+                    " --audio wav:" + wav_ + " --cmd-vel dds --topic /cmd_vel --db none --realtime " + extra_flags);
+    ros.wait(
+        [](const CmdVelState& s) {
+          bool moved = false;
+          for (const auto& v : s.samples) moved = moved || !is_zero(v);
+          return moved && is_zero(s.samples.back());
+        },
+        2s);
     run.ros = ros.state();
     run.strict = strict.state();
     return run;
@@ -145,8 +154,8 @@ void expect_ros2_cmd_vel(const AgentRun& run, const std::string& type) {
   ASSERT_FALSE(s.samples.empty()) << run.agent.out;
   for (std::size_t i = 0; i < s.samples.size(); ++i) {
     const CmdVelSample& v = s.samples[i];
-    EXPECT_TRUE(v.encapsulation == 0x0000 || v.encapsulation == 0x0001) << "sample " << i << ": encapsulation 0x"
-                                                                          << std::hex << v.encapsulation;
+    EXPECT_TRUE(v.encapsulation == 0x0000 || v.encapsulation == 0x0001)
+        << "sample " << i << ": encapsulation 0x" << std::hex << v.encapsulation;
     const bool half_ahead = std::abs(v.linear.x - kBurgerHalfSpeed) < 1e-12 && v.linear.y == 0 && v.linear.z == 0 &&
                             v.angular.x == 0 && v.angular.y == 0 && v.angular.z == 0;
     EXPECT_TRUE(is_zero(v) || half_ahead)
@@ -183,8 +192,10 @@ TEST_F(FastDdsCmdVel, TwistStampedAsJazzySubscribes) {
     // Steady: one period apart (the final zero, at the end of the recording, comes sooner).
     if (i > 0) {
       const double step = stamp_s(s) - stamp_s(samples[i - 1]);
-      if (i + 1 < samples.size()) EXPECT_NEAR(step, kPeriodS, 0.001) << i;
-      else EXPECT_TRUE(step > 0 && step <= kPeriodS + 0.001) << step;
+      if (i + 1 < samples.size())
+        EXPECT_NEAR(step, kPeriodS, 0.001) << i;
+      else
+        EXPECT_TRUE(step > 0 && step <= kPeriodS + 0.001) << step;
     }
   }
   // The motion from its first velocity to its zero, by the stamps.

@@ -49,9 +49,9 @@ struct DiscoveredWriter {
 struct CmdVelState {
   std::vector<CmdVelSample> samples;
   std::vector<DiscoveredWriter> writers;
-  int matched_total = 0;                   // writers our reader has matched so far
-  int incompatible_qos = 0;                // on_requested_incompatible_qos calls
-  std::string incompatible_policy;         // the last policy named there, e.g. "DURABILITY"
+  int matched_total = 0;            // writers our reader has matched so far
+  int incompatible_qos = 0;         // on_requested_incompatible_qos calls
+  std::string incompatible_policy;  // the last policy named there, e.g. "DURABILITY"
 };
 
 enum class CmdVelMessage { TwistStamped, Twist };
