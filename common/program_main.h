@@ -4,6 +4,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -15,14 +16,18 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitUsage = 2;
 
-// Parses the command line; the exit code to leave with when that is all (help: 0, a bad
-// flag: 2 after CLI11 has said what was wrong), nothing when the program should go on.
+// Parses the command line; the exit code to leave with when that is all (help or --version:
+// 0, a bad flag: 2 after CLI11 has said what was wrong), nothing when the program should go on.
 inline std::optional<int> parse(CLI::App& app, int argc, char** argv) {
+  const std::string program = argc > 0 ? std::filesystem::path(argv[0]).filename().string() : "dtmf-teleop";
+  app.set_version_flag("--version", program + " " + DTMF_VERSION, "print the version and exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);

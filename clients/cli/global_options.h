@@ -21,6 +21,7 @@ struct GlobalOptions {
 };
 
 // Adds the options to `app` and lets every subcommand added afterwards fall through to it.
-void add_global_options(CLI::App& app, GlobalOptions& options);
+// Without `with_server` (a dtmfctl built without its live commands) only --json.
+void add_global_options(CLI::App& app, GlobalOptions& options, bool with_server = true);
 
 }  // namespace dtmf::cli

@@ -6,14 +6,22 @@
 #include <cstdio>
 #include <exception>
 
+#ifndef DTMF_CLI_LIVE
+#define DTMF_CLI_LIVE 0
+#endif
+
 #include "offline_commands.h"
-#include "server_connection.h"
-#include "program_main.h"
 #include "profile/link_profile.h"
+#include "program_main.h"
+#if DTMF_CLI_LIVE
+#include "server_connection.h"
+#endif
 
 int main(int argc, char** argv) {
-  CLI::App app{"dtmfctl: drive a TurtleBot3 by sound, and inspect the acoustic link offline.\n"
-               "Link profiles: " + dtmf::profile_names()};
+  CLI::App app{
+      "dtmfctl: drive a TurtleBot3 by sound, and inspect the acoustic link offline.\n"
+      "Link profiles: " +
+      dtmf::profile_names()};
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success (command confirmed), 1 runtime error (unreadable file, bad audio), 2 bad usage,\n"
@@ -30,23 +38,32 @@ int main(int argc, char** argv) {
 
   dtmf::cli::Action run;
   dtmf::cli::GlobalOptions global;
-  dtmf::cli::add_global_options(app, global);  // before the subcommands, which fall through to it
+  // Before the subcommands, which fall through to it.
+  dtmf::cli::add_global_options(app, global, /*with_server=*/DTMF_CLI_LIVE);
   dtmf::cli::add_encode_command(app, run, global);
   dtmf::cli::add_decode_command(app, run, global);
   dtmf::cli::add_simulate_command(app, run);
+#if DTMF_CLI_LIVE
   dtmf::cli::add_live_commands(app, run, global);
   dtmf::cli::add_run_commands(app, run, global);
+#else
+  app.footer(app.get_footer() + "\nThis dtmfctl was built without its live commands (cmake -DDTMF_CLI_LIVE=OFF).");
+#endif
 
   if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
   const auto report = [](const std::string& error) { std::fprintf(stderr, "dtmfctl: %s\n", error.c_str()); };
   return dtmf::program::run(
       [&] {
+#if DTMF_CLI_LIVE
         try {
           return run();
         } catch (const dtmf::cli::Unreachable& e) {
           report(e.what());
           return dtmf::cli::kExitUnreachable;
         }
+#else
+        return run();
+#endif
       },
       report);
 }

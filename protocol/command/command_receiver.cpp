@@ -8,19 +8,26 @@ namespace dtmf::command {
 
 std::string state_name(ReceiverState state) {
   switch (state) {
-    case ReceiverState::Idle: return "idle";
-    case ReceiverState::ModeSelect: return "mode_select";
-    case ReceiverState::AwaitingParameter: return "awaiting_parameter";
+    case ReceiverState::Idle:
+      return "idle";
+    case ReceiverState::ModeSelect:
+      return "mode_select";
+    case ReceiverState::AwaitingParameter:
+      return "awaiting_parameter";
   }
   return "unknown";
 }
 
 std::string event_kind_name(ReceiverEvent::Kind kind) {
   switch (kind) {
-    case ReceiverEvent::Kind::Reset: return "reset";
-    case ReceiverEvent::Kind::ModeSelected: return "mode_selected";
-    case ReceiverEvent::Kind::Command: return "command";
-    case ReceiverEvent::Kind::Ignored: return "ignored";
+    case ReceiverEvent::Kind::Reset:
+      return "reset";
+    case ReceiverEvent::Kind::ModeSelected:
+      return "mode_selected";
+    case ReceiverEvent::Kind::CommandReady:
+      return "command";
+    case ReceiverEvent::Kind::Ignored:
+      return "ignored";
   }
   return "unknown";
 }
@@ -31,8 +38,7 @@ ReceiverEvent CommandReceiver::go(ReceiverEvent::Kind kind, ReceiverState next) 
 }
 
 ReceiverEvent CommandReceiver::ignore(std::string reason) {
-  return ReceiverEvent{ReceiverEvent::Kind::Ignored, state_, pending_mode_, std::nullopt,
-                       std::move(reason)};
+  return ReceiverEvent{ReceiverEvent::Kind::Ignored, state_, pending_mode_, std::nullopt, std::move(reason)};
 }
 
 ReceiverEvent CommandReceiver::on_word(Word word) {
@@ -54,7 +60,7 @@ ReceiverEvent CommandReceiver::on_word(Word word) {
       if (*mode == Mode::ModeSelect) return ignore("already in mode_select");
       pending_mode_ = mode;
       if (*mode == Mode::Stop) {
-        ReceiverEvent event = go(ReceiverEvent::Kind::Command, ReceiverState::Idle);
+        ReceiverEvent event = go(ReceiverEvent::Kind::CommandReady, ReceiverState::Idle);
         event.command = Stop{};
         pending_mode_.reset();
         return event;
@@ -70,7 +76,7 @@ ReceiverEvent CommandReceiver::on_word(Word word) {
         pending_mode_.reset();
         return event;
       }
-      ReceiverEvent event = go(ReceiverEvent::Kind::Command, ReceiverState::Idle);
+      ReceiverEvent event = go(ReceiverEvent::Kind::CommandReady, ReceiverState::Idle);
       event.command = std::move(decoded.command);
       pending_mode_.reset();
       return event;

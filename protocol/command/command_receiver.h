@@ -22,7 +22,7 @@ struct ReceiverEvent {
   enum class Kind {
     Reset,         // RESET word: now in MODE_SELECT
     ModeSelected,  // a mode word: now waiting for its parameter word
-    Command,       // a complete command is ready to execute
+    CommandReady,  // a complete command is ready to execute
     Ignored,       // the word fit no transition; `reason` says why
   };
   Kind kind;

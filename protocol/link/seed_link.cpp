@@ -18,10 +18,14 @@ namespace {
 std::string event_detail(const command::ReceiverEvent& event) {
   using Kind = command::ReceiverEvent::Kind;
   switch (event.kind) {
-    case Kind::Reset: return "reset -> mode_select";
-    case Kind::ModeSelected: return "mode " + command::mode_name(*event.mode);
-    case Kind::Command: return "command " + command::describe(*event.command);
-    case Kind::Ignored: return "ignored: " + event.reason;
+    case Kind::Reset:
+      return "reset -> mode_select";
+    case Kind::ModeSelected:
+      return "mode " + command::mode_name(*event.mode);
+    case Kind::CommandReady:
+      return "command " + command::describe(*event.command);
+    case Kind::Ignored:
+      return "ignored: " + event.reason;
   }
   return "";
 }
@@ -107,7 +111,8 @@ int SeedLink::payload_bits(const command::Command& command) const {
 
 // Any of the 4096 words, not just the commands': the CRC and the tone plan see them all.
 TransmitFrame SeedLink::random_frame(std::uint64_t seed) const {
-  return transmit_frame(link::plan_word(profile(), static_cast<command::Word>(std::mt19937_64(seed)() & command::kWordMask)));
+  return transmit_frame(
+      link::plan_word(profile(), static_cast<command::Word>(std::mt19937_64(seed)() & command::kWordMask)));
 }
 
 double SeedLink::frame_start_ms(std::size_t index) const { return link::frame_start_ms(profile(), index); }
@@ -120,7 +125,9 @@ std::vector<float> SeedLink::answer_audio(const Reception& reception) const {
 
 int SeedLink::receiver_block_samples() const { return profile().hop_samples(); }
 
-std::unique_ptr<AnswerListener> SeedLink::answer_listener() const { return std::make_unique<SeedAnswerListener>(profile()); }
+std::unique_ptr<AnswerListener> SeedLink::answer_listener() const {
+  return std::make_unique<SeedAnswerListener>(profile());
+}
 
 int SeedLink::answer_block_samples() const { return profile().hop_samples(); }
 

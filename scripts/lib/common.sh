@@ -14,8 +14,19 @@ DTMF_PACKAGES=(
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
   espeak-ng sox openssl
   systemd  # systemd-analyze verify checks the units (tests/install)
+  clang-format  # tests/format: the code follows .clang-format
+  dpkg-dev lintian help2man file  # scripts/package: dpkg-shlibdeps, the package check, manual pages
   docker-compose  # tests/docker: validates docker/compose.yaml offline (no engine needed)
   python3 python3-pip python3-venv python3-grpcio python3-protobuf python3-pytest python3-matplotlib
+)
+
+# What a robot needs to build dtmf-agent and the offline dtmfctl (cmake -DBUILD_TESTING=OFF
+# -DDTMF_BUILD_SERVER=OFF -DDTMF_CLI_LIVE=OFF): no gRPC, Protocol Buffers or GoogleTest.
+# scripts/robot-build-check proves it in a fresh Debian root; the README lists the same.
+DTMF_ROBOT_PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libfftw3-dev libsndfile1-dev libsamplerate0-dev portaudio19-dev libasound2-dev libjack-jackd2-dev
+  libspdlog-dev libcli11-dev nlohmann-json3-dev libpqxx-dev cyclonedds-dev cyclonedds-tools libfec-dev
 )
 
 # Installs what is missing (as root), or says exactly what to run and fails.
@@ -42,8 +53,10 @@ ensure_packages() {
 build_all() {
   local dir=${1:-build}
   if [ $# -gt 0 ]; then shift; fi
-  if [ ! -f "$dir/build.ninja" ]; then
-    cmake -G Ninja -B "$dir" -S . -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  # DTMF_CMAKE_OPTIONS: more options for the configure step (scripts/test: warnings are errors).
+  if [ ! -f "$dir/build.ninja" ] || [ -n "${DTMF_CMAKE_OPTIONS:-}" ]; then
+    # shellcheck disable=SC2086  # a list of options
+    cmake -G Ninja -B "$dir" -S . -DCMAKE_BUILD_TYPE=RelWithDebInfo ${DTMF_CMAKE_OPTIONS:-} >/dev/null
   fi
   if [ $# -gt 0 ]; then cmake --build "$dir" --target "$@"; else cmake --build "$dir"; fi
 }

@@ -17,12 +17,12 @@ ReceiverEvent feed(CommandReceiver& receiver, const std::vector<Word>& words) {
 }  // namespace
 
 TEST(CommandReceiver, EveryCommandRoundTripsThroughTheStateMachine) {
-  const std::vector<Command> commands = {DriveForDuration{50, 2}, TurnForDuration{-40, 1.5},
-                                         DriveForward{33}, Turn{-75}, Stop{}};
+  const std::vector<Command> commands = {DriveForDuration{50, 2}, TurnForDuration{-40, 1.5}, DriveForward{33},
+                                         Turn{-75}, Stop{}};
   for (const Command& sent : commands) {
     CommandReceiver receiver;
     const ReceiverEvent event = feed(receiver, encode(sent));
-    ASSERT_EQ(event.kind, Kind::Command) << describe(sent);
+    ASSERT_EQ(event.kind, Kind::CommandReady) << describe(sent);
     EXPECT_EQ(describe(*event.command), describe(quantised(sent)));
     EXPECT_EQ(receiver.state(), ReceiverState::Idle);
   }
@@ -61,7 +61,7 @@ TEST(CommandReceiver, ResetAtAnyPointAbandonsThePendingCommand) {
 TEST(CommandReceiver, StopCompletesWithoutAParameter) {
   CommandReceiver receiver;
   const ReceiverEvent event = feed(receiver, {kResetWord, static_cast<Word>(Mode::Stop)});
-  ASSERT_EQ(event.kind, Kind::Command);
+  ASSERT_EQ(event.kind, Kind::CommandReady);
   EXPECT_TRUE(std::holds_alternative<Stop>(*event.command));
 }
 

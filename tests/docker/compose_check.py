@@ -65,11 +65,14 @@ def copy_parts(copy):
     rest = [w for w in words if not w.startswith("--")]
     return flags, rest[:-1], rest[-1]
 
-targets = set()
+# Programs per install component: install(TARGETS prog ... COMPONENT c) in any CMake file.
+component_programs = {}
 for root, dirs, files in os.walk(repo):
     dirs[:] = [d for d in dirs if not (d.startswith(".") or d.startswith("build"))]
-    if "CMakeLists.txt" in files:
-        targets |= set(re.findall(r"add_executable\(\s*([\w.+-]+)", read(os.path.join(root, "CMakeLists.txt"))))
+    for f in files:
+        if f == "CMakeLists.txt" or f.endswith(".cmake"):
+            for m in re.finditer(r"install\(TARGETS\s+([\w.+\- ]+?)\s+RUNTIME[^)]*?COMPONENT\s+(\w+)", read(os.path.join(root, f))):
+                component_programs.setdefault(m.group(2), set()).update(m.group(1).split())
 
 # Every service built from a Dockerfile: the file, its target stage, a non-root user.
 dockerfiles = {}
@@ -97,24 +100,38 @@ for path, stages in dockerfiles.items():
             user = effective(stages, name, "user")
             check(user not in (None, "root", "0"), f"{path}: runtime stage '{name}' has no non-root USER")
 
-    # Binaries: what the build stage builds and what the images copy must be CMake targets.
-    built = set()
+    # Programs: the build stage installs CMake components (cmake --install --component, into
+    # /stage/COMPONENT); the images copy a component's tree, or programs from it.
+    staged = set()
     for stage in stages.values():
         for run in stage["runs"]:
-            for m in re.finditer(r"--target((?:\s+[\w.+-]+)+)", run):
-                built |= set(m.group(1).split())
-    for b in sorted(built):
-        check(b in targets, f"{path}: builds --target {b}, which no CMakeLists.txt add_executable()s")
+            if "cmake --install" not in run:
+                continue
+            staged |= set(re.findall(r"--component\s+(\w+)", run))
+            for m in re.finditer(r"for\s+(\w+)\s+in\s+([\w ]+?);\s*do(.*?)done", run):
+                if "--component $" + m.group(1) in m.group(3) or "--component ${" + m.group(1) + "}" in m.group(3):
+                    staged |= set(m.group(2).split())
+    for c in sorted(staged):
+        check(c in component_programs, f"{path}: installs component {c}, which no install(TARGETS ...) names")
     for sname, stage in stages.items():
         provided = set()
         for copy in stage["copies"]:
             flags, sources, dest = copy_parts(copy)
             if any(f.startswith("--from") for f in flags):
                 for src in sources:
-                    b = os.path.basename(src)
-                    check(b in targets, f"{path}: stage '{sname}' copies {b}, which is not a CMake target")
-                    check(b in built, f"{path}: stage '{sname}' copies {b}, which the build stage does not build")
-                    provided.add(b)
+                    m = re.match(r"/stage/(\w+)(/.*)?$", src)
+                    check(m is not None, f"{path}: stage '{sname}' copies {src}, not from an installed component (/stage/COMPONENT)")
+                    if not m:
+                        continue
+                    component, inner = m.group(1), (m.group(2) or "/").rstrip("/")
+                    check(component in staged, f"{path}: stage '{sname}' copies component {component}, which the build stage does not install")
+                    programs = component_programs.get(component, set())
+                    if inner in ("", "/usr", "/usr/bin"):
+                        provided |= programs
+                    else:
+                        b = os.path.basename(inner)
+                        check(b in programs, f"{path}: stage '{sname}' copies {src}: component {component} installs no program {b}")
+                        provided.add(b)
             else:
                 for src in sources:
                     check(os.path.exists(os.path.join(repo, src)), f"{path}: COPY source {src} does not exist")
@@ -130,14 +147,16 @@ for path, stages in dockerfiles.items():
     # The build stage must copy every directory the top-level CMakeLists.txt adds.
     copied = {src.rstrip("/") for s in stages.values() for c in s["copies"]
               for src in copy_parts(c)[1] if not any(f.startswith("--from") for f in copy_parts(c)[0])}
-    for sub in re.findall(r"add_subdirectory\(\s*([\w/.-]+)", read(os.path.join(repo, "CMakeLists.txt"))):
+    # Not what only the tests need: the images build with BUILD_TESTING=OFF.
+    top = re.sub(r"if\(BUILD_TESTING\)(.*?)\nendif\(\)", "", read(os.path.join(repo, "CMakeLists.txt")), flags=re.S)
+    for sub in re.findall(r"add_subdirectory\(\s*([\w/.-]+)", top):
         check(any(sub == c or sub.startswith(c + "/") or c == "." for c in copied),
               f"{path}: add_subdirectory({sub}) but the build stage does not COPY {sub}")
 
     # What the build stage installs must be in the project's list (catches typos, renames).
     known = set(read(packages).split())
     for sname, stage in stages.items():
-        if any("--target" in run for run in stage["runs"]):
+        if any("cmake --install" in run for run in stage["runs"]):
             for run in stage["runs"]:
                 for m in re.finditer(r"apt-get install((?:\s+[^\s&;|]+)+)", run):
                     for pkg in (w for w in m.group(1).split() if not w.startswith("-")):

@@ -150,13 +150,15 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
   // The seed's acceptance: no false positive, neither a frame nobody sent nor a chord heard a
   // second time (an echo, once seen early in runs; docs/protocol.md §6 has the tail rule that
   // ended it). Should one come back, the extra receptions are printed with their attempts.
-  void expect_no_wrong_frame(const std::string& run_id, const pqxx::row& report, long receptions, long heard_again = 0) {
+  void expect_no_wrong_frame(const std::string& run_id, const pqxx::row& report, long receptions,
+                             long heard_again = 0) {
     // A seed chord the air cut in two (tests/support/air_recording.h) is two chords to a
     // receiver without sequence numbers: it may be heard twice, and that is all it may do.
     long split = 0;
     if (profile() == "seed") {
-      for (const auto& s : air_->split_chords(seed_profile().timing.chord_ms, seed_profile().robot_detector.bandpass_low_hz,
-                                                   seed_profile().robot_detector.bandpass_high_hz)) {
+      for (const auto& s :
+           air_->split_chords(seed_profile().timing.chord_ms, seed_profile().robot_detector.bandpass_low_hz,
+                              seed_profile().robot_detector.bandpass_high_hz)) {
         std::printf("the air split a chord %.2f s into the recording: %.0f ms, %.0f ms of silence, %.0f ms\n",
                     s.start_s, s.first_ms, s.gap_ms, s.second_ms);
         ++split;
@@ -165,17 +167,21 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
     pqxx::connection c(db_.url());
     pqxx::work tx(c);
     const long unsent = tx.exec_params(
-        "SELECT count(*) FROM run_receptions($1::uuid) r WHERE r.crc_ok AND NOT EXISTS "
-        "(SELECT 1 FROM frame_attempts a WHERE a.run_id = $1::uuid AND a.frame = r.frame)", run_id)[0][0].as<long>();
+                              "SELECT count(*) FROM run_receptions($1::uuid) r WHERE r.crc_ok AND NOT EXISTS "
+                              "(SELECT 1 FROM frame_attempts a WHERE a.run_id = $1::uuid AND a.frame = r.frame)",
+                              run_id)[0][0]
+                            .as<long>();
     EXPECT_EQ(unsent, 0) << "frames heard that were never sent";
     const long false_positives = report["false_positives"].as<long>();
     std::printf("false positives %ld (frames never sent: %ld), receptions %ld\n", false_positives, unsent, receptions);
     // For the record: each extra reception, and every attempt of its frame.
-    for (const auto& row : tx.exec_params(
-             "SELECT r.frame, r.heard_at::text, (SELECT string_agg(a.chord_started_at::text || ' ' || "
-             "coalesce(a.answer::text, '-'), '; ') FROM frame_attempts a WHERE a.run_id = $1::uuid AND a.frame = r.frame) "
-             "FROM run_receptions($1::uuid) r WHERE r.crc_ok AND r.id NOT IN "
-             "(SELECT reception_id FROM run_matches($1::uuid) WHERE reception_id IS NOT NULL)", run_id)) {
+    for (const auto& row :
+         tx.exec_params("SELECT r.frame, r.heard_at::text, (SELECT string_agg(a.chord_started_at::text || ' ' || "
+                        "coalesce(a.answer::text, '-'), '; ') FROM frame_attempts a WHERE a.run_id = $1::uuid AND "
+                        "a.frame = r.frame) "
+                        "FROM run_receptions($1::uuid) r WHERE r.crc_ok AND r.id NOT IN "
+                        "(SELECT reception_id FROM run_matches($1::uuid) WHERE reception_id IS NOT NULL)",
+                        run_id)) {
       std::printf("  extra reception of frame %s heard %s; attempts: %s\n", row[0].c_str(), row[1].c_str(),
                   row[2].is_null() ? "none" : row[2].c_str());
     }
@@ -206,11 +212,13 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
         "  count(*) FILTER (WHERE r.reply = 'ack' AND a.answer IS DISTINCT FROM 'ack' AND m.heard_at < "
         "    (SELECT max(m2.heard_at) FROM run_matches($1::uuid) m2 WHERE m2.command_id = m.command_id "
         "     AND m2.position = m.position)) AS lost_acks, "
-        "  min(extract(epoch FROM a.chord_started_at)) AS first_s, max(extract(epoch FROM a.chord_started_at)) AS last_s, "
+        "  min(extract(epoch FROM a.chord_started_at)) AS first_s, max(extract(epoch FROM a.chord_started_at)) AS "
+        "last_s, "
         "  string_agg(a.attempt || ': played ' || to_char(a.chord_started_at, 'HH24:MI:SS.MS') || ', robot ' || "
         "    r.reply || ' at ' || to_char(r.heard_at, 'HH24:MI:SS.MS') || ' (' || coalesce(r.event, '-') || "
         "    '), sender heard ' || coalesce(a.answer::text, '-'), '; ' ORDER BY a.attempt) AS story "
-        "FROM run_matches($1::uuid) m JOIN receptions r ON r.id = m.reception_id JOIN frame_attempts a ON a.id = m.attempt_id "
+        "FROM run_matches($1::uuid) m JOIN receptions r ON r.id = m.reception_id JOIN frame_attempts a ON a.id = "
+        "m.attempt_id "
         "GROUP BY m.command_id, m.position HAVING count(*) > 1",
         run_id);
     long heard_again = 0;
@@ -251,7 +259,8 @@ TEST_P(SystemE2E, SeedSequenceIsAllConfirmedAndLogsEveryRowThroughADatabaseOutag
     if (chord == at_frame(10)) {
       EXPECT_EQ(run_command(std::string(pg_script) + " stop " + pg_dir).exit_code, 0);
     }
-    if (chord == at_frame(35)) restarted = run_command(std::string(pg_script) + " start " + pg_dir + " > /dev/null").exit_code == 0;
+    if (chord == at_frame(35))
+      restarted = run_command(std::string(pg_script) + " start " + pg_dir + " > /dev/null").exit_code == 0;
   });
   ASSERT_TRUE(restarted);
   ASSERT_EQ(run.exit_code, 0) << run.output;
@@ -262,7 +271,9 @@ TEST_P(SystemE2E, SeedSequenceIsAllConfirmedAndLogsEveryRowThroughADatabaseOutag
   EXPECT_EQ(db_.query<long>("SELECT count(*) FROM receptions WHERE crc_ok AND reply = 'ack'"), receptions);
   EXPECT_EQ(db_.query<long>("SELECT count(*) FROM commands WHERE outcome = 'confirmed'"), 27);
   EXPECT_EQ(db_.query<long>("SELECT count(*) FROM frame_attempts WHERE answer = 'ack'"), frames());
-  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM test_runs WHERE ended_at IS NOT NULL AND profile = '" + profile() + "'"), 1);
+  EXPECT_EQ(
+      db_.query<long>("SELECT count(*) FROM test_runs WHERE ended_at IS NOT NULL AND profile = '" + profile() + "'"),
+      1);
 
   // A retransmission only after an ACK the sender did not hear, never after a NACK: a whole
   // machine stall can silence the air for a few hundred ms (this VM's real-time threads wake
@@ -271,7 +282,8 @@ TEST_P(SystemE2E, SeedSequenceIsAllConfirmedAndLogsEveryRowThroughADatabaseOutag
   const long retransmissions = db_.query<long>("SELECT count(*) FROM frame_attempts WHERE attempt > 1");
   std::printf("retransmissions after a lost ACK: %ld\n", retransmissions);
   EXPECT_EQ(run.transmitting, frames() + retransmissions);
-  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM frame_attempts WHERE answer = 'nack'"), 0) << "a frame the robot refused";
+  EXPECT_EQ(db_.query<long>("SELECT count(*) FROM frame_attempts WHERE answer = 'nack'"), 0)
+      << "a frame the robot refused";
   EXPECT_LE(retransmissions, 2) << "the sender missed more ACKs than machine stalls explain";
 
   const pqxx::row r = report(run.run_id);
@@ -350,19 +362,22 @@ TEST_P(SystemE2E, AnAgentKilledMidRunRestartsStoppedAndLosesNoRows) {
   {
     pqxx::connection c(db_.url());
     pqxx::work tx(c);
-    const auto unlogged = tx.exec_params("SELECT count(*) FROM run_frames($1::uuid) WHERE answer = 'ack' AND latency_ms IS NULL",
-                                         run.run_id)[0][0].as<long>();
+    const auto unlogged =
+        tx.exec_params("SELECT count(*) FROM run_frames($1::uuid) WHERE answer = 'ack' AND latency_ms IS NULL",
+                       run.run_id)[0][0]
+            .as<long>();
     EXPECT_EQ(unlogged, 0);
   }
 
   // The restarted agent publishes zero before anything else, and the robot ends stopped.
   std::this_thread::sleep_for(500ms);
   const auto samples = subscriber_->samples();
-  const auto after_kill = std::find_if(samples.begin(), samples.end(), [&](const auto& s) { return s.received > killed_at; });
+  const auto after_kill =
+      std::find_if(samples.begin(), samples.end(), [&](const auto& s) { return s.received > killed_at; });
   ASSERT_NE(after_kill, samples.end());
   EXPECT_TRUE(is_zero(*after_kill)) << after_kill->linear.x << " " << after_kill->angular.z;
   EXPECT_TRUE(is_zero(samples.back()));
 }
 
 INSTANTIATE_TEST_SUITE_P(Profiles, SystemE2E, ::testing::Values("seed", "fast"),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& test) { return test.param; });

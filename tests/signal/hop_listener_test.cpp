@@ -23,7 +23,8 @@ const LinkProfile& p = fast_profile();
 std::vector<signal::HopCandidate> candidates(const std::vector<float>& audio, signal::HopListener& listener) {
   std::vector<signal::HopCandidate> got;
   for (std::size_t at = 0; at < audio.size(); at += 480) {
-    for (const auto& c : listener.feed(std::span<const float>(audio).subspan(at, std::min<std::size_t>(480, audio.size() - at)))) {
+    for (const auto& c :
+         listener.feed(std::span<const float>(audio).subspan(at, std::min<std::size_t>(480, audio.size() - at)))) {
       got.push_back(c);
     }
   }
@@ -54,7 +55,8 @@ std::vector<float> with_silence(const std::vector<float>& audio, std::size_t bef
 
 void add_sine(std::vector<float>& audio, double hz, double amplitude) {
   for (std::size_t i = 0; i < audio.size(); ++i) {
-    audio[i] += static_cast<float>(amplitude * std::sin(2 * std::numbers::pi * hz * static_cast<double>(i) / p.sample_rate_hz));
+    audio[i] +=
+        static_cast<float>(amplitude * std::sin(2 * std::numbers::pi * hz * static_cast<double>(i) / p.sample_rate_hz));
   }
 }
 
@@ -103,7 +105,9 @@ TEST(HopListener, AToneThatDoesNotStartWithItsChordIsNotHeard) {
     if (std::abs(c.heard_ms - aligned_ms) > 15) continue;
     ++checked;
     int first_chord_heard = 0;
-    for (int b = 0; b < 8; ++b) first_chord_heard += c.tones[static_cast<std::size_t>(b)].heard && c.tones[static_cast<std::size_t>(b)].symbol == sent[static_cast<std::size_t>(b)];
+    for (int b = 0; b < 8; ++b)
+      first_chord_heard += c.tones[static_cast<std::size_t>(b)].heard &&
+                           c.tones[static_cast<std::size_t>(b)].symbol == sent[static_cast<std::size_t>(b)];
     EXPECT_LE(first_chord_heard, 0) << "at " << c.heard_ms << " ms";
   }
   EXPECT_GT(checked, 0) << "no candidate at the frame's alignment to check";
@@ -159,10 +163,13 @@ TEST_P(HopListenerOffset, TheBlindOffsetEstimateReadsEverySymbolAndConfirmTracks
   signal::HopListener fresh(p);
   const auto early = candidates(heard, fresh);
   fresh.confirm(early.front(), sent);
-  if (fresh.tracked_offset_ppm()) EXPECT_NEAR(*fresh.tracked_offset_ppm(), GetParam(), 300);
+  if (fresh.tracked_offset_ppm()) {
+    EXPECT_NEAR(*fresh.tracked_offset_ppm(), GetParam(), 300);
+  }
 }
 
-INSTANTIATE_TEST_SUITE_P(Ppm, HopListenerOffset, ::testing::Values(-3000.0, -2000.0, -700.0, 0.0, 900.0, 2000.0, 3000.0));
+INSTANTIATE_TEST_SUITE_P(Ppm, HopListenerOffset,
+                         ::testing::Values(-3000.0, -2000.0, -700.0, 0.0, 900.0, 2000.0, 3000.0));
 
 namespace {
 std::vector<signal::HeardReply> replies_heard(const std::vector<float>& audio) {
@@ -172,7 +179,8 @@ std::vector<signal::HeardReply> replies_heard(const std::vector<float>& audio) {
   });
   std::vector<signal::HeardReply> got;
   for (std::size_t at = 0; at < audio.size(); at += 192) {
-    for (const auto& h : listener.feed(std::span<const float>(audio).subspan(at, std::min<std::size_t>(192, audio.size() - at)))) {
+    for (const auto& h :
+         listener.feed(std::span<const float>(audio).subspan(at, std::min<std::size_t>(192, audio.size() - at)))) {
       got.push_back(h);
     }
   }
@@ -183,7 +191,8 @@ std::vector<signal::HeardReply> replies_heard(const std::vector<float>& audio) {
 TEST(HopReplyListener, EveryAckNamesItsSequenceNumberAndANackIsANack) {
   std::vector<float> audio(2000, 0.0f);
   for (int r = 0; r <= 16; ++r) {
-    const auto reply = signal::synthesize_hopped_reply(p, reliability::reply_codeword({r < 16, static_cast<std::uint8_t>(r % 16)}));
+    const auto reply =
+        signal::synthesize_hopped_reply(p, reliability::reply_codeword({r < 16, static_cast<std::uint8_t>(r % 16)}));
     audio.insert(audio.end(), reply.begin(), reply.end());
     audio.insert(audio.end(), 4800, 0.0f);
   }

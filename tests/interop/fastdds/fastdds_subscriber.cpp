@@ -6,6 +6,7 @@
 // rmw_fastrtps_shared_cpp/src/qos.cpp and TypeSupport_impl.cpp).
 #include "fastdds_subscriber.h"
 
+#include <fastdds/rtps/builtin/data/WriterProxyData.h>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
@@ -15,7 +16,6 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
-#include <fastdds/rtps/builtin/data/WriterProxyData.h>
 
 #include <mutex>
 #include <stdexcept>
@@ -34,29 +34,40 @@ std::string reliability_name(dds::ReliabilityQosPolicyKind kind) {
 
 std::string durability_name(dds::DurabilityQosPolicyKind kind) {
   switch (kind) {
-    case dds::VOLATILE_DURABILITY_QOS: return "VOLATILE";
-    case dds::TRANSIENT_LOCAL_DURABILITY_QOS: return "TRANSIENT_LOCAL";
-    case dds::TRANSIENT_DURABILITY_QOS: return "TRANSIENT";
-    case dds::PERSISTENT_DURABILITY_QOS: return "PERSISTENT";
+    case dds::VOLATILE_DURABILITY_QOS:
+      return "VOLATILE";
+    case dds::TRANSIENT_LOCAL_DURABILITY_QOS:
+      return "TRANSIENT_LOCAL";
+    case dds::TRANSIENT_DURABILITY_QOS:
+      return "TRANSIENT";
+    case dds::PERSISTENT_DURABILITY_QOS:
+      return "PERSISTENT";
   }
   return "?";
 }
 
 std::string representation_name(dds::DataRepresentationId_t id) {
   switch (id) {
-    case dds::XCDR_DATA_REPRESENTATION: return "XCDR";
-    case dds::XML_DATA_REPRESENTATION: return "XML";
-    case dds::XCDR2_DATA_REPRESENTATION: return "XCDR2";
+    case dds::XCDR_DATA_REPRESENTATION:
+      return "XCDR";
+    case dds::XML_DATA_REPRESENTATION:
+      return "XML";
+    case dds::XCDR2_DATA_REPRESENTATION:
+      return "XCDR2";
   }
   return std::to_string(static_cast<int>(id));
 }
 
 std::string policy_name(dds::QosPolicyId_t id) {
   switch (id) {
-    case dds::DURABILITY_QOS_POLICY_ID: return "DURABILITY";
-    case dds::RELIABILITY_QOS_POLICY_ID: return "RELIABILITY";
-    case dds::DATAREPRESENTATION_QOS_POLICY_ID: return "DATA_REPRESENTATION";
-    default: return "policy " + std::to_string(static_cast<int>(id));
+    case dds::DURABILITY_QOS_POLICY_ID:
+      return "DURABILITY";
+    case dds::RELIABILITY_QOS_POLICY_ID:
+      return "RELIABILITY";
+    case dds::DATAREPRESENTATION_QOS_POLICY_ID:
+      return "DATA_REPRESENTATION";
+    default:
+      return "policy " + std::to_string(static_cast<int>(id));
   }
 }
 
@@ -64,7 +75,7 @@ std::string policy_name(dds::QosPolicyId_t id) {
 // endian) of every payload it decodes, which the generated code reads and drops.
 template <class Generated>
 struct NotingType : Generated {
-  explicit NotingType(std::uint16_t& last) : last(last) {}
+  explicit NotingType(std::uint16_t& last_id) : last(last_id) {}
   bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override {
     last = payload->length >= 2 ? static_cast<std::uint16_t>(payload->data[0] << 8 | payload->data[1]) : 0xffff;
     return Generated::deserialize(payload, data);
@@ -93,16 +104,18 @@ CmdVelSample sample(const gm::TwistStamped_& stamped) {
 
 // A DomainParticipantListener is a DataReaderListener too: one object listens to both.
 struct FastDdsCmdVelSubscriber::Dds : dds::DomainParticipantListener {
-  Dds(FastDdsCmdVelSubscriber& owner, std::string topic, CmdVelMessage message)
-      : owner(owner), topic_name(std::move(topic)), message(message) {}
+  Dds(FastDdsCmdVelSubscriber& subscriber, std::string topic, CmdVelMessage kind)
+      : owner(subscriber), topic_name(std::move(topic)), message(kind) {}
 
   // Called for every writer of every topic the participant hears of; we keep ours.
   void on_publisher_discovery(dds::DomainParticipant*, eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override {
     using Status = eprosima::fastrtps::rtps::WriterDiscoveryInfo;
     if (info.status != Status::DISCOVERED_WRITER || info.info.topicName().to_string() != topic_name) return;
-    DiscoveredWriter w{info.info.topicName().to_string(), info.info.typeName().to_string(),
+    DiscoveredWriter w{info.info.topicName().to_string(),
+                       info.info.typeName().to_string(),
                        reliability_name(info.info.m_qos.m_reliability.kind),
-                       durability_name(info.info.m_qos.m_durability.kind), {}};
+                       durability_name(info.info.m_qos.m_durability.kind),
+                       {}};
     for (const auto id : info.info.m_qos.representation.m_value) w.representations.push_back(representation_name(id));
     owner.update([&](CmdVelState& s) { s.writers.push_back(std::move(w)); });
   }
@@ -121,9 +134,7 @@ struct FastDdsCmdVelSubscriber::Dds : dds::DomainParticipantListener {
   }
 
   void on_subscription_matched(dds::DataReader*, const dds::SubscriptionMatchedStatus& status) override {
-    owner.update([&](CmdVelState& s) {
-      s.matched_total = status.total_count;
-    });
+    owner.update([&](CmdVelState& s) { s.matched_total = status.total_count; });
   }
 
   void on_requested_incompatible_qos(dds::DataReader*, const dds::RequestedIncompatibleQosStatus& status) override {
@@ -165,9 +176,10 @@ FastDdsCmdVelSubscriber::FastDdsCmdVelSubscriber(int domain_id, const std::strin
   if (participant == nullptr) fail("cannot create a participant on domain " + std::to_string(domain_id));
   dds_->participant = participant;
 
-  dds::TypeSupport type(message == CmdVelMessage::TwistStamped
-                            ? static_cast<dds::TopicDataType*>(new NotingType<gm::TwistStamped_PubSubType>(dds_->encapsulation))
-                            : static_cast<dds::TopicDataType*>(new NotingType<gm::Twist_PubSubType>(dds_->encapsulation)));
+  dds::TypeSupport type(
+      message == CmdVelMessage::TwistStamped
+          ? static_cast<dds::TopicDataType*>(new NotingType<gm::TwistStamped_PubSubType>(dds_->encapsulation))
+          : static_cast<dds::TopicDataType*>(new NotingType<gm::Twist_PubSubType>(dds_->encapsulation)));
   // As rmw_fastrtps: no XTypes type object or information, matching is by type name.
   type->auto_fill_type_object(false);
   type->auto_fill_type_information(false);
