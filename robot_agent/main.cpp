@@ -7,27 +7,27 @@
 // Exit codes: 0 stopped cleanly, 1 a device, the database or DDS could not be had, 2 bad usage.
 #include <unistd.h>
 
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
-#include <thread>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
+#include <thread>
 
 #include "agent.h"
+#include "audio_program.h"
 #include "cmd_vel/dds_cmd_vel.h"
-#include "stop_guard.h"
 #include "cmd_vel/log_cmd_vel.h"
 #include "cmd_vel/sim_turtlebot.h"
 #include "physical/audio_spec.h"
-#include "program_main.h"
 #include "physical/portaudio_device.h"
 #include "physical/realtime_priority.h"
+#include "stop_guard.h"
 
 namespace {
 
@@ -52,8 +52,7 @@ struct Flags {
   std::optional<std::string> db;
   std::string spill_file;
   std::string host;
-  std::string log_level = "info";
-  bool list_devices = false;
+  dtmf::program::AudioProgramOptions program;
   bool realtime = false;
   bool stop_robot = false;
   std::optional<int> stop_robot_when_closed;  // the stop guard's pipe (stop_guard.h)
@@ -105,9 +104,11 @@ int run(const Flags& f) {
     void play(std::vector<float>, double) override {}
     void finish(double) override {}
   };
-  if (ack_out == "none") replies = std::make_unique<Silent>();
+  if (ack_out == "none")
+    replies = std::make_unique<Silent>();
   else if (physical::is_file_spec(ack_out) || offline)
-    replies = std::make_unique<agent::ReplyTimeline>(profile, physical::open_audio_sink(ack_out, profile.sample_rate_hz));
+    replies =
+        std::make_unique<agent::ReplyTimeline>(profile, physical::open_audio_sink(ack_out, profile.sample_rate_hz));
   else
     // Before the microphone opens: the agent is deaf while its answer stream warms up, and a
     // frame missed then is retransmitted, where an ACK lost then made the seed sender repeat
@@ -115,7 +116,7 @@ int run(const Flags& f) {
     replies = std::make_unique<agent::LiveReplyPlayer>(
         [&] {
           const physical::AudioPriorityScope audio_priority;  // the sound library's threads too
-          return physical::open_audio_sink(ack_out, profile.sample_rate_hz);
+          return physical::open_audio_sink(ack_out, profile.sample_rate_hz, f.program.devices);
         }(),
         kAnswerWarmup, /*realtime=*/true);
   spdlog::info("answering through {}", ack_out);
@@ -129,7 +130,8 @@ int run(const Flags& f) {
       spdlog::info("cmd_vel: DDS topic {} ({}); stop guard pid {} publishes zero if this process dies", f.topic,
                    f.message, guard->pid());
     } else if (name == "sim") {
-      owned.push_back(std::make_unique<agent::SimTurtlebot>(model, [](const std::string& line) { spdlog::info("{}", line); }));
+      owned.push_back(
+          std::make_unique<agent::SimTurtlebot>(model, [](const std::string& line) { spdlog::info("{}", line); }));
     } else if (name == "log") {
       owned.push_back(std::make_unique<agent::LogCmdVel>(stdout));
     }
@@ -156,7 +158,7 @@ int run(const Flags& f) {
   for (const LinkProfile* p : profiles) min_rate_hz = std::max(min_rate_hz, p->min_recording_rate_hz());
   auto source = [&] {
     const physical::AudioPriorityScope audio_priority;  // the sound library's threads too
-    return physical::open_audio_source(f.audio, profile.sample_rate_hz, min_rate_hz);
+    return physical::open_audio_source(f.audio, profile.sample_rate_hz, min_rate_hz, f.program.devices);
   }();
   spdlog::info("listening to {}", source->describe());
 
@@ -172,7 +174,8 @@ int run(const Flags& f) {
   timeline.start_now();
   // A recording played back as if it were being heard now.
   const auto pace = [&] {
-    if (f.realtime && offline) std::this_thread::sleep_until(started + std::chrono::duration<double, std::milli>(agent.audio_ms()));
+    if (f.realtime && offline)
+      std::this_thread::sleep_until(started + std::chrono::duration<double, std::milli>(agent.audio_ms()));
   };
   if (!offline) {
     // This thread drains the microphone and decodes; starved, it would drop samples.
@@ -203,9 +206,12 @@ int run(const Flags& f) {
     spdlog::error("{}", e.what());
     exit_code = 1;
   }
-  if (g_stop) agent.stop_now("shutdown signal");
-  else if (exit_code == 0) agent.finish(pace);
-  else agent.stop_now("audio input failed");
+  if (g_stop)
+    agent.stop_now("shutdown signal");
+  else if (exit_code == 0)
+    agent.finish(pace);
+  else
+    agent.stop_now("audio input failed");
   replies->finish(agent.audio_ms());
   spdlog::info("{} frames heard in {:.1f} s of audio", agent.frames_heard(), agent.audio_ms() / 1000.0);
   return exit_code;
@@ -218,52 +224,61 @@ int main(int argc, char** argv) {
   Flags f;
   CLI::App app{"dtmf-agent: hears command chords, answers ACK/NACK, drives a TurtleBot3 through cmd_vel"};
   app.add_option("--audio", f.audio, "where to listen: wav:FILE, a device name or index, or default")
-      ->envname("DTMF_AGENT_AUDIO")->capture_default_str();
-  app.add_option("--ack-out", f.ack_out, "where to answer: wav:FILE, a device, default, or none (default: none for wav: input, else default)")
+      ->envname("DTMF_AGENT_AUDIO")
+      ->capture_default_str();
+  app.add_option("--ack-out", f.ack_out,
+                 "where to answer: wav:FILE, a device, default, or none (default: none for wav: input, else default)")
       ->envname("DTMF_AGENT_ACK_OUT");
-  app.add_option("--cmd-vel", f.cmd_vel, "outputs, one or more of: dds (ROS 2), sim (simulated robot), log (JSON lines on stdout)")
-      ->delimiter(',')->check(CLI::IsMember({"dds", "sim", "log"}))->envname("DTMF_AGENT_CMD_VEL")->capture_default_str();
+  app.add_option("--cmd-vel", f.cmd_vel,
+                 "outputs, one or more of: dds (ROS 2), sim (simulated robot), log (JSON lines on stdout)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"dds", "sim", "log"}))
+      ->envname("DTMF_AGENT_CMD_VEL")
+      ->capture_default_str();
   app.add_option("--profile", f.profiles,
                  "link profiles to listen with, comma-separated (default: all of " + dtmf::profile_names() + ")")
       ->delimiter(',');
-  app.add_option("--robot", f.robot, "TurtleBot3 model: burger or waffle")->envname("TURTLEBOT3_MODEL")
-      ->check(CLI::IsMember({"burger", "waffle", "waffle_pi"}))->capture_default_str();
-  app.add_option("--publish-rate-hz", f.publish_rate_hz, "cmd_vel publish rate")->check(CLI::Range(1.0, 200.0))->capture_default_str();
-  app.add_option("--continuous-limit-s", f.continuous_limit_s,
-                 "stop a DRIVE_FORWARD / TURN after this long, 0 = never")->check(CLI::Range(0.0, 3600.0))->capture_default_str();
+  app.add_option("--robot", f.robot, "TurtleBot3 model: burger or waffle")
+      ->envname("TURTLEBOT3_MODEL")
+      ->check(CLI::IsMember({"burger", "waffle", "waffle_pi"}))
+      ->capture_default_str();
+  app.add_option("--publish-rate-hz", f.publish_rate_hz, "cmd_vel publish rate")
+      ->check(CLI::Range(1.0, 200.0))
+      ->capture_default_str();
+  app.add_option("--continuous-limit-s", f.continuous_limit_s, "stop a DRIVE_FORWARD / TURN after this long, 0 = never")
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str();
   app.add_option("--topic", f.topic, "ROS 2 topic")->envname("DTMF_AGENT_TOPIC")->capture_default_str();
   app.add_option("--message", f.message, "twist_stamped (ROS 2 Jazzy) or twist (Humble)")
-      ->check(CLI::IsMember({"twist_stamped", "twist"}))->envname("DTMF_AGENT_MESSAGE")->capture_default_str();
-  app.add_option("--ros-domain-id", f.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0)")->check(CLI::Range(0, 232));
+      ->check(CLI::IsMember({"twist_stamped", "twist"}))
+      ->envname("DTMF_AGENT_MESSAGE")
+      ->capture_default_str();
+  app.add_option("--ros-domain-id", f.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0)")
+      ->check(CLI::Range(0, 232));
   app.add_option("--frame-id", f.frame_id, "header.frame_id of TwistStamped");
-  app.add_option("--db", f.db, "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
+  app.add_option("--db", f.db,
+                 "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
       ->envname("DTMF_DB_URL");
   app.add_option("--spill-file", f.spill_file, "where log rows wait while the database is away");
   app.add_option("--host", f.host, "name of this robot in the log (default: hostname)");
-  app.add_option("--log-level", f.log_level, "trace, debug, info, warn, error")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))->capture_default_str();
-  app.add_flag("--list-audio-devices", f.list_devices, "list the audio devices and exit");
+  dtmf::program::add_audio_program_options(app, f.program);
+  f.program.without_devices =
+      "or run on recordings: --audio wav:FILE --ack-out wav:FILE (scripts/air start gives a "
+      "private PulseAudio)";
   app.add_flag("--realtime", f.realtime, "with wav: input, take as long as the recording lasts (as if heard live)");
   app.add_flag("--stop-robot", f.stop_robot,
                "publish zero on cmd_vel (DDS: --topic, --message, --ros-domain-id) and exit: stops the robot now");
   app.add_option("--stop-robot-when-closed", f.stop_robot_when_closed,
                  "(internal) the stop guard: publish zero on cmd_vel once this descriptor reads end-of-file")
       ->group("");
-  app.footer("Exit codes: 0 stopped cleanly, 1 a device, the database or DDS could not be had, 2 bad usage.\n"
-             "Safety: zero velocity is published when a duration ends, on STOP, on SIGINT/SIGTERM, at the\n"
-             "end of a recording, and when continuous motion exceeds --continuous-limit-s; with DDS, a stop\n"
-             "guard process publishes it too if the agent dies, even by SIGKILL.");
-  if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
-  spdlog::set_level(spdlog::level::from_str(f.log_level));
-  return dtmf::program::run(
-      [&] {
-        if (f.stop_robot_when_closed) return dtmf::agent::guard_until_closed(*f.stop_robot_when_closed, dds_options(f));
-        if (f.stop_robot) return dtmf::agent::stop_robot_now(dds_options(f), std::chrono::seconds(3));
-        if (f.list_devices) {
-          std::printf("%s", dtmf::physical::format_device_list(dtmf::physical::list_audio_devices()).c_str());
-          return 0;
-        }
-        return run(f);
-      },
-      [](const std::string& error) { spdlog::error("{}", error); });
+  app.footer(
+      "Exit codes: 0 stopped cleanly, 1 a device, the database or DDS could not be had, 2 bad usage.\n"
+      "Safety: zero velocity is published when a duration ends, on STOP, on SIGINT/SIGTERM, at the\n"
+      "end of a recording, and when continuous motion exceeds --continuous-limit-s; with DDS, a stop\n"
+      "guard process publishes it too if the agent dies, even by SIGKILL.");
+  return dtmf::program::audio_program_main(app, argc, argv, f.program, [&] {
+    if (f.stop_robot_when_closed) return dtmf::agent::guard_until_closed(*f.stop_robot_when_closed, dds_options(f));
+    if (f.stop_robot) return dtmf::agent::stop_robot_now(dds_options(f), std::chrono::seconds(3));
+    return run(f);
+  });
 }

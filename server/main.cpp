@@ -10,17 +10,17 @@
 #include <grpcpp/health_check_service_interface.h>
 #include <unistd.h>
 
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <fstream>
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
 #include <thread>
 
+#include "audio_program.h"
 #include "grpc/health/v1/health.pb.h"
 #include "physical/audio_spec.h"
-#include "program_main.h"
 #include "physical/portaudio_device.h"
 #include "physical/realtime_priority.h"
 #include "physical/wav_file.h"
@@ -70,8 +70,7 @@ struct Flags {
   double decision_timeout_s = 60;
   std::size_t max_queue = 32;
   std::string tls_cert, tls_key, auth_token_file;
-  std::string log_level = "info";
-  bool list_devices = false;
+  dtmf::program::AudioProgramOptions program;
 };
 
 int run(const Flags& f) {
@@ -80,7 +79,8 @@ int run(const Flags& f) {
   const store::DatabaseUrl db = store::parse_database_flag(f.db);
   if (!store::database_disabled(db)) {
     auto connection = store::connect(db);
-    spdlog::info("database {}: schema version {}", store::describe_database(db), store::migrate(*connection).version_after);
+    spdlog::info("database {}: schema version {}", store::describe_database(db),
+                 store::migrate(*connection).version_after);
   }
   // A file stands in for the loudspeaker in real time: gaps and retries keep their length.
   // Opened real-time, so that the sound library's threads are too.
@@ -90,9 +90,10 @@ int run(const Flags& f) {
     const physical::AudioPriorityScope audio_priority;
     speaker = physical::is_file_spec(f.audio_out)
                   ? std::make_unique<physical::RealTimeWavSink>(f.audio_out.substr(4), profile.sample_rate_hz)
-                  : physical::open_audio_sink(f.audio_out, profile.sample_rate_hz);
-    microphone = f.audio_in == "none" ? std::make_unique<Silence>(profile.sample_rate_hz)
-                                      : physical::open_audio_source(f.audio_in, profile.sample_rate_hz, 0);
+                  : physical::open_audio_sink(f.audio_out, profile.sample_rate_hz, f.program.devices);
+    microphone = f.audio_in == "none"
+                     ? std::make_unique<Silence>(profile.sample_rate_hz)
+                     : physical::open_audio_source(f.audio_in, profile.sample_rate_hz, 0, f.program.devices);
   }
   spdlog::info("playing to {}, listening to {}", speaker->describe(), microphone->describe());
 
@@ -107,8 +108,9 @@ int run(const Flags& f) {
 
   server::ServiceOptions options;
   options.database = db;
-  options.defaults.policy = f.on_unconfirmed == "ask" ? server::Policy::Ask
-                            : f.on_unconfirmed == "continue" ? server::Policy::Continue : server::Policy::Fail;
+  options.defaults.policy = f.on_unconfirmed == "ask"        ? server::Policy::Ask
+                            : f.on_unconfirmed == "continue" ? server::Policy::Continue
+                                                             : server::Policy::Fail;
   options.defaults.decision_timeout = std::chrono::milliseconds(static_cast<long>(f.decision_timeout_s * 1000));
   options.host = hostname;
   if (!f.auth_token_file.empty()) options.auth_token = read_file(f.auth_token_file, "auth token");
@@ -140,7 +142,8 @@ int run(const Flags& f) {
   }
   grpc_server->GetHealthCheckService()->SetServingStatus(true);
   spdlog::info("serving dtmf.v1.TeleopService on {}:{} ({}{}), default profile {}", f.address, port,
-               f.tls_cert.empty() ? "plaintext" : "TLS", options.auth_token.empty() ? "" : ", bearer token", profile.name);
+               f.tls_cert.empty() ? "plaintext" : "TLS", options.auth_token.empty() ? "" : ", bearer token",
+               profile.name);
 
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
@@ -160,40 +163,48 @@ int main(int argc, char** argv) {
   Flags f;
   CLI::App app{"dtmf-server: the gRPC control API that drives a TurtleBot3 by sound"};
   app.add_option("--address", f.address, "address to listen on")->envname("DTMF_SERVER_ADDRESS")->capture_default_str();
-  app.add_option("--port", f.port, "port to listen on (0: any free one)")->check(CLI::Range(0, 65535))->envname("DTMF_SERVER_PORT")->capture_default_str();
-  app.add_option("--audio-out", f.audio_out, "loudspeaker: a device name or index, default, or wav:FILE (write what would be played)")
-      ->envname("DTMF_SERVER_AUDIO_OUT")->capture_default_str();
-  app.add_option("--audio-in", f.audio_in, "microphone for the robot's ACK / NACK: a device, default, wav:FILE, or none")
-      ->envname("DTMF_SERVER_AUDIO_IN")->capture_default_str();
-  app.add_option("--profile", f.profile, "link profile of commands that name none (CommandOptions.profile): " +
-                                            dtmf::profile_names())->envname("DTMF_SERVER_PROFILE")->capture_default_str();
-  app.add_option("--db", f.db, "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
+  app.add_option("--port", f.port, "port to listen on (0: any free one)")
+      ->check(CLI::Range(0, 65535))
+      ->envname("DTMF_SERVER_PORT")
+      ->capture_default_str();
+  app.add_option("--audio-out", f.audio_out,
+                 "loudspeaker: a device name or index, default, or wav:FILE (write what would be played)")
+      ->envname("DTMF_SERVER_AUDIO_OUT")
+      ->capture_default_str();
+  app.add_option("--audio-in", f.audio_in,
+                 "microphone for the robot's ACK / NACK: a device, default, wav:FILE, or none")
+      ->envname("DTMF_SERVER_AUDIO_IN")
+      ->capture_default_str();
+  app.add_option("--profile", f.profile,
+                 "link profile of commands that name none (CommandOptions.profile): " + dtmf::profile_names())
+      ->envname("DTMF_SERVER_PROFILE")
+      ->capture_default_str();
+  app.add_option("--db", f.db,
+                 "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
       ->envname("DTMF_DB_URL");
   app.add_option("--spill-file", f.spill_file, "where log rows wait while the database is away");
-  app.add_option("--on-unconfirmed", f.on_unconfirmed, "default policy for a frame unconfirmed after the automatic retry")
-      ->check(CLI::IsMember({"ask", "continue", "fail"}))->capture_default_str();
+  app.add_option("--on-unconfirmed", f.on_unconfirmed,
+                 "default policy for a frame unconfirmed after the automatic retry")
+      ->check(CLI::IsMember({"ask", "continue", "fail"}))
+      ->capture_default_str();
   app.add_option("--decision-timeout-s", f.decision_timeout_s, "with ask: how long to wait for Decide")
-      ->check(CLI::Range(1.0, 3600.0))->capture_default_str();
+      ->check(CLI::Range(1.0, 3600.0))
+      ->capture_default_str();
   app.add_option("--max-queue", f.max_queue, "commands that may wait; more get RESOURCE_EXHAUSTED")
-      ->check(CLI::Range(1, 10000))->capture_default_str();
-  app.add_option("--tls-cert", f.tls_cert, "PEM certificate: serve TLS (with --tls-key)")->envname("DTMF_SERVER_TLS_CERT");
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  app.add_option("--tls-cert", f.tls_cert, "PEM certificate: serve TLS (with --tls-key)")
+      ->envname("DTMF_SERVER_TLS_CERT");
   app.add_option("--tls-key", f.tls_key, "PEM private key")->envname("DTMF_SERVER_TLS_KEY");
-  app.add_option("--auth-token-file", f.auth_token_file, "every call must carry 'authorization: Bearer <token in this file>'")
+  app.add_option("--auth-token-file", f.auth_token_file,
+                 "every call must carry 'authorization: Bearer <token in this file>'")
       ->envname("DTMF_SERVER_AUTH_TOKEN_FILE");
-  app.add_option("--log-level", f.log_level, "trace, debug, info, warn, error")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))->capture_default_str();
-  app.add_flag("--list-audio-devices", f.list_devices, "list the audio devices and exit");
-  app.footer("Exit codes: 0 stopped cleanly, 1 an audio device, the database or the port could not be had, 2 bad usage.\n"
-             "SIGINT / SIGTERM: health goes NOT_SERVING, the chord on air finishes, queued commands end UNAVAILABLE.");
-  if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
-  spdlog::set_level(spdlog::level::from_str(f.log_level));
-  return dtmf::program::run(
-      [&] {
-        if (f.list_devices) {
-          std::printf("%s", dtmf::physical::format_device_list(dtmf::physical::list_audio_devices()).c_str());
-          return 0;
-        }
-        return run(f);
-      },
-      [](const std::string& error) { spdlog::error("{}", error); });
+  dtmf::program::add_audio_program_options(app, f.program);
+  f.program.without_devices =
+      "or run without a sound card: --audio-out wav:FILE --audio-in none (scripts/air start "
+      "gives a private PulseAudio)";
+  app.footer(
+      "Exit codes: 0 stopped cleanly, 1 an audio device, the database or the port could not be had, 2 bad usage.\n"
+      "SIGINT / SIGTERM: health goes NOT_SERVING, the chord on air finishes, queued commands end UNAVAILABLE.");
+  return dtmf::program::audio_program_main(app, argc, argv, f.program, [&] { return run(f); });
 }

@@ -12,15 +12,15 @@ std::string file_of(const std::string& spec) { return spec.substr(std::char_trai
 
 bool is_file_spec(const std::string& spec) { return spec.rfind(kFilePrefix, 0) == 0; }
 
-std::unique_ptr<AudioSource> open_audio_source(const std::string& spec, int sample_rate_hz,
-                                               int min_file_rate_hz) {
+std::unique_ptr<AudioSource> open_audio_source(const std::string& spec, int sample_rate_hz, int min_file_rate_hz,
+                                               const DeviceOptions& devices) {
   if (is_file_spec(spec)) return std::make_unique<WavFileSource>(file_of(spec), sample_rate_hz, min_file_rate_hz);
-  return open_input_device(spec, sample_rate_hz);
+  return open_input_device(spec, sample_rate_hz, devices);
 }
 
-std::unique_ptr<AudioSink> open_audio_sink(const std::string& spec, int sample_rate_hz) {
+std::unique_ptr<AudioSink> open_audio_sink(const std::string& spec, int sample_rate_hz, const DeviceOptions& devices) {
   if (is_file_spec(spec)) return std::make_unique<WavFileSink>(file_of(spec), sample_rate_hz);
-  return open_output_device(spec, sample_rate_hz);
+  return open_output_device(spec, sample_rate_hz, devices);
 }
 
 }  // namespace dtmf::physical

@@ -10,30 +10,22 @@
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <stdexcept>
 
 namespace dtmf::physical {
 
 namespace {
 
-// Device buffer depth. PortAudio's defaults (8.7 ms low, 35 ms high on PulseAudio) underran
-// or overran whenever a loaded 2-core machine kept a thread off the CPU longer. 200 ms cured
-// that, but a buffer delays every answer by its depth in each direction, and the fast
-// profile's round trip (frame, ACK) must fit its 500 ms ACK timeout with room to spare: 50 ms
-// keeps both profiles' end-to-end tests clean on these machines. DTMF_AUDIO_BUFFER_MS changes it.
-constexpr double kDefaultBufferMs = 50;
-constexpr double kMinBufferMs = 5, kMaxBufferMs = 2000;
-
-double buffer_s() {
-  const char* text = std::getenv("DTMF_AUDIO_BUFFER_MS");
-  if (!text || !*text) return kDefaultBufferMs / 1000.0;
-  char* end = nullptr;
-  const double ms = std::strtod(text, &end);
-  if (*end != '\0' || !(ms >= kMinBufferMs && ms <= kMaxBufferMs)) {
-    throw AudioError("DTMF_AUDIO_BUFFER_MS='" + std::string(text) + "': give the audio buffer depth in milliseconds, " +
-                     std::to_string(static_cast<int>(kMinBufferMs)) + " to " + std::to_string(static_cast<int>(kMaxBufferMs)) +
-                     " (default " + std::to_string(static_cast<int>(kDefaultBufferMs)) + ")");
+// PortAudio's own defaults (8.7 ms low, 35 ms high on PulseAudio) underran or overran
+// whenever a loaded 2-core machine kept a thread off the CPU longer; DeviceOptions carries
+// the depth the program chose (portaudio_device.h).
+double buffer_s(const DeviceOptions& options) {
+  if (!(options.buffer_ms >= kMinAudioBufferMs && options.buffer_ms <= kMaxAudioBufferMs)) {
+    throw std::invalid_argument("audio buffer depth " + std::to_string(options.buffer_ms) + " ms is out of range " +
+                                std::to_string(static_cast<int>(kMinAudioBufferMs)) + " to " +
+                                std::to_string(static_cast<int>(kMaxAudioBufferMs)) + " ms");
   }
-  return ms / 1000.0;
+  return options.buffer_ms / 1000.0;
 }
 
 // PortAudio probes every ALSA and JACK device it can think of, and both libraries print
@@ -66,10 +58,9 @@ class PortAudioSession {
   PortAudioSession& operator=(const PortAudioSession&) = delete;
 };
 
-const char* kNoDevice =
-    "no audio device found: start a sound server (e.g. scripts/air start) or use --audio wav:FILE";
+const char* kNoDevice = "no audio device found: connect a sound card or start a sound server (PulseAudio, PipeWire)";
 
-// kNoDevice, naming the sound server the environment points at when there is one.
+// kNoDevice, naming the sound server PulseAudio's own variable points at, when there is one.
 std::string no_device_message(const char* what) {
   std::string message = std::string(kNoDevice) + " (no " + what + " device";
   if (const char* server = std::getenv("PULSE_SERVER")) {
@@ -91,70 +82,68 @@ std::vector<AudioDeviceInfo> devices_now() {
     const PaDeviceInfo* info = Pa_GetDeviceInfo(i);
     if (!info) continue;
     const PaHostApiInfo* api = Pa_GetHostApiInfo(info->hostApi);
-    devices.push_back(AudioDeviceInfo{i, info->name ? info->name : "", api ? api->name : "",
-                                      info->maxInputChannels, info->maxOutputChannels,
-                                      info->defaultSampleRate});
+    devices.push_back(AudioDeviceInfo{i, info->name ? info->name : "", api ? api->name : "", info->maxInputChannels,
+                                      info->maxOutputChannels, info->defaultSampleRate});
   }
   return devices;
 }
 
 bool usable(const AudioDeviceInfo& device, Direction direction) {
-  return direction == Direction::Input ? device.max_input_channels > 0
-                                       : device.max_output_channels > 0;
+  return direction == Direction::Input ? device.max_input_channels > 0 : device.max_output_channels > 0;
 }
 
-AudioDeviceInfo find_in(const std::vector<AudioDeviceInfo>& all, const std::string& spec,
-                        Direction direction) {
+AudioDeviceInfo find_in(const std::vector<AudioDeviceInfo>& all, const std::string& spec, Direction direction) {
   const char* what = direction == Direction::Input ? "input" : "output";
   std::vector<AudioDeviceInfo> devices;
   std::copy_if(all.begin(), all.end(), std::back_inserter(devices),
                [&](const AudioDeviceInfo& d) { return usable(d, direction); });
-  if (devices.empty()) throw AudioError(no_device_message(what));
+  if (devices.empty()) throw NoAudioDevice(no_device_message(what));
 
   if (spec.empty() || spec == "default") {
-    const int index = direction == Direction::Input ? Pa_GetDefaultInputDevice()
-                                                    : Pa_GetDefaultOutputDevice();
-    for (const auto& d : devices) if (d.index == index) return d;
+    const int index = direction == Direction::Input ? Pa_GetDefaultInputDevice() : Pa_GetDefaultOutputDevice();
+    for (const auto& d : devices)
+      if (d.index == index) return d;
     return devices.front();
   }
   const bool numeric = std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c); });
   if (numeric) {
     const int index = std::stoi(spec);
-    for (const auto& d : devices) if (d.index == index) return d;
+    for (const auto& d : devices)
+      if (d.index == index) return d;
   }
-  for (const auto& d : devices) if (d.name == spec) return d;
+  for (const auto& d : devices)
+    if (d.name == spec) return d;
   std::vector<AudioDeviceInfo> partial;
   for (const auto& d : devices) {
     if (lower(d.name).find(lower(spec)) != std::string::npos) partial.push_back(d);
   }
   if (partial.size() == 1) return partial.front();
   const std::string problem = partial.empty() ? "matches no " : "matches several ";
-  throw AudioError("audio device '" + spec + "' " + problem + what +
-                   " device; choose one of:\n" + format_device_list(partial.empty() ? devices : partial));
+  throw AudioError("audio device '" + spec + "' " + problem + what + " device; choose one of:\n" +
+                   format_device_list(partial.empty() ? devices : partial));
 }
 
 class PortAudioStream {
  public:
-  PortAudioStream(const std::string& spec, Direction direction, int sample_rate_hz)
+  PortAudioStream(const std::string& spec, Direction direction, int sample_rate_hz, const DeviceOptions& options)
       : device_(find_in(devices_now(), spec, direction)), sample_rate_hz_(sample_rate_hz) {
     PaStreamParameters params{};
     params.device = device_.index;
     params.channelCount = 1;
     params.sampleFormat = paFloat32;
     const PaDeviceInfo* info = Pa_GetDeviceInfo(device_.index);
-    // A buffer no shallower than buffer_s(), or the device's high latency if more: a busy
+    // A buffer no shallower than asked for, or the device's high latency if more: a busy
     // machine then neither drops recorded samples nor plays gaps into a chord.
-    params.suggestedLatency = std::max(buffer_s(), direction == Direction::Input ? info->defaultHighInputLatency
-                                                                                  : info->defaultHighOutputLatency);
-    const PaError error =
-        Pa_OpenStream(&stream_, direction == Direction::Input ? &params : nullptr,
-                      direction == Direction::Output ? &params : nullptr, sample_rate_hz,
-                      paFramesPerBufferUnspecified, paClipOff, nullptr, nullptr);
+    params.suggestedLatency =
+        std::max(buffer_s(options),
+                 direction == Direction::Input ? info->defaultHighInputLatency : info->defaultHighOutputLatency);
+    const PaError error = Pa_OpenStream(&stream_, direction == Direction::Input ? &params : nullptr,
+                                        direction == Direction::Output ? &params : nullptr, sample_rate_hz,
+                                        paFramesPerBufferUnspecified, paClipOff, nullptr, nullptr);
     if (error != paNoError) {
-      throw AudioError("cannot open audio device " + std::to_string(device_.index) + " '" +
-                       device_.name + "' at " + std::to_string(sample_rate_hz) +
-                       " Hz mono: " + Pa_GetErrorText(error) +
-                       " (see --list-audio-devices for the choices)");
+      throw AudioError("cannot open audio device " + std::to_string(device_.index) + " '" + device_.name + "' at " +
+                       std::to_string(sample_rate_hz) + " Hz mono: " + Pa_GetErrorText(error) +
+                       " (list the devices for the rates and channels each takes)");
     }
     const PaError started = Pa_StartStream(stream_);
     if (started != paNoError) {
@@ -181,7 +170,8 @@ class PortAudioStream {
 
 class PortAudioSource : public AudioSource {
  public:
-  PortAudioSource(const std::string& spec, int rate) : stream_(spec, Direction::Input, rate) {}
+  PortAudioSource(const std::string& spec, int rate, const DeviceOptions& options)
+      : stream_(spec, Direction::Input, rate, options) {}
   double queued_ms() const override {
     const long frames = Pa_GetStreamReadAvailable(stream_.stream_);
     return frames > 0 ? 1000.0 * static_cast<double>(frames) / stream_.sample_rate_hz_ : 0.0;
@@ -209,7 +199,8 @@ class PortAudioSource : public AudioSource {
 
 class PortAudioSink : public AudioSink {
  public:
-  PortAudioSink(const std::string& spec, int rate) : stream_(spec, Direction::Output, rate) {}
+  PortAudioSink(const std::string& spec, int rate, const DeviceOptions& options)
+      : stream_(spec, Direction::Output, rate, options) {}
   void write(std::span<const float> samples) override {
     const PaError error = Pa_WriteStream(stream_.stream_, samples.data(), static_cast<unsigned long>(samples.size()));
     if (error != paNoError && error != paOutputUnderflowed) {
@@ -240,9 +231,8 @@ std::string format_device_list(const std::vector<AudioDeviceInfo>& devices) {
   std::string text;
   for (const auto& d : devices) {
     char line[320];
-    std::snprintf(line, sizeof line, "  %2d  %-40s %-6s in:%d out:%d  %.0f Hz\n", d.index,
-                  ("'" + d.name + "'").c_str(), d.host_api.c_str(), d.max_input_channels,
-                  d.max_output_channels, d.default_sample_rate_hz);
+    std::snprintf(line, sizeof line, "  %2d  %-40s %-6s in:%d out:%d  %.0f Hz\n", d.index, ("'" + d.name + "'").c_str(),
+                  d.host_api.c_str(), d.max_input_channels, d.max_output_channels, d.default_sample_rate_hz);
     text += line;
   }
   return text;
@@ -253,12 +243,14 @@ AudioDeviceInfo find_audio_device(const std::string& spec, Direction direction) 
   return find_in(devices_now(), spec, direction);
 }
 
-std::unique_ptr<AudioSource> open_input_device(const std::string& spec, int sample_rate_hz) {
-  return std::make_unique<PortAudioSource>(spec, sample_rate_hz);
+std::unique_ptr<AudioSource> open_input_device(const std::string& spec, int sample_rate_hz,
+                                               const DeviceOptions& options) {
+  return std::make_unique<PortAudioSource>(spec, sample_rate_hz, options);
 }
 
-std::unique_ptr<AudioSink> open_output_device(const std::string& spec, int sample_rate_hz) {
-  return std::make_unique<PortAudioSink>(spec, sample_rate_hz);
+std::unique_ptr<AudioSink> open_output_device(const std::string& spec, int sample_rate_hz,
+                                              const DeviceOptions& options) {
+  return std::make_unique<PortAudioSink>(spec, sample_rate_hz, options);
 }
 
 }  // namespace dtmf::physical

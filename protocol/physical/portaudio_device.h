@@ -2,8 +2,9 @@
 //
 // Devices are found by index, by exact name, or by a unique case-insensitive part of the
 // name ("pulse", "USB"); "default" is the host's default device. Streams are blocking,
-// mono, float. With no device at all the error says how to get one: start a sound server,
-// or use a file instead. PortAudio is initialised while any device object lives.
+// mono, float, with the buffer depth the caller asks for. With no device at all the error
+// (NoAudioDevice) says how to get one; the program adds how it works with files instead.
+// PortAudio is initialised while any device object lives.
 #pragma once
 
 #include <memory>
@@ -13,6 +14,23 @@
 #include "physical/audio_io.h"
 
 namespace dtmf::physical {
+
+// Thrown when no device can record (or play) at all.
+class NoAudioDevice : public AudioError {
+ public:
+  using AudioError::AudioError;
+};
+
+// Device buffer depth, each way. 200 ms cured every underrun of a loaded 2-core machine,
+// but a buffer delays every answer by its depth in each direction, and the fast profile's
+// round trip (frame, ACK) must fit its 500 ms ACK timeout with room to spare: 50 ms keeps
+// both profiles' end-to-end tests clean on these machines (docs/protocol.md §7).
+inline constexpr double kDefaultAudioBufferMs = 50;
+inline constexpr double kMinAudioBufferMs = 5, kMaxAudioBufferMs = 2000;
+
+struct DeviceOptions {
+  double buffer_ms = kDefaultAudioBufferMs;  // at least this deep, or the device's high latency if more
+};
 
 struct AudioDeviceInfo {
   int index;
@@ -26,7 +44,7 @@ struct AudioDeviceInfo {
 // Every device PortAudio sees (may be empty). Throws AudioError if PortAudio cannot start.
 std::vector<AudioDeviceInfo> list_audio_devices();
 
-// One line per device, for --list-audio-devices.
+// One line per device, for a program to list them.
 std::string format_device_list(const std::vector<AudioDeviceInfo>& devices);
 
 enum class Direction { Input, Output };
@@ -35,7 +53,11 @@ enum class Direction { Input, Output };
 // record (Input) or play (Output). Throws AudioError naming the spec and the choices.
 AudioDeviceInfo find_audio_device(const std::string& spec, Direction direction);
 
-std::unique_ptr<AudioSource> open_input_device(const std::string& spec, int sample_rate_hz);
-std::unique_ptr<AudioSink> open_output_device(const std::string& spec, int sample_rate_hz);
+// Throws AudioError (NoAudioDevice when there is none at all), std::invalid_argument for a
+// buffer depth outside kMinAudioBufferMs..kMaxAudioBufferMs.
+std::unique_ptr<AudioSource> open_input_device(const std::string& spec, int sample_rate_hz,
+                                               const DeviceOptions& options = {});
+std::unique_ptr<AudioSink> open_output_device(const std::string& spec, int sample_rate_hz,
+                                              const DeviceOptions& options = {});
 
 }  // namespace dtmf::physical

@@ -56,7 +56,7 @@ class WavFileSink : public AudioSink {
 };
 
 // A file standing in for a loudspeaker: silence fills the wall-clock time between writes,
-// so the file plays back as the sound would have been heard (a server's --audio-out wav:).
+// so the file plays back as the sound would have been heard (a sender that writes its chords to a file).
 class RealTimeWavSink : public WavFileSink {
  public:
   RealTimeWavSink(const std::string& path, int sample_rate_hz);
@@ -68,8 +68,7 @@ class RealTimeWavSink : public WavFileSink {
 };
 
 // Whole-file helpers.
-std::vector<float> read_audio_file(const std::string& path, int sample_rate_hz,
-                                   int min_file_rate_hz = 0);
+std::vector<float> read_audio_file(const std::string& path, int sample_rate_hz, int min_file_rate_hz = 0);
 void write_wav_file(const std::string& path, std::span<const float> samples, int sample_rate_hz);
 
 }  // namespace dtmf::physical
