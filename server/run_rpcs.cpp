@@ -1,48 +1,69 @@
-// TeleopService: labelled test runs, and their seed-style reports read from the database.
+// TeleopService: labelled test runs, and their seed-style reports read through the store
+// (store::RunReader: the SQL is the store's, this file only maps its values to messages).
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <sstream>
-#include <pqxx/pqxx>
 
+#include "run_reader.h"
 #include "teleop_service.h"
 
 namespace dtmf::server {
 
 namespace {
 
-void fill_run(v1::Run& run, const pqxx::row& row) {
-  run.set_run_id(row["id"].as<std::string>());
-  run.set_number(row["number"].as<std::int64_t>());
-  run.set_label(row["label"].as<std::string>());
-  run.set_profile(row["profile"].as<std::string>());
-  run.set_started_unix_ms(static_cast<std::int64_t>(row["started_ms"].as<double>()));
-  run.set_ended_unix_ms(row["ended_ms"].is_null() ? 0 : static_cast<std::int64_t>(row["ended_ms"].as<double>()));
-  run.set_transmissions_sent(row["transmissions_sent"].as<std::int64_t>());
+void fill_run(v1::Run& run, const store::RunSummary& summary) {
+  run.set_run_id(summary.id);
+  run.set_number(summary.number);
+  run.set_label(summary.label);
+  run.set_profile(summary.profile);
+  run.set_started_unix_ms(static_cast<std::int64_t>(summary.started_unix_ms));
+  run.set_ended_unix_ms(summary.ended_unix_ms ? static_cast<std::int64_t>(*summary.ended_unix_ms) : 0);
+  run.set_transmissions_sent(summary.transmissions_sent);
 }
 
-constexpr const char* kRunColumns =
-    "id::text AS id, number, label, profile, extract(epoch FROM started_at) * 1000 AS started_ms, "
-    "extract(epoch FROM ended_at) * 1000 AS ended_ms, transmissions_sent";
+void fill_frame(v1::FrameRecord& frame, const store::FrameRecord& record) {
+  frame.set_command_id(record.command_id);
+  frame.set_command(record.command);
+  frame.set_position(record.position);
+  frame.set_attempt(record.attempt);
+  if (record.word) frame.set_word(*record.word);
+  frame.set_frame_bits(record.frame_bits);
+  for (double hz : record.tones_hz) frame.add_tones_hz(hz);
+  frame.set_chord_started_unix_ms(std::llround(record.chord_started_unix_ms));
+  frame.set_answer(record.answer);
+  if (record.response_time_ms) frame.set_response_time_ms(*record.response_time_ms);
+  if (record.latency_ms) frame.set_latency_ms(*record.latency_ms);
+}
 
-constexpr const char* kFrameColumns =
-    "command_id::text AS command_id, coalesce(command_kind, '') AS command, position, attempt, word, "
-    "frame_bits, array_to_string(tones_hz, ' ') AS tones, extract(epoch FROM chord_started_at) * 1000 AS started_ms, "
-    "coalesce(answer, '') AS answer, response_time_ms, latency_ms";
-
-void fill_frame(v1::FrameRecord& frame, const pqxx::row& row) {
-  frame.set_command_id(row["command_id"].as<std::string>());
-  frame.set_command(row["command"].as<std::string>());
-  frame.set_position(row["position"].as<std::uint32_t>());
-  frame.set_attempt(row["attempt"].as<std::uint32_t>());
-  if (!row["word"].is_null()) frame.set_word(row["word"].as<std::uint32_t>());
-  frame.set_frame_bits(row["frame_bits"].as<std::string>());
-  std::istringstream tones(row["tones"].as<std::string>());
-  for (double hz; tones >> hz;) frame.add_tones_hz(hz);
-  frame.set_chord_started_unix_ms(std::llround(row["started_ms"].as<double>()));
-  frame.set_answer(row["answer"].as<std::string>());
-  if (!row["response_time_ms"].is_null()) frame.set_response_time_ms(row["response_time_ms"].as<double>());
-  if (!row["latency_ms"].is_null()) frame.set_latency_ms(row["latency_ms"].as<double>());
+void fill_report(v1::GetReportResponse& response, const store::RunReport& report) {
+  fill_run(*response.mutable_run(), report.run);
+  response.set_transmissions_sent(report.transmissions_sent);
+  response.set_frame_attempts(report.frame_attempts);
+  response.set_transmissions_received(report.transmissions_received);
+  response.set_successfully_matched(report.successfully_matched);
+  response.set_dropped(report.dropped);
+  response.set_false_positives(report.false_positives);
+  response.set_duplicates(report.duplicates);
+  response.set_successful_transmissions(report.successful_transmissions);
+  response.set_sender_confirmed(report.sender_confirmed);
+  response.set_crc_accepted(report.crc_accepted);
+  response.set_crc_rejected(report.crc_rejected);
+  response.set_negative_confirmations_sent(report.negative_confirmations_sent);
+  using R = v1::GetReportResponse;
+  const auto measure = [&](const std::optional<double>& value, void (R::*setter)(double)) {
+    if (value) (response.*setter)(*value);
+  };
+  measure(report.false_positive_rate_pct, &R::set_false_positive_rate_pct);
+  measure(report.success_rate_pct, &R::set_success_rate_pct);
+  measure(report.sender_confirmed_rate_pct, &R::set_sender_confirmed_rate_pct);
+  measure(report.error_catch_rate_pct, &R::set_error_catch_rate_pct);
+  measure(report.response_time_avg_ms, &R::set_response_time_avg_ms);
+  measure(report.response_time_min_ms, &R::set_response_time_min_ms);
+  measure(report.response_time_max_ms, &R::set_response_time_max_ms);
+  measure(report.latency_avg_ms, &R::set_latency_avg_ms);
+  measure(report.latency_min_ms, &R::set_latency_min_ms);
+  measure(report.latency_max_ms, &R::set_latency_max_ms);
+  for (const auto& frame : report.frames) fill_frame(*response.add_frames(), frame);
 }
 
 grpc::Status no_database() {
@@ -105,7 +126,8 @@ grpc::Status TeleopService::StartRun(grpc::ServerContext* context, const v1::Sta
   return status;
 }
 
-grpc::Status TeleopService::EndRun(grpc::ServerContext* context, const v1::EndRunRequest* request, v1::EndRunResponse*) {
+grpc::Status TeleopService::EndRun(grpc::ServerContext* context, const v1::EndRunRequest* request,
+                                   v1::EndRunResponse*) {
   if (auto denied = authorize(context); !denied.ok()) return denied;
   if (request->run_id().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "run_id: required (from StartRun)"};
   try {
@@ -122,11 +144,9 @@ grpc::Status TeleopService::ListRuns(grpc::ServerContext* context, const v1::Lis
   if (store::database_disabled(options_.database)) return no_database();
   store_.flush(std::chrono::seconds(5));
   try {
-    auto connection = store::connect(options_.database);
-    pqxx::work tx(*connection);
-    std::string sql = std::string("SELECT ") + kRunColumns + " FROM runs ORDER BY number DESC";
-    if (request->limit() > 0) sql += " LIMIT " + std::to_string(request->limit());
-    for (const auto& row : tx.exec(sql)) fill_run(*response->add_runs(), row);
+    for (const auto& run : store::RunReader(options_.database).list_runs(request->limit())) {
+      fill_run(*response->add_runs(), run);
+    }
     return grpc::Status::OK;
   } catch (const std::exception& e) {
     return database_trouble(e);
@@ -143,56 +163,13 @@ grpc::Status TeleopService::GetReport(grpc::ServerContext* context, const v1::Ge
   }
   if (store::database_disabled(options_.database)) return no_database();
   store_.flush(std::chrono::seconds(5));  // the run's last rows first
+  store::RunSelector which;
+  if (request->run_case() == v1::GetReportRequest::kRunId) which = request->run_id();
+  if (request->run_case() == v1::GetReportRequest::kRunNumber) which = std::int64_t{request->run_number()};
   try {
-    auto connection = store::connect(options_.database);
-    pqxx::work tx(*connection);
-    pqxx::result runs;
-    const std::string select = std::string("SELECT ") + kRunColumns + " FROM runs ";
-    switch (request->run_case()) {
-      case v1::GetReportRequest::kRunId:
-        runs = tx.exec_params(select + "WHERE id::text = $1", request->run_id());
-        break;
-      case v1::GetReportRequest::kRunNumber:
-        runs = tx.exec_params(select + "WHERE number = $1", request->run_number());
-        break;
-      default:
-        runs = tx.exec(select + "ORDER BY number DESC LIMIT 1");
-    }
-    if (runs.empty()) return {grpc::StatusCode::NOT_FOUND, "no such test run (see ListRuns)"};
-    fill_run(*response->mutable_run(), runs[0]);
-    const pqxx::row r = tx.exec_params("SELECT * FROM run_report($1::uuid)", response->run().run_id())[0];
-    const auto count = [&](const char* column) { return r[column].is_null() ? 0 : r[column].as<std::int64_t>(); };
-    const auto measure = [&](const char* column, auto setter) {
-      if (!r[column].is_null()) (response->*setter)(r[column].as<double>());
-    };
-    using R = v1::GetReportResponse;
-    response->set_transmissions_sent(count("transmissions_sent"));
-    response->set_frame_attempts(count("frame_attempts"));
-    response->set_transmissions_received(count("transmissions_received"));
-    response->set_successfully_matched(count("successfully_matched"));
-    response->set_dropped(count("dropped"));
-    response->set_false_positives(count("false_positives"));
-    measure("false_positive_rate_pct", &R::set_false_positive_rate_pct);
-    response->set_duplicates(count("duplicates"));
-    response->set_successful_transmissions(count("successful_transmissions"));
-    measure("success_rate_pct", &R::set_success_rate_pct);
-    response->set_sender_confirmed(count("sender_confirmed"));
-    measure("sender_confirmed_rate_pct", &R::set_sender_confirmed_rate_pct);
-    response->set_crc_accepted(count("crc_accepted"));
-    response->set_crc_rejected(count("crc_rejected"));
-    response->set_negative_confirmations_sent(count("negative_confirmations_sent"));
-    measure("error_catch_rate_pct", &R::set_error_catch_rate_pct);
-    measure("response_time_avg_ms", &R::set_response_time_avg_ms);
-    measure("response_time_min_ms", &R::set_response_time_min_ms);
-    measure("response_time_max_ms", &R::set_response_time_max_ms);
-    measure("latency_avg_ms", &R::set_latency_avg_ms);
-    measure("latency_min_ms", &R::set_latency_min_ms);
-    measure("latency_max_ms", &R::set_latency_max_ms);
-    if (request->include_frames()) {
-      const auto frames = tx.exec_params(std::string("SELECT ") + kFrameColumns + " FROM run_frames($1::uuid)",
-                                         response->run().run_id());
-      for (const auto& row : frames) fill_frame(*response->add_frames(), row);
-    }
+    const auto report = store::RunReader(options_.database).report(which, request->include_frames());
+    if (!report) return {grpc::StatusCode::NOT_FOUND, "no such test run (see ListRuns)"};
+    fill_report(*response, *report);
     return grpc::Status::OK;
   } catch (const std::exception& e) {
     return database_trouble(e);

@@ -1,0 +1,72 @@
+// Store library, the read side: test runs and their seed-style reports, as plain values.
+//
+// The figures come from the database's own views and functions (db/migrations: `runs`,
+// run_report(), run_frames()), so every reader gets the report SQL computes; this class only
+// selects and converts. Whoever serves them (the server's ListRuns and GetReport) needs no
+// SQL of its own. Each call opens its own connection and throws DatabaseError when the
+// database cannot answer.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "database.h"
+
+namespace dtmf::store {
+
+struct RunSummary {
+  std::string id;
+  std::int64_t number = 0;
+  std::string label;
+  std::string profile;
+  double started_unix_ms = 0;
+  std::optional<double> ended_unix_ms;  // nullopt while the run goes on
+  std::int64_t transmissions_sent = 0;
+};
+
+// One frame attempt of a run, with the robot's side matched to it (run_frames()).
+struct FrameRecord {
+  std::string command_id;
+  std::string command;  // kind, "" if unknown
+  std::uint32_t position = 0;
+  std::uint32_t attempt = 0;
+  std::optional<std::uint32_t> word;
+  std::string frame_bits;
+  std::vector<double> tones_hz;
+  double chord_started_unix_ms = 0;
+  std::string answer;  // ack, nack, none, or ""
+  std::optional<double> response_time_ms;
+  std::optional<double> latency_ms;
+};
+
+// run_report()'s columns: counts, and figures that are absent when nothing was measured.
+struct RunReport {
+  RunSummary run;
+  std::int64_t transmissions_sent = 0, frame_attempts = 0, transmissions_received = 0, successfully_matched = 0,
+               dropped = 0, false_positives = 0, duplicates = 0, successful_transmissions = 0, sender_confirmed = 0,
+               crc_accepted = 0, crc_rejected = 0, negative_confirmations_sent = 0;
+  std::optional<double> false_positive_rate_pct, success_rate_pct, sender_confirmed_rate_pct, error_catch_rate_pct,
+      response_time_avg_ms, response_time_min_ms, response_time_max_ms, latency_avg_ms, latency_min_ms, latency_max_ms;
+  std::vector<FrameRecord> frames;  // with include_frames only
+};
+
+// Which run: the newest (monostate), by id, or by number.
+using RunSelector = std::variant<std::monostate, std::string, std::int64_t>;
+
+class RunReader {
+ public:
+  explicit RunReader(DatabaseUrl database) : database_(std::move(database)) {}
+
+  // Newest first; limit 0: all.
+  std::vector<RunSummary> list_runs(int limit) const;
+  // nullopt: no such run.
+  std::optional<RunReport> report(const RunSelector& which, bool include_frames) const;
+
+ private:
+  DatabaseUrl database_;
+};
+
+}  // namespace dtmf::store
