@@ -29,17 +29,23 @@ struct LiveOptions {
 // With a person at the terminal the server asks (and we ask them); otherwise the flag decides.
 v1::CommandOptions command_options(const LiveOptions& o) {
   v1::CommandOptions options;
-  if (::isatty(STDIN_FILENO)) options.set_on_unconfirmed(v1::UNCONFIRMED_POLICY_ASK);
-  else options.set_on_unconfirmed(o.on_unconfirmed == "continue" ? v1::UNCONFIRMED_POLICY_CONTINUE : v1::UNCONFIRMED_POLICY_FAIL);
+  if (::isatty(STDIN_FILENO))
+    options.set_on_unconfirmed(v1::UNCONFIRMED_POLICY_ASK);
+  else
+    options.set_on_unconfirmed(o.on_unconfirmed == "continue" ? v1::UNCONFIRMED_POLICY_CONTINUE
+                                                              : v1::UNCONFIRMED_POLICY_FAIL);
   options.set_profile(o.profile);
   return options;
 }
 
-// The seed's prompt (its section 7): continue as if acknowledged, send again, or give up.
+// The seed's prompt (its section 7) offers two choices: continue as if acknowledged, or send
+// again. Abort is ours, for a person who would rather stop than guess.
 v1::Decision ask_person(const v1::Progress& p) {
   while (true) {
-    std::fprintf(stderr, "%s\nContinuing without a confirmation may make the robot do something unexpected.\n"
-                         "[c]ontinue / [r]etransmit / [a]bort? ", p.detail().c_str());
+    std::fprintf(stderr,
+                 "%s\nContinuing without a confirmation may make the robot do something unexpected.\n"
+                 "[c]ontinue / [r]etransmit / [a]bort? ",
+                 p.detail().c_str());
     std::string answer;
     if (!std::getline(std::cin, answer)) return v1::DECISION_ABORT;
     if (answer == "c" || answer == "continue") return v1::DECISION_CONTINUE;
@@ -124,11 +130,14 @@ int run_live(const std::string& kind, const LiveOptions& o) {
 void add_live_commands(CLI::App& app, Action& run, const GlobalOptions& global) {
   auto o = std::make_shared<LiveOptions>();
   const auto common = [&](CLI::App* command) {
-    command->add_option("--on-unconfirmed", o->on_unconfirmed,
-                        "without a terminal to ask: fail or continue when a frame stays unconfirmed")
-        ->check(CLI::IsMember({"fail", "continue"}))->capture_default_str();
-    command->add_option("--profile", o->profile,
-                        "link profile to send with: " + profile_names() + " (default: the server's --profile)")
+    command
+        ->add_option("--on-unconfirmed", o->on_unconfirmed,
+                     "without a terminal to ask: fail or continue when a frame stays unconfirmed")
+        ->check(CLI::IsMember({"fail", "continue"}))
+        ->capture_default_str();
+    command
+        ->add_option("--profile", o->profile,
+                     "link profile to send with: " + profile_names() + " (default: the server's --profile)")
         ->envname("DTMF_PROFILE");
     command->callback([o, command, &global, &run] {
       run = [o, &global, kind = command->get_name()] {
@@ -138,17 +147,20 @@ void add_live_commands(CLI::App& app, Action& run, const GlobalOptions& global) 
       };
     });
   };
-  CLI::App* drive = app.add_subcommand("drive", "drive forward (DRIVE_FOR_DURATION with --duration, else DRIVE_FORWARD)");
+  CLI::App* drive =
+      app.add_subcommand("drive", "drive forward (DRIVE_FOR_DURATION with --duration, else DRIVE_FORWARD)");
   drive->add_option("--speed", o->speed, "percent of the robot's top speed, 0..100")->required();
   drive->add_option("--duration", o->duration, "seconds, 0..8");
   common(drive);
   CLI::App* turn = app.add_subcommand("turn", "turn on the spot (TURN_FOR_DURATION with --duration, else TURN)");
-  turn->add_option("--rotation", o->rotation, "percent of the top turn rate, -100..100, positive turns left")->required();
+  turn->add_option("--rotation", o->rotation, "percent of the top turn rate, -100..100, positive turns left")
+      ->required();
   turn->add_option("--duration", o->duration, "seconds, 0..8");
   common(turn);
   common(app.add_subcommand("stop", "stop the robot now (goes ahead of queued commands)"));
   common(app.add_subcommand("reset", "reset the robot's command state (RESET)"));
-  CLI::App* sequence = app.add_subcommand("sequence", "run the seed's 65-frame test sequence as a labelled run, then print its report");
+  CLI::App* sequence =
+      app.add_subcommand("sequence", "run the seed's 65-frame test sequence as a labelled run, then print its report");
   sequence->add_option("--label", o->label, "the run's label: general, noise, 4 m, ...")->required();
   sequence->add_option("--notes", o->notes, "free text kept with the run");
   common(sequence);
