@@ -144,6 +144,16 @@ TEST_F(AgentOffline, BadFlagsAreUsageErrors) {
   EXPECT_EQ(run_command(std::string(DTMF_AGENT_PATH) + " --robot roomba").exit_code, 2);
   EXPECT_EQ(run_command(std::string(DTMF_AGENT_PATH) + " --cmd-vel teleport").exit_code, 2);
   EXPECT_EQ(run_command(std::string(DTMF_AGENT_PATH) + " --publish-rate-hz 0").exit_code, 2);
+  // The buffer depth is the program's flag (and environment variable), checked before any device opens.
+  const auto shallow = run_command(std::string(DTMF_AGENT_PATH) + " --audio-buffer-ms 1");
+  EXPECT_EQ(shallow.exit_code, 2) << shallow.out;
+  EXPECT_NE(shallow.out.find("--audio-buffer-ms"), std::string::npos) << shallow.out;
+  const auto from_env = run_command("DTMF_AUDIO_BUFFER_MS=9000 " + std::string(DTMF_AGENT_PATH) + " --db none");
+  EXPECT_EQ(from_env.exit_code, 2) << from_env.out;
+  EXPECT_NE(from_env.out.find("9000"), std::string::npos) << from_env.out;
+  const auto version = run_command(std::string(DTMF_AGENT_PATH) + " --version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out, std::string("dtmf-agent ") + DTMF_VERSION + "\n");
   const auto help = run_command(std::string(DTMF_AGENT_PATH) + " --help");
   EXPECT_EQ(help.exit_code, 0);
   for (const char* word : {"--audio", "--ack-out", "--cmd-vel", "--profile", "--list-audio-devices", "--db",
