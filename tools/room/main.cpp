@@ -14,12 +14,16 @@
 //
 // It reads raw mono float32 little-endian samples at 48 kHz from stdin, passes whatever
 // has arrived (at most --block-samples at a time, so it adds no waiting of its own) through
-// one AcousticChannel, and writes the result to stdout at once. EOF on stdin: exit 0.
+// one AcousticChannel, and writes the result to stdout at once. Input that comes later than
+// --max-lag-ms behind the wall clock (after a stall upstream) is dropped (lag_keeper.h).
+// EOF on stdin: exit 0.
 // Exit codes: 0 end of input, 1 a read or write failed, 2 bad usage.
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -29,6 +33,7 @@
 #include <vector>
 
 #include "channel_flags.h"
+#include "lag_keeper.h"
 #include "physical/acoustic_channel.h"
 #include "program_main.h"
 
@@ -40,6 +45,7 @@ struct Flags {
   dtmf::program::ChannelFlags channel;
   int sample_rate_hz = 48000;
   std::size_t block_samples = 480;
+  double max_lag_ms = 0;  // 0: keep every sample however late, as a file needs (lag_keeper.h)
 };
 
 // Writes all of `bytes`, retrying after signals and short writes.
@@ -64,7 +70,32 @@ int run(const Flags& f) {
   std::vector<char> in(f.block_samples * sizeof(float));
   std::size_t held = 0;
   std::vector<float> block, out;
+  dtmf::room::LagKeeper keeper(f.sample_rate_hz, f.max_lag_ms);
+  const auto started = std::chrono::steady_clock::now();
+  std::size_t reported_drops = 0;
+  // A pipe holds up to 64 KiB, 340 ms of these samples: sound queued in the input pipe
+  // (parec delivers a burst at start and after a stall) or in the output pipe (pacat waits)
+  // is that much late, for good, since both ends then run at the same pace. Past
+  // --max-lag-ms the oldest input is dropped and output that finds the pipe that full is.
+  const auto queued_ms = [&](int fd) {
+    int bytes = 0;
+    if (::ioctl(fd, FIONREAD, &bytes) != 0) return 0.0;  // not a pipe: nothing to judge
+    return 1000.0 * bytes / static_cast<double>(sizeof(float) * static_cast<std::size_t>(f.sample_rate_hz));
+  };
+  std::vector<char> discard;
   while (true) {
+    if (f.max_lag_ms > 0 && held == 0 && queued_ms(STDIN_FILENO) > f.max_lag_ms) {
+      const auto late_samples =
+          static_cast<std::size_t>((queued_ms(STDIN_FILENO) - f.max_lag_ms / 10) * f.sample_rate_hz / 1000.0);
+      discard.resize(late_samples * sizeof(float));
+      const ssize_t got = ::read(STDIN_FILENO, discard.data(), discard.size());
+      // A partial sample read here would shift every later sample: keep its bytes in front.
+      if (got > 0) {
+        held = static_cast<std::size_t>(got) % sizeof(float);
+        std::memcpy(in.data(), discard.data() + got - static_cast<ssize_t>(held), held);
+        keeper.skip_input(static_cast<std::size_t>(got) / sizeof(float));
+      }
+    }
     const ssize_t n = ::read(STDIN_FILENO, in.data() + held, in.size() - held);
     if (n < 0) {
       if (errno == EINTR) continue;
@@ -78,8 +109,24 @@ int run(const Flags& f) {
     held = bytes - samples * sizeof(float);
     std::memmove(in.data(), in.data() + samples * sizeof(float), held);
     if (samples == 0) continue;
+    if (f.max_lag_ms > 0) {
+      const double now_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+      const std::size_t drop = keeper.to_drop(now_ms, samples);
+      block.erase(block.begin(), block.begin() + static_cast<std::ptrdiff_t>(drop));
+      if (keeper.dropped() >= reported_drops + static_cast<std::size_t>(f.sample_rate_hz)) {
+        std::fprintf(stderr, "dtmf-room: %.0f ms of sound dropped so far: it came too late (a full pipe, a stall)\n",
+                     1000.0 * static_cast<double>(keeper.dropped()) / f.sample_rate_hz);
+        reported_drops = keeper.dropped();
+      }
+      if (block.empty()) continue;
+    }
     out.clear();
     channel->process(std::span<const float>(block.data(), block.size()), out);
+    if (f.max_lag_ms > 0 && queued_ms(STDOUT_FILENO) > f.max_lag_ms) {
+      keeper.count_dropped_output(out.size());
+      continue;
+    }
     write_all(reinterpret_cast<const char*>(out.data()), out.size() * sizeof(float));
   }
 }
@@ -95,6 +142,10 @@ int main(int argc, char** argv) {
   app.add_option("--rate", f.sample_rate_hz, "sample rate, Hz")->check(CLI::Range(8000, 192000))->capture_default_str();
   app.add_option("--block-samples", f.block_samples, "most samples processed at a time")
       ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  app.add_option("--max-lag-ms", f.max_lag_ms,
+                 "live bridges: drop sound queued longer than this (full pipes, stalls); 0: never (files)")
+      ->check(CLI::Range(0.0, 10000.0))
       ->capture_default_str();
   app.footer("Exit codes: 0 end of input, 1 a read or write failed, 2 bad usage.");
   if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
