@@ -315,8 +315,10 @@ def main() -> int:
                         else f"the {RIR_LEAD_MS:g} ms before the measured response's direct sound")
         w("**Bridge latency.** Each direction passes through `parec` and `pacat` (buffers of "
           f"{args.bridge_buffers_ms[0]:g} and {args.bridge_buffers_ms[1]:g} ms) and two more null sinks. "
-          "When `pacat` runs dry on a busy machine it plays a few ms of silence and the delay grows by as "
-          "much for the rest of the run: a step in a latency plot (smaller buffers made that frequent). "
+          "After a stall, sound queued in the pipes between them would stay late for the rest of the run "
+          "(both ends keep the same pace: the delay once grew from 370 to 870 ms within a run), so `dtmf-room` "
+          "drops what waits longer than 50 ms (`--max-lag-ms`, tools/room/lag_keeper.h): a stall costs a "
+          "short gap in the sound, as a loudspeaker that fell silent would, and never a lasting delay. "
           "The reference run, on the plain air without a room, measures it: general's average latency less "
           f"the reference's (and less {flight_words}) is what they add on the way to the robot: "
           + "; ".join(bridge) + ". That includes whatever the "
