@@ -79,7 +79,9 @@ int run(const Flags& f) {
   // --max-lag-ms the oldest input is dropped and output that finds the pipe that full is.
   const auto queued_ms = [&](int fd) {
     int bytes = 0;
-    if (::ioctl(fd, FIONREAD, &bytes) != 0) return 0.0;  // not a pipe: nothing to judge
+    // No answer: nothing to judge. (A file answers with what is left of it: files keep the
+    // default --max-lag-ms 0.)
+    if (::ioctl(fd, FIONREAD, &bytes) != 0) return 0.0;
     return 1000.0 * bytes / static_cast<double>(sizeof(float) * static_cast<std::size_t>(f.sample_rate_hz));
   };
   std::vector<char> discard;
