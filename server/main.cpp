@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "audio_program.h"
+#include "bearer_token_auth.h"
 #include "grpc/health/v1/health.pb.h"
 #include "physical/audio_spec.h"
 #include "physical/portaudio_device.h"
@@ -73,8 +74,19 @@ struct Flags {
   dtmf::program::AudioProgramOptions program;
 };
 
+// Read before any device or database is opened, so that a refused combination costs nothing.
+dtmf::server::ServerSecurity read_security(const Flags& f) {
+  dtmf::server::ServerSecurity security;
+  if (!f.tls_cert.empty()) security.tls_cert_pem = read_file(f.tls_cert, "TLS certificate");
+  if (!f.tls_key.empty()) security.tls_key_pem = read_file(f.tls_key, "TLS key");
+  if (!f.auth_token_file.empty()) security.auth_token = read_file(f.auth_token_file, "auth token");
+  return security;
+}
+
 int run(const Flags& f) {
   using namespace dtmf;
+  const server::ServerSecurity security = read_security(f);
+  const std::shared_ptr<grpc::ServerCredentials> credentials = server::server_credentials(security, f.address);
   const LinkProfile& profile = profile_by_name(f.profile);
   const store::DatabaseUrl db = store::parse_database_flag(f.db);
   if (!store::database_disabled(db)) {
@@ -113,16 +125,8 @@ int run(const Flags& f) {
                                                              : server::Policy::Fail;
   options.defaults.decision_timeout = std::chrono::milliseconds(static_cast<long>(f.decision_timeout_s * 1000));
   options.host = hostname;
-  if (!f.auth_token_file.empty()) options.auth_token = read_file(f.auth_token_file, "auth token");
   server::TeleopService service(transmitter, store, options);
 
-  std::shared_ptr<grpc::ServerCredentials> credentials = grpc::InsecureServerCredentials();
-  if (!f.tls_cert.empty() || !f.tls_key.empty()) {
-    if (f.tls_cert.empty() || f.tls_key.empty()) throw std::invalid_argument("TLS needs both --tls-cert and --tls-key");
-    grpc::SslServerCredentialsOptions tls;
-    tls.pem_key_cert_pairs.push_back({read_file(f.tls_key, "TLS key"), read_file(f.tls_cert, "TLS certificate")});
-    credentials = grpc::SslServerCredentials(tls);
-  }
   // gRPC's built-in health service carries no protobuf descriptors; touching one links
   // grpc.health.v1 into the generated pool, so that reflection can describe and call it.
   (void)grpc::health::v1::HealthCheckRequest::descriptor();
@@ -142,7 +146,7 @@ int run(const Flags& f) {
   }
   grpc_server->GetHealthCheckService()->SetServingStatus(true);
   spdlog::info("serving dtmf.v1.TeleopService on {}:{} ({}{}), default profile {}", f.address, port,
-               f.tls_cert.empty() ? "plaintext" : "TLS", options.auth_token.empty() ? "" : ", bearer token",
+               f.tls_cert.empty() ? "plaintext" : "TLS", security.auth_token.empty() ? "" : ", bearer token",
                profile.name);
 
   std::signal(SIGINT, on_signal);

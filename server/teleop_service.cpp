@@ -85,19 +85,6 @@ auto progress_to(grpc::ServerWriter<Response>* writer) {
 TeleopService::TeleopService(Transmitter& transmitter, store::Store& store, ServiceOptions options)
     : transmitter_(transmitter), store_(store), options_(std::move(options)) {}
 
-grpc::Status TeleopService::authorize(grpc::ServerContext* context) const {
-  if (options_.auth_token.empty()) return grpc::Status::OK;
-  const auto& metadata = context->client_metadata();
-  const auto found = metadata.find("authorization");
-  if (found != metadata.end() &&
-      std::string(found->second.data(), found->second.size()) == "Bearer " + options_.auth_token) {
-    return grpc::Status::OK;
-  }
-  return {
-      grpc::StatusCode::UNAUTHENTICATED,
-      "this server needs a bearer token: send metadata 'authorization: Bearer <token>' (dtmfctl --token-file FILE)"};
-}
-
 CommandSettings TeleopService::settings_of(const v1::CommandOptions& options) const {
   const CommandSettings settings = command_settings(options, options_.defaults);
   if (settings.profile) {
@@ -144,7 +131,6 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
 
 grpc::Status TeleopService::Drive(grpc::ServerContext* context, const v1::DriveRequest* request,
                                   grpc::ServerWriter<v1::DriveResponse>* writer) {
-  if (auto denied = authorize(context); !denied.ok()) return denied;
   try {
     return run_command(context, drive_command(*request), request->options(), false, progress_to(writer));
   } catch (const RequestError& e) {
@@ -154,7 +140,6 @@ grpc::Status TeleopService::Drive(grpc::ServerContext* context, const v1::DriveR
 
 grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnRequest* request,
                                  grpc::ServerWriter<v1::TurnResponse>* writer) {
-  if (auto denied = authorize(context); !denied.ok()) return denied;
   try {
     return run_command(context, turn_command(*request), request->options(), false, progress_to(writer));
   } catch (const RequestError& e) {
@@ -164,19 +149,15 @@ grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnReq
 
 grpc::Status TeleopService::Stop(grpc::ServerContext* context, const v1::StopRequest* request,
                                  grpc::ServerWriter<v1::StopResponse>* writer) {
-  if (auto denied = authorize(context); !denied.ok()) return denied;
   return run_command(context, command::Stop{}, request->options(), true, progress_to(writer));
 }
 
 grpc::Status TeleopService::Reset(grpc::ServerContext* context, const v1::ResetRequest* request,
                                   grpc::ServerWriter<v1::ResetResponse>* writer) {
-  if (auto denied = authorize(context); !denied.ok()) return denied;
   return run_command(context, command::Reset{}, request->options(), false, progress_to(writer));
 }
 
-grpc::Status TeleopService::Decide(grpc::ServerContext* context, const v1::DecideRequest* request,
-                                   v1::DecideResponse*) {
-  if (auto denied = authorize(context); !denied.ok()) return denied;
+grpc::Status TeleopService::Decide(grpc::ServerContext*, const v1::DecideRequest* request, v1::DecideResponse*) {
   try {
     if (!transmitter_.decide(request->command_id(), decision_of(*request))) {
       return {grpc::StatusCode::FAILED_PRECONDITION,
@@ -190,7 +171,6 @@ grpc::Status TeleopService::Decide(grpc::ServerContext* context, const v1::Decid
 
 grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const v1::RunTestSequenceRequest* request,
                                             grpc::ServerWriter<v1::RunTestSequenceResponse>* writer) {
-  if (auto denied = authorize(context); !denied.ok()) return denied;
   const LinkProfile* profile = nullptr;
   try {
     check_label("label", request->label());

@@ -1,6 +1,6 @@
 // The gRPC service dtmf.v1.TeleopService: validates requests, queues commands on the transmitter
 // and streams their progress; keeps labelled test runs and reads their reports from the
-// database. With an auth token set, every call must carry "authorization: Bearer <token>".
+// database. Who may call is settled before, in the transport (bearer_token_auth.h).
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -19,7 +19,6 @@ namespace dtmf::server {
 struct ServiceOptions {
   store::DatabaseUrl database;  // for reports
   CommandSettings defaults{Policy::Fail, std::chrono::seconds(60)};
-  std::string auth_token;  // empty: no authentication
   std::string host;
 };
 
@@ -40,7 +39,6 @@ class TeleopService final : public v1::TeleopService::Service {
   grpc::Status GetReport(grpc::ServerContext*, const v1::GetReportRequest*, v1::GetReportResponse*) override;
 
  private:
-  grpc::Status authorize(grpc::ServerContext* context) const;
   // Queues `command` and writes its progress through `write` until it ends.
   template <class Write>
   grpc::Status run_command(grpc::ServerContext* context, const command::Command& command,

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "bearer_token_auth.h"
+
 namespace dtmf::test_support {
 
 namespace {
@@ -79,11 +81,12 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   server::ServiceOptions service_options;
   service_options.database = options_.database;
   service_options.defaults.policy = options_.default_policy;
-  service_options.auth_token = options_.auth_token;
   service_ = std::make_unique<server::TeleopService>(*transmitter_, *store_, service_options);
   grpc::EnableDefaultHealthCheckService(true);
   grpc::ServerBuilder builder;
-  builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port_);
+  server::ServerSecurity security;
+  security.auth_token = options_.auth_token;
+  builder.AddListeningPort("127.0.0.1:0", server::server_credentials(security, "127.0.0.1"), &port_);
   builder.RegisterService(service_.get());
   server_ = builder.BuildAndStart();
   channel_ = grpc::CreateChannel("127.0.0.1:" + std::to_string(port_), grpc::InsecureChannelCredentials());

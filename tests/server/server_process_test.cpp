@@ -207,6 +207,47 @@ TEST_F(SecuredServerProcess, ServesTlsAndDemandsTheToken) {
   EXPECT_FALSE(plain->WaitForConnected(std::chrono::system_clock::now() + std::chrono::seconds(2)));
 }
 
+// A bearer token on a plaintext server, as on the robot's own computer: loopback only, and
+// plaintext clients (grpcurl -plaintext, buf curl --http2-prior-knowledge) are served.
+class TokenOnLoopbackServerProcess : public ServerProcess {
+ protected:
+  std::string extra_flags() override {
+    std::ofstream(path("token")) << "tok-456\n";
+    return "--auth-token-file " + path("token");
+  }
+};
+
+TEST_F(TokenOnLoopbackServerProcess, RefusesCallsWithoutTheTokenButAnswersHealth) {
+  auto client = v1::TeleopService::NewStub(channel_);
+  v1::ListRunsRequest request;
+  v1::ListRunsResponse response;
+  {
+    grpc::ClientContext context;
+    const auto status = client->ListRuns(&context, request, &response);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAUTHENTICATED);
+    EXPECT_NE(status.error_message().find("authorization: Bearer"), std::string::npos) << status.error_message();
+  }
+  {
+    grpc::ClientContext context;
+    context.AddMetadata("authorization", "Bearer tok-457");
+    const auto status = client->ListRuns(&context, request, &response);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAUTHENTICATED);
+    EXPECT_NE(status.error_message().find("not this server's"), std::string::npos) << status.error_message();
+  }
+  {
+    grpc::ClientContext context;
+    context.AddMetadata("authorization", "Bearer tok-456");
+    // Past the token: this server has no database, and says so.
+    EXPECT_EQ(client->ListRuns(&context, request, &response).error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  }
+  auto health = grpc::health::v1::Health::NewStub(channel_);
+  grpc::ClientContext context;
+  grpc::health::v1::HealthCheckRequest check;
+  grpc::health::v1::HealthCheckResponse answer;
+  ASSERT_TRUE(health->Check(&context, check, &answer).ok());
+  EXPECT_EQ(answer.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+}
+
 TEST(ServerFlags, UsageErrorsAndABusyPortAreClear) {
   EXPECT_EQ(test_support::run_command(std::string(DTMF_SERVER_PATH) + " --port 70000").exit_code, 2);
   EXPECT_EQ(test_support::run_command(std::string(DTMF_SERVER_PATH) + " --on-unconfirmed maybe").exit_code, 2);
@@ -221,4 +262,19 @@ TEST(ServerFlags, UsageErrorsAndABusyPortAreClear) {
       " --audio-out wav:/dev/null --audio-in none --db none --tls-cert /nonexistent.pem --tls-key /nonexistent.key");
   EXPECT_EQ(tls.exit_code, 1);
   EXPECT_NE(tls.out.find("/nonexistent"), std::string::npos) << tls.out;
+  // A token in clear text off loopback is refused before anything is opened, with the ways out.
+  const std::string token = ::testing::TempDir() + "/server-flags-token";
+  std::ofstream(token) << "t\n";
+  const auto exposed = test_support::run_command(std::string(DTMF_SERVER_PATH) +
+                                                 " --audio-out wav:/dev/null --audio-in none --db none --address "
+                                                 "0.0.0.0 --port 0 --auth-token-file " +
+                                                 token);
+  EXPECT_EQ(exposed.exit_code, 2) << exposed.out;
+  for (const char* hint : {"clear text", "--tls-cert", "--address 127.0.0.1"}) {
+    EXPECT_NE(exposed.out.find(hint), std::string::npos) << hint << " in " << exposed.out;
+  }
+  const auto half_tls = test_support::run_command(
+      std::string(DTMF_SERVER_PATH) + " --audio-out wav:/dev/null --audio-in none --db none --tls-cert " + token);
+  EXPECT_EQ(half_tls.exit_code, 2) << half_tls.out;
+  EXPECT_NE(half_tls.out.find("--tls-key"), std::string::npos) << half_tls.out;
 }

@@ -7,6 +7,8 @@
 #include <limits>
 #include <set>
 
+#include <grpcpp/generic/generic_stub.h>
+
 #include "command/word_codec.h"
 #include "live_system.h"
 
@@ -290,6 +292,30 @@ TEST(Server, ABearerTokenIsRequiredWhenConfigured) {
   const auto wrong =
       read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); }, "guess");
   EXPECT_EQ(wrong.status.error_code(), grpc::StatusCode::UNAUTHENTICATED);
+  EXPECT_EQ(system.intact_frames_heard(), 0);  // refused calls send nothing
+  // The check runs in the transport, before the request is even parsed: a request that
+  // cannot be parsed is refused for its missing token, not for its text.
+  v1::StartRunRequest unparsable;
+  unparsable.set_label("run");
+  std::string bytes = unparsable.SerializeAsString();
+  bytes.back() = '\xff';  // the label is no longer UTF-8
+  grpc::GenericStub generic(system.channel());
+  for (const std::string token : {"", "s3cret"}) {
+    grpc::ClientContext context;
+    if (!token.empty()) context.AddMetadata("authorization", "Bearer " + token);
+    grpc::Slice slice(bytes);
+    grpc::ByteBuffer request(&slice, 1), response;
+    std::promise<grpc::Status> done;
+    generic.UnaryCall(&context, "/dtmf.v1.TeleopService/StartRun", grpc::StubOptions(), &request, &response,
+                      [&](grpc::Status status) { done.set_value(status); });
+    const grpc::Status status = done.get_future().get();
+    if (token.empty()) {
+      EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAUTHENTICATED) << status.error_message();
+    } else {
+      EXPECT_NE(status.error_code(), grpc::StatusCode::UNAUTHENTICATED) << status.error_message();
+      EXPECT_NE(status.error_code(), grpc::StatusCode::OK);
+    }
+  }
   const auto allowed =
       read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); }, "s3cret");
   EXPECT_TRUE(allowed.status.ok()) << allowed.status.error_message();
