@@ -44,7 +44,11 @@ struct ProgressEvent {
   std::optional<double> response_time_ms;
   std::string detail;
   int queue_position = 0;
-  store::WallTime time = store::WallClock::now();
+  store::WallTime time = store::WallClock::now();  // Transmitting, Retransmitting: when the chord started
+  // For observers that keep a record (store_recorder.h):
+  Outcome outcome = Outcome::Pending;             // Confirmed, Continued, Failed: how the command ended
+  std::optional<store::WallTime> chord_ended_at;  // Ack, Nack, NoAnswer: when this attempt's chord ended
+  std::optional<store::WallTime> answered_at;     // Ack, Nack: when the answer was heard
 };
 
 class Job {
@@ -59,8 +63,6 @@ class Job {
   const std::vector<link::TransmitFrame>& frames() const { return frames_; }
   Policy policy() const { return policy_; }
   const std::optional<std::string>& run_id() const { return run_id_; }
-  // The commands row as logged; only the transmitter's threads touch it.
-  store::CommandRow& log_row() { return log_row_; }
   std::chrono::milliseconds decision_timeout() const { return decision_timeout_; }
   std::string description() const;
 
@@ -87,7 +89,6 @@ class Job {
   Policy policy_;
   std::chrono::milliseconds decision_timeout_;
   std::optional<std::string> run_id_;
-  store::CommandRow log_row_;
 
   std::mutex mutex_;
   std::condition_variable changed_;

@@ -25,6 +25,7 @@
 #include "physical/portaudio_device.h"
 #include "physical/realtime_priority.h"
 #include "physical/wav_file.h"
+#include "store_recorder.h"
 #include "teleop_service.h"
 #include "utf8_refusal.h"
 
@@ -115,8 +116,9 @@ int run(const Flags& f) {
   store::Store store(store_options);
   char hostname[256] = {};
   ::gethostname(hostname, sizeof hostname - 1);
-  server::Transmitter transmitter(profile, std::move(speaker), std::move(microphone), store,
-                                  {.max_queue = f.max_queue, .host = hostname, .realtime_audio = true});
+  server::StoreRecorder recorder(store, hostname);
+  server::Transmitter transmitter(profile, std::move(speaker), std::move(microphone), recorder,
+                                  {.max_queue = f.max_queue, .realtime_audio = true});
 
   server::ServiceOptions options;
   options.database = db;

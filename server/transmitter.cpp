@@ -11,37 +11,15 @@ namespace dtmf::server {
 
 namespace {
 using Kind = ProgressEvent::Kind;
-
-store::CommandRow command_row(const Job& job, const std::string& host) {
-  store::CommandRow row;
-  row.id = job.id();
-  row.run_id = job.run_id();
-  row.kind = command::kind_name(job.command());
-  row.parameters = nlohmann::json::object();
-  std::visit(
-      [&](const auto& c) {
-        using T = std::decay_t<decltype(c)>;
-        if constexpr (requires { c.speed_percent; }) row.parameters["speed_percent"] = c.speed_percent;
-        if constexpr (requires { c.rotation_percent; }) row.parameters["rotation_percent"] = c.rotation_percent;
-        if constexpr (requires { c.duration_s; }) row.parameters["duration_s"] = c.duration_s;
-        (void)sizeof(T);
-      },
-      job.command());
-  row.profile = job.profile().name;
-  row.frame_count = static_cast<int>(job.frames().size());
-  row.requested_at = store::WallClock::now();
-  row.host = host;
-  return row;
-}
 }  // namespace
 
 Transmitter::Transmitter(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> speaker,
-                         std::unique_ptr<physical::AudioSource> microphone, store::Store& store,
+                         std::unique_ptr<physical::AudioSource> microphone, ProgressObserver& observer,
                          TransmitterOptions options)
     : profile_(profile),
       speaker_(std::move(speaker)),
       microphone_(std::move(microphone)),
-      store_(store),
+      observer_(observer),
       options_(std::move(options)) {
   for (const link::Link* l : link::all_links()) {
     if (l->profile().sample_rate_hz == profile_.sample_rate_hz) links_.push_back(l);
@@ -75,31 +53,25 @@ std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy
                                          const LinkProfile* profile) {
   const LinkProfile& chosen = profile ? usable_profile(profile->name) : profile_;
   std::shared_ptr<Job> job;
-  store::CommandRow first_row;
-  int position = 0;
   {
     std::lock_guard lock(mutex_);
     const link::Link& link = link::link_for(chosen);
     job = std::make_shared<Job>(link, command, link.plan(command, next_sequence_), policy, decision_timeout, run_id_);
-    job->log_row() = command_row(*job, options_.host);
-    first_row = job->log_row();  // the worker may update the job's row once it is queued
     if (stopping_) throw TransmitterUnavailable("the server is shutting down");
     if (!unavailable_.empty()) throw TransmitterUnavailable(unavailable_);
     if (queue_.size() >= options_.max_queue) {
       throw QueueFull("the transmit queue is full (" + std::to_string(options_.max_queue) +
                       " commands wait); retry later, or send Stop, which goes first");
     }
+    // Queued is emitted before the worker can see the job, so that it comes first.
+    ProgressEvent queued{Kind::Queued};
+    queued.queue_position = (to_front ? 0 : static_cast<int>(queue_.size())) + (on_air_ ? 1 : 0);
+    emit(*job, queued);
     if (to_front)
       queue_.push_front(job);
     else
       queue_.push_back(job);
-    position = to_front ? 0 : static_cast<int>(queue_.size()) - 1;
-    position += on_air_ ? 1 : 0;
   }
-  store_.write(first_row);
-  ProgressEvent queued{Kind::Queued};
-  queued.queue_position = position;
-  job->emit(queued);
   changed_.notify_all();
   return job;
 }
@@ -201,17 +173,7 @@ void Transmitter::run() {
       std::unique_lock lock(mutex_);
       changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
       if (stopping_) {
-        for (auto& waiting : queue_) {
-          const std::string why = "the server is shutting down";
-          ProgressEvent failed{Kind::Failed};
-          failed.detail = why;
-          waiting->emit(failed);
-          waiting->log_row().outcome = outcome_name(Outcome::Unavailable);
-          waiting->log_row().detail = why;
-          waiting->log_row().finished_at = store::WallClock::now();
-          store_.write(waiting->log_row());
-          waiting->finish(Outcome::Unavailable, why);
-        }
+        for (auto& waiting : queue_) end(*waiting, Outcome::Unavailable, "the server is shutting down");
         queue_.clear();
         return;
       }

@@ -10,7 +10,8 @@
 // caller chose, or the transmitter's default. Frames of a command
 // go out in order with nothing between them but other frames of the same command; a
 // cancelled command's queued frames never play, a chord already on air completes.
-// Every command and every attempt is logged through the store.
+// It only emits progress events: the caller's stream reads them, and the observer it is
+// given (store_recorder.h on a server) records them first.
 #pragma once
 
 #include <atomic>
@@ -25,8 +26,8 @@
 #include "job.h"
 #include "physical/audio_io.h"
 #include "profile/link_profile.h"
+#include "progress_observer.h"
 #include "reply_listeners.h"
-#include "store.h"
 
 namespace dtmf::server {
 
@@ -41,7 +42,6 @@ class TransmitterUnavailable : public std::runtime_error {
 
 struct TransmitterOptions {
   std::size_t max_queue = 32;
-  std::string host;
   // Run the loudspeaker and microphone threads at real-time priority (physical/realtime_priority.h):
   // the program does, in-process tests need not.
   bool realtime_audio = false;
@@ -52,7 +52,8 @@ class Transmitter {
   // `profile`: the default for commands that name none. Every profile in all_profiles()
   // with its sample rate can be chosen per command.
   Transmitter(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> speaker,
-              std::unique_ptr<physical::AudioSource> microphone, store::Store& store, TransmitterOptions options);
+              std::unique_ptr<physical::AudioSource> microphone, ProgressObserver& observer,
+              TransmitterOptions options);
   ~Transmitter();
 
   // Queues a command. Throws QueueFull, TransmitterUnavailable, command::ParameterError.
@@ -79,7 +80,10 @@ class Transmitter {
   void run();
   void listen();
   void send(Job& job);
-  store::FrameAttemptRow attempt_row(const Job& job, int frame_index, int attempt, double start_ms) const;
+  // To the observer, then to the job's caller.
+  void emit(Job& job, ProgressEvent event);
+  // Emits the command's last event and ends it.
+  void end(Job& job, Outcome outcome, const std::string& detail);
   store::WallTime wall(double steady_ms) const;
   double now_ms() const;
   void play(const link::TransmitFrame& frame, double start_ms);
@@ -91,7 +95,7 @@ class Transmitter {
   std::vector<const link::Link*> links_;  // what this transmitter can send and hear
   std::unique_ptr<physical::AudioSink> speaker_;
   std::unique_ptr<physical::AudioSource> microphone_;
-  store::Store& store_;
+  ProgressObserver& observer_;
   TransmitterOptions options_;
   const std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
 

@@ -76,8 +76,10 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   server_db.database = options_.database;
   server_db.spill_path = ::testing::TempDir() + "/live-system-" + std::to_string(::getpid()) + ".spill";
   store_ = std::make_unique<store::Store>(server_db);
+  recorder_of_sends_ = std::make_unique<server::StoreRecorder>(*store_, "test");
   transmitter_ = std::make_unique<server::Transmitter>(profile, std::move(sender.speaker), std::move(sender.microphone),
-                                                       *store_, server::TransmitterOptions{options_.max_queue, "test"});
+                                                       *recorder_of_sends_,
+                                                       server::TransmitterOptions{.max_queue = options_.max_queue});
   server::ServiceOptions service_options;
   service_options.database = options_.database;
   service_options.defaults.policy = options_.default_policy;

@@ -13,6 +13,7 @@
 #include "agent.h"
 #include "dtmf/v1/teleop.grpc.pb.h"
 #include "physical/simulated_air.h"
+#include "store_recorder.h"
 #include "teleop_service.h"
 
 namespace dtmf::test_support {
@@ -58,6 +59,7 @@ class LiveSystem {
   HeardWords heard_;
   physical::SimulatedAir air_;
   std::unique_ptr<store::Store> store_;
+  std::unique_ptr<server::StoreRecorder> recorder_of_sends_;
   std::unique_ptr<server::Transmitter> transmitter_;
   std::unique_ptr<server::TeleopService> service_;
   std::unique_ptr<grpc::Server> server_;

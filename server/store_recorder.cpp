@@ -1,0 +1,103 @@
+#include "store_recorder.h"
+
+namespace dtmf::server {
+
+namespace {
+
+using Kind = ProgressEvent::Kind;
+
+store::CommandRow command_row(const Job& job, const std::string& host, store::WallTime requested_at) {
+  store::CommandRow row;
+  row.id = job.id();
+  row.run_id = job.run_id();
+  row.kind = command::kind_name(job.command());
+  row.parameters = nlohmann::json::object();
+  std::visit(
+      [&](const auto& c) {
+        if constexpr (requires { c.speed_percent; }) row.parameters["speed_percent"] = c.speed_percent;
+        if constexpr (requires { c.rotation_percent; }) row.parameters["rotation_percent"] = c.rotation_percent;
+        if constexpr (requires { c.duration_s; }) row.parameters["duration_s"] = c.duration_s;
+      },
+      job.command());
+  row.profile = job.profile().name;
+  row.frame_count = static_cast<int>(job.frames().size());
+  row.requested_at = requested_at;
+  row.host = host;
+  return row;
+}
+
+store::FrameAttemptRow attempt_row(const Job& job, const ProgressEvent& event) {
+  const link::TransmitFrame& frame = job.frames()[static_cast<std::size_t>(event.frame_index)];
+  store::FrameAttemptRow row;
+  row.run_id = job.run_id();
+  row.command_id = job.id();
+  row.position = event.frame_index;
+  row.attempt = event.attempt;
+  if (frame.word) row.word = *frame.word;
+  row.frame = frame.bits;
+  row.frame_width = frame.bit_count;
+  row.tones_hz = frame.tones_hz;
+  row.chord_started_at = event.time;
+  return row;
+}
+
+}  // namespace
+
+store::CommandRow& TransmissionRecord::command_of(const Job& job, store::WallTime requested_at) {
+  return commands_.try_emplace(job.id(), command_row(job, host_, requested_at)).first->second;
+}
+
+std::vector<TransmissionRecord::Row> TransmissionRecord::on_event(const Job& job, const ProgressEvent& event) {
+  std::vector<Row> rows;
+  switch (event.kind) {
+    case Kind::Queued:
+      rows.push_back(command_of(job, event.time));
+      break;
+    case Kind::Transmitting:
+    case Kind::Retransmitting: {
+      store::CommandRow& command = command_of(job, event.time);
+      if (command.outcome == "queued") {
+        command.outcome = "transmitting";
+        rows.push_back(command);
+      }
+      rows.push_back(attempts_[job.id()] = attempt_row(job, event));
+      break;
+    }
+    case Kind::Ack:
+    case Kind::Nack:
+    case Kind::NoAnswer: {
+      const auto found = attempts_.find(job.id());
+      if (found == attempts_.end()) break;  // an answer to no chord: nothing to complete
+      store::FrameAttemptRow& attempt = found->second;
+      attempt.chord_ended_at = event.chord_ended_at;
+      attempt.answer = event.kind == Kind::Ack ? "ack" : event.kind == Kind::Nack ? "nack" : "none";
+      attempt.answered_at = event.answered_at;
+      rows.push_back(attempt);
+      break;
+    }
+    case Kind::AwaitingDecision:
+      break;
+    case Kind::Confirmed:
+    case Kind::Continued:
+    case Kind::Failed: {
+      store::CommandRow& command = command_of(job, event.time);
+      command.finished_at = event.time;
+      command.outcome = outcome_name(event.outcome);
+      command.detail = event.detail;
+      rows.push_back(command);
+      commands_.erase(job.id());
+      attempts_.erase(job.id());
+      break;
+    }
+  }
+  return rows;
+}
+
+void StoreRecorder::observe(const Job& job, const ProgressEvent& event) {
+  std::lock_guard lock(mutex_);
+  for (const auto& row : record_.on_event(job, event)) {
+    std::visit([this](const auto& r) { store_.write(r); }, row);
+  }
+}
+
+}  // namespace dtmf::server

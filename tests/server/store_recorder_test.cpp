@@ -1,0 +1,139 @@
+// The sender's log kept from progress events alone: which rows each event writes, and that an
+// update keeps the row it updates (the store upserts by id).
+#include "store_recorder.h"
+
+#include <gtest/gtest.h>
+
+#include "link/link.h"
+
+using namespace dtmf;
+using namespace dtmf::server;
+using Kind = ProgressEvent::Kind;
+
+namespace {
+
+const store::CommandRow& command_in(const TransmissionRecord::Row& row) {
+  EXPECT_TRUE(std::holds_alternative<store::CommandRow>(row));
+  return std::get<store::CommandRow>(row);
+}
+const store::FrameAttemptRow& attempt_in(const TransmissionRecord::Row& row) {
+  EXPECT_TRUE(std::holds_alternative<store::FrameAttemptRow>(row));
+  return std::get<store::FrameAttemptRow>(row);
+}
+
+ProgressEvent event(Kind kind, int frame_index = 0, int attempt = 0) {
+  ProgressEvent e{kind};
+  e.frame_index = frame_index;
+  e.attempt = attempt;
+  return e;
+}
+
+std::unique_ptr<Job> drive_job(const LinkProfile& profile) {
+  const link::Link& link = link::link_for(profile);
+  const command::Command drive = command::DriveForDuration{50, 2};
+  std::uint8_t sequence = 7;
+  return std::make_unique<Job>(link, drive, link.plan(drive, sequence), Policy::Fail, std::chrono::seconds(1),
+                               std::optional<std::string>("run-1"));
+}
+
+}  // namespace
+
+TEST(StoreRecorder, ACommandWithARetransmissionIsOneCommandRowAndOneRowPerAttempt) {
+  const auto job = drive_job(seed_profile());
+  ASSERT_GE(job->frames().size(), 1u);
+  TransmissionRecord record("sender-pc");
+
+  ProgressEvent queued = event(Kind::Queued);
+  auto rows = record.on_event(*job, queued);
+  ASSERT_EQ(rows.size(), 1u);
+  const store::CommandRow first = command_in(rows[0]);
+  EXPECT_EQ(first.id, job->id());
+  EXPECT_EQ(first.run_id, "run-1");
+  EXPECT_EQ(first.kind, "drive_for_duration");
+  EXPECT_EQ(first.parameters["speed_percent"], 50);
+  EXPECT_EQ(first.parameters["duration_s"], 2);
+  EXPECT_EQ(first.profile, "seed");
+  EXPECT_EQ(first.frame_count, static_cast<int>(job->frames().size()));
+  EXPECT_EQ(first.host, "sender-pc");
+  EXPECT_EQ(first.outcome, "queued");
+  EXPECT_EQ(first.requested_at, queued.time);
+
+  ProgressEvent sending = event(Kind::Transmitting, 0, 1);
+  sending.time = queued.time + std::chrono::milliseconds(30);
+  rows = record.on_event(*job, sending);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(command_in(rows[0]).id, first.id);
+  EXPECT_EQ(command_in(rows[0]).outcome, "transmitting");
+  const store::FrameAttemptRow attempt1 = attempt_in(rows[1]);
+  EXPECT_EQ(attempt1.command_id, job->id());
+  EXPECT_EQ(attempt1.run_id, "run-1");
+  EXPECT_EQ(attempt1.position, 0);
+  EXPECT_EQ(attempt1.attempt, 1);
+  EXPECT_EQ(attempt1.frame, job->frames()[0].bits);
+  EXPECT_EQ(attempt1.frame_width, job->frames()[0].bit_count);
+  EXPECT_EQ(attempt1.tones_hz, job->frames()[0].tones_hz);
+  EXPECT_EQ(attempt1.chord_started_at, sending.time);
+  EXPECT_FALSE(attempt1.answer);
+
+  ProgressEvent silence = event(Kind::NoAnswer, 0, 1);
+  silence.chord_ended_at = sending.time + std::chrono::milliseconds(400);
+  rows = record.on_event(*job, silence);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(attempt_in(rows[0]).id, attempt1.id);
+  EXPECT_EQ(attempt_in(rows[0]).answer, "none");
+  EXPECT_EQ(attempt_in(rows[0]).chord_ended_at, silence.chord_ended_at);
+  EXPECT_FALSE(attempt_in(rows[0]).answered_at);
+
+  rows = record.on_event(*job, event(Kind::Retransmitting, 0, 2));
+  ASSERT_EQ(rows.size(), 1u);  // the command is already transmitting
+  const store::FrameAttemptRow attempt2 = attempt_in(rows[0]);
+  EXPECT_NE(attempt2.id, attempt1.id);
+  EXPECT_EQ(attempt2.attempt, 2);
+
+  ProgressEvent ack = event(Kind::Ack, 0, 2);
+  ack.chord_ended_at = store::WallClock::now();
+  ack.answered_at = *ack.chord_ended_at + std::chrono::milliseconds(150);
+  rows = record.on_event(*job, ack);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(attempt_in(rows[0]).id, attempt2.id);
+  EXPECT_EQ(attempt_in(rows[0]).answer, "ack");
+  EXPECT_EQ(attempt_in(rows[0]).answered_at, ack.answered_at);
+
+  EXPECT_TRUE(record.on_event(*job, event(Kind::AwaitingDecision, 0, 2)).empty());
+
+  ProgressEvent done = event(Kind::Confirmed);
+  done.outcome = Outcome::Confirmed;
+  rows = record.on_event(*job, done);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(command_in(rows[0]).id, first.id);
+  EXPECT_EQ(command_in(rows[0]).outcome, "confirmed");
+  EXPECT_EQ(command_in(rows[0]).finished_at, done.time);
+  EXPECT_EQ(command_in(rows[0]).requested_at, first.requested_at);
+}
+
+TEST(StoreRecorder, HowACommandEndedIsItsOutcomeWithTheReason) {
+  for (const auto& [outcome, name] : std::vector<std::pair<Outcome, std::string>>{{Outcome::Failed, "failed"},
+                                                                                  {Outcome::Cancelled, "cancelled"},
+                                                                                  {Outcome::Unavailable, "failed"},
+                                                                                  {Outcome::Continued, "continued"}}) {
+    const auto job = drive_job(fast_profile());
+    TransmissionRecord record("h");
+    record.on_event(*job, event(Kind::Queued));
+    ProgressEvent last = event(outcome == Outcome::Continued ? Kind::Continued : Kind::Failed);
+    last.outcome = outcome;
+    last.detail = "why";
+    const auto rows = record.on_event(*job, last);
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_EQ(command_in(rows[0]).outcome, name);
+    EXPECT_EQ(command_in(rows[0]).detail, "why");
+    EXPECT_EQ(command_in(rows[0]).profile, "fast");
+    EXPECT_EQ(command_in(rows[0]).id, job->id());
+  }
+}
+
+TEST(StoreRecorder, AnAnswerWithoutAChordWritesNothing) {
+  const auto job = drive_job(seed_profile());
+  TransmissionRecord record("h");
+  record.on_event(*job, event(Kind::Queued));
+  EXPECT_TRUE(record.on_event(*job, event(Kind::Ack, 0, 1)).empty());
+}
