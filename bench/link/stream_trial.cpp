@@ -38,9 +38,17 @@ TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const 
   // (heard twice), a late detection is not taken for the next slot's.
   const double early_ms =
       0.5 * (slot_ms - 1000.0 * static_cast<double>(trials.sound_samples()) / profile.sample_rate_hz);
+  // A microphone whose clock runs off (Doppler, a sound card's crystal) hears the stream
+  // stretched or squeezed: 2000 ppm moves a frame 40 ms over a 20 s stream, more than half a
+  // fast slot's silence. Its start is mapped back to the sender's time by the ratio the
+  // channel itself showed so far (samples given / samples heard).
+  std::uint64_t clean_samples = 0, heard_samples = 0;
   auto score = [&] {
+    const double sender_per_heard =
+        heard_samples > 0 ? static_cast<double>(clean_samples) / static_cast<double>(heard_samples) : 1.0;
     for (const Accepted& a : accepted) {
-      const double at = std::floor((a.start_ms + early_ms) / slot_ms) - static_cast<double>(options.lead_in_slots);
+      const double start_ms = a.start_ms * sender_per_heard;
+      const double at = std::floor((start_ms + early_ms) / slot_ms) - static_cast<double>(options.lead_in_slots);
       const auto k = static_cast<std::size_t>(std::max(at, 0.0));
       if (at >= 0 && k < sent.size() && a.bits == sent[k])
         ++right[k];
@@ -49,7 +57,7 @@ TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const 
         if (std::getenv("DTMF_DEBUG_WRONG")) {
           std::fprintf(stderr,
                        "wrong: start %.1f ms slot %.0f (after the lead-in) bits %llx; sent there %llx, before %llx\n",
-                       a.start_ms, at, (unsigned long long)a.bits, k < sent.size() ? (unsigned long long)sent[k] : 0ull,
+                       start_ms, at, (unsigned long long)a.bits, k < sent.size() ? (unsigned long long)sent[k] : 0ull,
                        k > 0 && k <= sent.size() ? (unsigned long long)sent[k - 1] : 0ull);
         }
       }
@@ -70,6 +78,8 @@ TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const 
     }
     heard.clear();
     channel(clean, heard);
+    clean_samples += clean.size();
+    heard_samples += heard.size();
     pending.insert(pending.end(), heard.begin(), heard.end());
     std::size_t at = 0;
     for (; at + options.block_samples <= pending.size(); at += options.block_samples) {

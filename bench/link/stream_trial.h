@@ -6,7 +6,8 @@
 // more slot without a frame lets late or echoed detections show. An accepted frame belongs
 // to the slot in which it started, a slot reaching from half its silence before its frame
 // to half its silence after it (start estimates run a little early, or late by most of a
-// drowned seed chord).
+// drowned seed chord); under a clock offset, in the sender's time (the channel's ratio of
+// samples heard to samples given).
 // Definitions (docs/benchmarks.md):
 //   success       the slot's frame was accepted exactly once with the right bits;
 //   wrong accept  an accepted (check-passing) frame whose bits were not sent in its slot.

@@ -78,6 +78,19 @@ TEST_P(BenchSmokeProfile, RoomsTableHearsTheSeminarRoomAndNotADrownedOne) {
   }
 }
 
+// A microphone 3000 ppm slow hears a frame 24 ms early after 8 s: frames are scored in the
+// sender's time, or a fast frame would count for the slot before it (a "wrong accept" the
+// link never made; scored in the heard time this case gave 2 of 10 and 8 wrong).
+TEST_P(BenchSmokeProfile, RoomsTableScoresAClockOffsetInTheSendersTime) {
+  const auto doc =
+      run(std::string(ROOMS_PATH) + " --profile " + GetParam() + " --frames 10 --chunk-frames 10 --lead-in-s 8" +
+              " --case 'slow=--clock-ppm -3000 --noise pink --noise-dbfs -50'",
+          "rooms-clock-" + GetParam());
+  ASSERT_EQ(doc["cases"].size(), 1u) << doc.dump();
+  EXPECT_EQ(doc["cases"][0]["success_rate"].get<double>(), 1.0) << doc.dump();
+  EXPECT_EQ(doc["cases"][0]["wrong_accepts"], 0) << doc.dump();
+}
+
 TEST(BenchSmoke, TalkoffFindsNothingInSilence) {
   // 10 s of silence (raw float32 zeros) on stdin.
   const auto doc =
