@@ -242,6 +242,8 @@ def main() -> int:
     parser.add_argument("--rir", required=True, help="the measured room's impulse response file, or none")
     parser.add_argument("--rt60-s", type=float, default=0.3, help="the diffuse reverberator's RT60 (--rir none)")
     parser.add_argument("--bridge-buffers-ms", type=float, nargs=2, required=True, metavar=("PAREC", "PACAT"))
+    parser.add_argument("--bridge-max-lag-ms", type=float, required=True,
+                        help="what dtmf-room let wait in a pipe before dropping it (ROOM_BRIDGE_MAX_LAG_MS)")
     args = parser.parse_args()
     profiles = list(dict.fromkeys(args.profiles))  # in the order given, each once
     conditions = list(dict.fromkeys(args.conditions))
@@ -317,7 +319,7 @@ def main() -> int:
           f"{args.bridge_buffers_ms[0]:g} and {args.bridge_buffers_ms[1]:g} ms) and two more null sinks. "
           "After a stall, sound queued in the pipes between them would stay late for the rest of the run "
           "(both ends keep the same pace: the delay once grew from 370 to 870 ms within a run), so `dtmf-room` "
-          "drops what waits longer than 50 ms (`--max-lag-ms`, tools/room/lag_keeper.h): a stall costs a "
+          f"drops what waits longer than {args.bridge_max_lag_ms:g} ms (`--max-lag-ms`, tools/room/lag_keeper.h): a stall costs a "
           "short gap in the sound, as a loudspeaker that fell silent would, and never a lasting delay. "
           "The reference run, on the plain air without a room, measures it: general's average latency less "
           f"the reference's (and less {flight_words}) is what they add on the way to the robot: "

@@ -48,7 +48,7 @@ def run_writer(folder, profiles, conditions, rir="bench/rirs/seminar_room_clap.w
     return out, subprocess.run(
         [sys.executable, str(WRITER), "--runs", str(folder / "runs"), "--out", str(out), "--machine", "test",
          "--date", "today", "--minutes", "1", "--rir", rir, "--rt60-s", "0.3", "--bridge-buffers-ms", "20", "60",
-         "--profiles", *profiles, "--conditions", *conditions], capture_output=True, text=True)
+         "--bridge-max-lag-ms", "35", "--profiles", *profiles, "--conditions", *conditions], capture_output=True, text=True)
 
 
 def generate(folder, profiles, conditions, **kwargs):
@@ -83,6 +83,7 @@ class ResultsWriter(unittest.TestCase):
             self.assertIn("the distance adds no delay and no air absorption", text)
             self.assertNotIn("Schroeder", text)
             self.assertNotIn("distance alone costs only margin", text)
+            self.assertIn("drops what waits longer than 35 ms", text)  # the bridges' own figure
             # Bridge latency: general's 150 ms less the reference's 100 ms less 0.25 ms; response 300 - 200.
             self.assertIn("what they add on the way to the robot: **50 ms** under `seed` (response time, both ways: "
                           "**100 ms**); **50 ms** under `fast`", text)
