@@ -1,5 +1,7 @@
 // The whole system as users run it: real dtmf-agent, dtmf-server and dtmfctl processes
-// talking through the PulseAudio air (ctest fixture air), logging to a real PostgreSQL
+// talking through the PulseAudio air with a measured room in it both ways (ctest fixtures
+// air and room: the sender's chords reach the robot's microphone, and the robot's answers
+// the sender's, through the seminar room at 1 m), logging to a real PostgreSQL
 // (fixture pg, a fresh database per test), driving cmd_vel over real DDS to a ROS 2-like
 // subscriber in this test. Each test runs the seed's test sequence (27 commands: 65 frames
 // under the seed profile, 27 under fast) through `dtmfctl sequence --json --profile P` and
@@ -48,6 +50,10 @@ std::set<std::pair<double, double>> expected_motions(const std::string& profile)
   return motions;
 }
 
+// Where each side plays and listens in the room (tests/e2e/room_fixture.sh).
+constexpr const char* kSenderAudio = "PULSE_SINK=speaker PULSE_SOURCE=sender_ear.monitor ";
+constexpr const char* kRobotAudio = "PULSE_SINK=robot_speaker PULSE_SOURCE=robot_ear.monitor ";
+
 bool is_zero(const test_support::ReceivedCmdVel& s) { return s.linear.x == 0 && s.angular.z == 0; }
 
 struct SequenceRun {
@@ -71,15 +77,16 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
     subscriber_ = std::make_unique<test_support::CmdVelSubscriber>(domain_, "rt/" + topic_, true);
     start_agent();
     port_ = test_support::free_port();
-    server_ = test_support::start_process(std::string(DTMF_SERVER_PATH) + " --address 127.0.0.1 --port " +
-                                              std::to_string(port_) + " --db " + db_.url() + " --spill-file " +
-                                              path("server.spill"),
+    server_ = test_support::start_process(std::string(kSenderAudio) + DTMF_SERVER_PATH +
+                                              " --address 127.0.0.1 --port " + std::to_string(port_) + " --db " +
+                                              db_.url() + " --spill-file " + path("server.spill"),
                                           path("server.log"));
     ASSERT_TRUE(test_support::wait_healthy(DTMFCTL_PATH, port_)) << run_command("cat " + path("server.log")).out;
     // New PulseAudio streams deliver their first seconds irregularly (scripts/air): chords
     // sent at once were heard late, and once heard twice. Let the streams settle first.
     std::this_thread::sleep_for(3s);
-    air_ = std::make_unique<test_support::AirRecording>(path("air.wav"));
+    // The sender's loudspeaker: where a stalled machine leaves its gaps (air_recording.h).
+    air_ = std::make_unique<test_support::AirRecording>(path("air.wav"), "speaker.monitor");
   }
   void TearDown() override {
     air_.reset();
@@ -98,7 +105,8 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
   }
 
   void start_agent() {
-    agent_ = test_support::start_process("ROS_DOMAIN_ID=" + std::to_string(domain_) + " " + DTMF_AGENT_PATH +
+    agent_ = test_support::start_process(std::string(kRobotAudio) + "ROS_DOMAIN_ID=" + std::to_string(domain_) + " " +
+                                             DTMF_AGENT_PATH +
                                              " --audio default --ack-out default --cmd-vel sim,dds --topic /" + topic_ +
                                              " --db " + db_.url() + " --spill-file " + path("agent.spill"),
                                          path("agent.log"));

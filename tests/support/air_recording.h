@@ -82,12 +82,13 @@ inline std::vector<SplitChord> find_split_chords(const std::vector<float>& audio
 
 class AirRecording {
  public:
-  explicit AirRecording(std::string wav_path) : path_(std::move(wav_path)) {
-    pid_ = start_process(
-        "parecord --device=air.monitor --rate=48000 --channels=1 --format=float32le "
-        "--file-format=wav " +
-            path_,
-        path_ + ".log");
+  // `monitor`: the sink to record, as PulseAudio names its monitor source.
+  explicit AirRecording(std::string wav_path, const std::string& monitor = "air.monitor") : path_(std::move(wav_path)) {
+    pid_ = start_process("parecord --device=" + monitor +
+                             " --rate=48000 --channels=1 --format=float32le "
+                             "--file-format=wav " +
+                             path_,
+                         path_ + ".log");
   }
   ~AirRecording() { stop(); }
   AirRecording(const AirRecording&) = delete;
