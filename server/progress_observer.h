@@ -14,10 +14,4 @@ class ProgressObserver {
   virtual void observe(const Job& job, const ProgressEvent& event) = 0;
 };
 
-// Observes nothing: a transmitter whose progress nobody records.
-class NoProgressObserver final : public ProgressObserver {
- public:
-  void observe(const Job&, const ProgressEvent&) override {}
-};
-
 }  // namespace dtmf::server
