@@ -65,6 +65,13 @@ LinkProfile make_seed_profile() {
   // the smoking room, RT60 0.76 s). A repeat of the same chord starts 1 s after it.
   p.debounce.lockout_ms = 900;
   p.debounce.rearm_drop_db = 10;  // a reverberant tail must not pass a chord twice
+  // A sender starved of the CPU plays a chord with a hole in it (a CI machine: up to 460 ms);
+  // the rest, heard after the lockout, passed as a second chord, and the seed's words, having
+  // no sequence number, then put the robot's state machine one word off. One chord sounds
+  // for at most 0.8 s plus about 0.15 s of window overlap and reverberation; a chord that
+  // comes back within 0.6 s of silence must sound 0.3 s more than that before it is new.
+  p.debounce.max_dropout_ms = 600;
+  p.debounce.presence_margin_ms = 300;
   return p;
 }
 

@@ -67,6 +67,13 @@ struct DebounceParams {
   double window_ms = 0;      // ... within this time
   double lockout_ms = 0;     // after a pass, the same chord is ignored this long ...
   double rearm_drop_db = 0;  // ... and until it has faded this far (or gone) in some window
+  // A symbol that comes back within symbol_ms + max_dropout_ms of its first detection passes
+  // again only once it has sounded longer in all than one symbol can, by presence_margin_ms:
+  // until then it is the same symbol resumed after a dropout (signal/debouncer.h).
+  // symbol_ms is the listener's (a chord's or a reply's length); 0 turns the rule off.
+  double symbol_ms = 0;
+  double max_dropout_ms = 0;
+  double presence_margin_ms = 0;
 };
 
 // How a command travels. Word16: the seed's — RESET, mode and parameter words, one 16-bit

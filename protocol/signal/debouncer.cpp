@@ -13,6 +13,9 @@ void Debouncer::reset() {
   head_ = 0;
   locked_symbol_.reset();
   rearmed_ = true;
+  sounded_ms_ = 0;
+  last_window_ms_ = 0;
+  locked_sounded_ = false;
 }
 
 bool Debouncer::locked_out(const Detection& detection, double t_ms) {
@@ -32,7 +35,21 @@ bool Debouncer::locked_out(const Detection& detection, double t_ms) {
   return t_ms < locked_until_ms_ || !rearmed_;
 }
 
+bool Debouncer::still_sounding_once(double t_ms) const {
+  return params_.symbol_ms > 0 && t_ms < locked_first_ms_ + params_.symbol_ms + params_.max_dropout_ms &&
+         sounded_ms_ < params_.symbol_ms + params_.presence_margin_ms;
+}
+
 std::optional<Debouncer::Pass> Debouncer::on_window(double t_ms, std::optional<Detection> detection) {
+  const double hop_ms = t_ms - last_window_ms_;
+  last_window_ms_ = t_ms;
+  const bool locked_sounds =
+      detection && locked_symbol_ == detection->symbol && detection->level >= locked_peak_level_ * rearm_ratio_;
+  if (locked_sounds) {
+    sounded_ms_ += hop_ms;
+    if (!locked_sounded_) locked_onset_ms_ = t_ms;
+  }
+  locked_sounded_ = locked_sounds;
   if (!detection) {
     rearmed_ = true;
     return std::nullopt;
@@ -65,6 +82,11 @@ std::optional<Debouncer::Pass> Debouncer::on_window(double t_ms, std::optional<D
     ++count;
   }
   if (count < params_.min_detections) return std::nullopt;
+  if (locked_symbol_ == detection->symbol) {
+    if (still_sounding_once(t_ms)) return std::nullopt;
+    // Held a while, its first detections left the window: it started at its own onset.
+    if (params_.symbol_ms > 0) first_ms = std::min(first_ms, locked_onset_ms_);
+  }
 
   // Drop this symbol's detections so that they cannot count again after the lockout.
   std::size_t kept = 0;
@@ -77,6 +99,9 @@ std::optional<Debouncer::Pass> Debouncer::on_window(double t_ms, std::optional<D
   locked_until_ms_ = t_ms + params_.lockout_ms;
   locked_peak_level_ = locked_dip_level_ = detection->level;
   rearmed_ = false;
+  locked_first_ms_ = locked_onset_ms_ = first_ms;
+  locked_sounded_ = true;
+  sounded_ms_ = t_ms - first_ms + hop_ms;  // the windows that passed it, the first one's hop included
   return Pass{detection->symbol, first_ms, t_ms};
 }
 

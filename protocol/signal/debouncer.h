@@ -10,6 +10,14 @@
 // re-arm. A chord stretched past the lockout by a room's reverberation thus passes once,
 // while the same chord sent again after a gap passes again, even when the reverberation
 // fills the gap.
+// And against dropouts: a sender kept off the CPU plays its chord with a hole in it, and
+// the rest of the chord, heard after the lockout, looks like the same chord sent again.
+// The two differ only in length: the rest is shorter than a chord. So the symbol that
+// passed keeps a tally of the time it sounded (windows that hear it within rearm_drop_db of
+// its peak); while it comes back within symbol_ms + max_dropout_ms of its first detection,
+// it passes again only once the tally exceeds symbol_ms + presence_margin_ms. A chord sent
+// again right after the first thus passes about 0.2 s later than it would have; one sent
+// after a longer pause (a retransmission) is not delayed.
 //
 // The caller reports every analysis window, with or without a detection. Pure logic:
 // times are the caller's (milliseconds of audio); nothing is allocated.
@@ -49,6 +57,8 @@ class Debouncer {
   static constexpr std::size_t kCapacity = 64;
 
   bool locked_out(const Detection& detection, double t_ms);
+  // The symbol that passed, back before it could have ended: its resumption, not a repeat.
+  bool still_sounding_once(double t_ms) const;
 
   DebounceParams params_;
   double rearm_ratio_;
@@ -60,6 +70,11 @@ class Debouncer {
   double locked_peak_level_ = 0;  // loudest since the pass
   double locked_dip_level_ = 0;   // quietest since that peak
   bool rearmed_ = true;
+  double locked_first_ms_ = 0;   // the first detection of the symbol that passed
+  double sounded_ms_ = 0;        // how long it has sounded since, in windows
+  double last_window_ms_ = 0;    // the previous window's time, for the hop
+  bool locked_sounded_ = false;  // it sounded in the previous window ...
+  double locked_onset_ms_ = 0;   // ... and the window it last came back in
 };
 
 }  // namespace dtmf::signal

@@ -4,7 +4,14 @@
 
 namespace dtmf::signal {
 
-ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& detector, Decode decode)
+namespace {
+DebounceParams for_symbols_of(DebounceParams params, double symbol_ms) {
+  params.symbol_ms = symbol_ms;
+  return params;
+}
+}  // namespace
+
+ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& detector, double symbol_ms, Decode decode)
     : sample_rate_hz_(profile.sample_rate_hz),
       fft_size_(profile.analysis.fft_size),
       analyzer_(profile.analysis.fft_size, profile.sample_rate_hz),
@@ -13,7 +20,7 @@ ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& det
                   static_cast<float>(amplitude_from_dbfs(detector.noise_gate_dbfs))),
       peaks_(detector, analyzer_.bin_hz(), static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1)),
       decode_(std::move(decode)),
-      debouncer_(profile.debounce),
+      debouncer_(for_symbols_of(profile.debounce, symbol_ms)),
       window_(static_cast<std::size_t>(profile.analysis.fft_size), static_cast<std::size_t>(profile.hop_samples())) {
   // Room for the passes of any usual block; a huge block may grow it once.
   heard_.reserve(64);
@@ -42,7 +49,7 @@ void ToneListener::analyze_window() {
 }
 
 ToneListener chord_listener(const LinkProfile& profile) {
-  return ToneListener(profile, profile.robot_detector,
+  return ToneListener(profile, profile.robot_detector, profile.timing.chord_ms,
                       [plan = profile.tones, rules = profile.robot_detector](
                           std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
                         const auto chord = decode_chord(plan, peaks, rules);
@@ -52,7 +59,7 @@ ToneListener chord_listener(const LinkProfile& profile) {
 }
 
 ToneListener reply_listener(const LinkProfile& profile) {
-  return ToneListener(profile, profile.sender_detector,
+  return ToneListener(profile, profile.sender_detector, profile.timing.ack_ms,
                       [plan = profile.tones, tolerance = profile.sender_detector.tone_tolerance_hz,
                        dominance = profile.sender_detector.dominance_db](
                           std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {

@@ -39,7 +39,8 @@ class ToneListener {
  public:
   using Decode = std::function<std::optional<Debouncer::Detection>(std::span<const Peak>)>;
 
-  ToneListener(const LinkProfile& profile, const DetectorParams& detector, Decode decode);
+  // symbol_ms: how long one symbol sounds at the sender (the debouncer's dropout rule).
+  ToneListener(const LinkProfile& profile, const DetectorParams& detector, double symbol_ms, Decode decode);
 
   // Symbols that passed within `samples`; the span is valid until the next call.
   std::span<const Heard> feed(std::span<const float> samples);

@@ -2,6 +2,8 @@
 // re-arming rule for reverberant rooms.
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "profile/link_profile.h"
 #include "signal/debouncer.h"
 
@@ -134,4 +136,81 @@ TEST(Debouncer, ThreeDetectionsNeededWhenTheProfileSaysSo) {
   EXPECT_FALSE(hit(d, 1, 0));
   EXPECT_FALSE(hit(d, 1, 50));
   EXPECT_TRUE(hit(d, 1, 100));
+}
+
+// The dropout rule, as the robot's chord listener sets it up (symbol_ms = the chord's 800 ms).
+namespace {
+
+DebounceParams chords() {
+  DebounceParams params = seed();
+  params.symbol_ms = seed_profile().timing.chord_ms;
+  return params;
+}
+
+// One 0.8 s chord of `symbol` heard from `onset_ms` (a window every 50 ms that detects it,
+// 17 in all, as the real listener's overlapping windows do), with `hole_ms` of silence
+// after `hole_at_ms` of it. Returns the times at which it passed.
+std::vector<double> chord_with_a_hole(Debouncer& d, std::uint32_t symbol, double onset_ms, double hole_at_ms,
+                                      double hole_ms, double listen_until_ms) {
+  std::vector<double> passes;
+  double t = onset_ms;
+  for (double chord_ms = 0; chord_ms <= 800; chord_ms += 50, t += 50) {
+    if (chord_ms == hole_at_ms) {
+      for (const double end_ms = t + hole_ms; t < end_ms; t += 50) d.on_window(t, std::nullopt);
+    }
+    if (d.on_window(t, Debouncer::Detection{symbol, 1.0})) passes.push_back(t);
+  }
+  for (; t <= listen_until_ms; t += 50) d.on_window(t, std::nullopt);
+  return passes;
+}
+
+}  // namespace
+
+// Seen on a CI machine: the sender, kept off the CPU, played seed chords with 20-460 ms of
+// silence in them; the rest of one chord passed again after the lockout, and the robot took
+// the next word for the one after it.
+TEST(Debouncer, AChordWithAHoleInItPassesOnce) {
+  for (const double hole_ms : {100.0, 250.0, 460.0, 550.0}) {
+    for (const double hole_at_ms : {150.0, 400.0, 650.0}) {
+      Debouncer d(chords());
+      EXPECT_EQ(chord_with_a_hole(d, 7, 0, hole_at_ms, hole_ms, 3000), std::vector<double>{50})
+          << hole_ms << " ms of silence after " << hole_at_ms << " ms";
+    }
+  }
+}
+
+// Without the rule (symbol_ms 0) the same holes pass the chord twice: the rule is what holds.
+TEST(Debouncer, WithoutTheDropoutRuleTheRestOfTheChordPassesAgain) {
+  Debouncer d(seed());
+  EXPECT_EQ(chord_with_a_hole(d, 7, 0, 400, 460, 3000).size(), 2u);
+}
+
+TEST(Debouncer, TheSameChordSentAgainAfterTheGapPassesAgainSoon) {
+  Debouncer d(chords());
+  EXPECT_EQ(chord_with_a_hole(d, 7, 0, 800, 0, 950), std::vector<double>{50});
+  // The seed's 0.2 s gap, then the same chord: it has sounded longer than one chord after
+  // 0.2 s of the second, so it passes 0.2 s after its onset (0.05 s without the rule).
+  const auto again = chord_with_a_hole(d, 7, 1000, 800, 0, 2500);
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_GE(again[0], 1050);
+  EXPECT_LE(again[0], 1250);
+}
+
+TEST(Debouncer, ARetransmissionAfterAPauseIsNotDelayed) {
+  Debouncer d(chords());
+  EXPECT_EQ(chord_with_a_hole(d, 7, 0, 800, 0, 2450), std::vector<double>{50});
+  EXPECT_EQ(chord_with_a_hole(d, 7, 2500, 800, 0, 4000), std::vector<double>{2550});
+}
+
+// The sender's ACK listener: 0.3 s replies, one a second; the next one is never held.
+TEST(Debouncer, RepliesASecondApartAreNotHeld) {
+  DebounceParams replies = seed();
+  replies.symbol_ms = seed_profile().timing.ack_ms;
+  Debouncer d(replies);
+  for (double onset_ms = 0; onset_ms < 5000; onset_ms += 1000) {
+    EXPECT_FALSE(hit(d, 1, onset_ms));
+    EXPECT_TRUE(hit(d, 1, onset_ms + 50)) << onset_ms;
+    for (double t = onset_ms + 100; t <= onset_ms + 300; t += 50) EXPECT_FALSE(hit(d, 1, t));
+    for (double t = onset_ms + 350; t < onset_ms + 1000; t += 50) miss(d, t);
+  }
 }
