@@ -110,7 +110,10 @@ void ProgressView::show(const v1::Progress& p, const std::optional<SequencePosit
     if (closes_line(p.event())) finish_line();
     std::fflush(stdout);
   } else {
+    // Line by line into a pipe or a log too: a script reading it reacts to each frame as it
+    // happens, not when the command ends.
     std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
   }
 }
 
