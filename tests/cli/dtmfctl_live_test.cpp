@@ -1,7 +1,12 @@
 // dtmfctl against a live system of real processes: dtmf-server and dtmf-agent talking
 // through the PulseAudio air, logging to PostgreSQL (ctest fixtures air and pg).
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
 
 #include <filesystem>
 #include <fstream>
@@ -130,6 +135,56 @@ TEST_F(DtmfctlLive, BadValuesAreUsageErrorsAndAMissingServerIsOneLine) {
   EXPECT_EQ(r.exit_code, 0) << r.out;
 }
 
+// A sender kept off the CPU plays its chord with a hole in it: on a CI machine the air split
+// seed chords with up to 460 ms of silence, and the rest of one passed as a second chord.
+// Here the server is stopped (SIGSTOP) for 460 ms in the middle of the first frame's chord. The robot must hear each of
+// the command's three frames once and run the command (signal/debouncer.h: a chord resumed after a dropout).
+TEST_F(DtmfctlLive, AChordWithAHoleInItIsHeardOnce) {
+  dtmf::test_support::AirRecording air((kDir / "hole.wav").string());
+  const auto agent_log_at = fs::file_size(kDir / "agent.log");
+  FILE* ctl_out = ::popen((ctl("drive --speed 50 --duration 1") + " < /dev/null 2>&1").c_str(), "r");
+  ASSERT_NE(ctl_out, nullptr);
+  std::string out;
+  bool paused = false;
+  for (char line[512]; std::fgets(line, sizeof line, ctl_out);) {
+    out += line;
+    // 0.4 s into the first chord: the robot's ACK has been heard (0.15-0.25 s after the
+    // chord's start), so the pause costs no answer; the rest of the chord ends after the lockout.
+    if (!paused && out.find("transmitting") != std::string::npos) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(400));
+      ::kill(server_, SIGSTOP);
+      std::this_thread::sleep_for(std::chrono::milliseconds(460));
+      ::kill(server_, SIGCONT);
+      paused = true;
+    }
+  }
+  const int status = ::pclose(ctl_out);
+  const dtmf::LinkProfile& seed = dtmf::seed_profile();
+  const auto split =
+      air.split_chords(seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz, seed.robot_detector.bandpass_high_hz);
+  ASSERT_TRUE(paused) << out;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  EXPECT_NE(out.find("drive_for_duration speed=50.0% duration=1.03s: confirmed"), std::string::npos) << out;
+  // The pause did cut a chord in two, with more than 0.2 s of silence: enough to outlast
+  // the 0.9 s lockout, which alone let the rest pass again.
+  ASSERT_FALSE(split.empty()) << "the pause split no chord:\n" << out;
+  const auto widest =
+      *std::max_element(split.begin(), split.end(), [](const auto& a, const auto& b) { return a.gap_ms < b.gap_ms; });
+  EXPECT_GT(widest.gap_ms, 250) << widest.first_ms << " ms, " << widest.gap_ms << " ms of silence, " << widest.second_ms
+                                << " ms";
+
+  std::ifstream log(kDir / "agent.log");
+  log.seekg(static_cast<std::streamoff>(agent_log_at));
+  std::size_t frames = 0;
+  bool ran = false;
+  for (std::string line; std::getline(log, line);) {
+    frames += line.find(" seed frame ") != std::string::npos;
+    ran = ran || line.find("command drive_for_duration speed=50") != std::string::npos;
+  }
+  EXPECT_EQ(frames, 3u) << "the robot heard " << frames << " frames of the command's 3";
+  EXPECT_TRUE(ran);
+}
+
 TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   dtmf::test_support::AirRecording air((kDir / "air.wav").string());
   const auto r = run_command(ctl("sequence --label general") + " < /dev/null");
@@ -154,12 +209,14 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   EXPECT_EQ(report[0]["successfully_matched"], 65);  // the robot logged what it heard
   EXPECT_EQ(report[0]["dropped"], 0);
   EXPECT_EQ(report[0]["sender_confirmed"], 65);
-  EXPECT_EQ(report[0]["duplicates"], 0);
-  // The seed's promise on a clean air: every chord heard once, and no frame that was never
-  // sent. A chord the air cut in two is two chords to a receiver without sequence numbers,
-  // so it may be heard twice (an extra reception, counted as a false positive): no more
-  // extra receptions than split chords, and each of them a frame that was sent.
-  EXPECT_LE(report[0]["false_positives"].get<long>(), static_cast<long>(split.size()));
+  // The seed's promise: every chord heard once, and no frame that was never sent. Even a
+  // chord the air cut in two is heard once (AChordWithAHoleInItIsHeardOnce), unless its hole
+  // is longer than the receiver bridges: each such one may be heard twice (an extra
+  // reception, counted as a false positive), and each of them a frame that was sent.
+  const auto beyond_bridging =
+      std::count_if(split.begin(), split.end(), [&](const auto& s) { return s.gap_ms > seed.debounce.max_dropout_ms; });
+  EXPECT_LE(report[0]["duplicates"].get<long>(), static_cast<long>(beyond_bridging));
+  EXPECT_LE(report[0]["false_positives"].get<long>(), static_cast<long>(beyond_bridging));
   const std::string run_id = report[0]["run_id"];
   const auto unsent =
       run_command("psql \"$DTMF_DB_URL\" -tAc \"SELECT count(*) FROM run_receptions('" + run_id +

@@ -48,6 +48,25 @@ TEST(AirRecording, AChordWithAnUnderrunInItIsOneSplitChord) {
   EXPECT_NEAR(split[0].second_ms, 500, 20);
 }
 
+// A sender kept off the CPU lost the time of the hole and played its next chord at once.
+TEST(AirRecording, TheRestOfASplitChordMayRunIntoTheNextChord) {
+  const auto chord = dtmf::signal::synthesize_frame(seed, 0x5a3c);
+  const auto next = dtmf::signal::synthesize_frame(seed, 0x0001);
+  std::vector<float> air;
+  append_silence(air, 500);
+  append(air, std::vector<float>(chord.begin(), chord.begin() + 460 * kRateHz / 1000));
+  append_silence(air, 400);
+  append(air, std::vector<float>(chord.begin() + 460 * kRateHz / 1000, chord.end()));
+  append(air, next);
+  append_silence(air, 500);
+  const auto split = find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
+                                       seed.robot_detector.bandpass_high_hz);
+  ASSERT_EQ(split.size(), 1u);
+  EXPECT_NEAR(split[0].first_ms, 460, 20);
+  EXPECT_NEAR(split[0].gap_ms, 400, 20);
+  EXPECT_NEAR(split[0].second_ms, 1140, 20);
+}
+
 TEST(AirRecording, WholeChordsWithAnAckOverThemAreNotSplit) {
   auto chord = dtmf::signal::synthesize_frame(seed, 0x0000);
   const auto ack = dtmf::signal::synthesize_reply(seed, dtmf::signal::Reply::Ack);
