@@ -1,6 +1,6 @@
 // The end-to-end tests' judge of the air (tests/support/air_recording.h): a seed chord cut
-// in two by silence is found, with its pieces; whole chords, the gaps between them and an
-// ACK played over a chord are not.
+// in two by silence is found, with its pieces (also when its rest runs into the next
+// chord); whole chords, the gaps between them and an ACK played over a chord are not.
 #include "support/air_recording.h"
 
 #include <gtest/gtest.h>
@@ -23,6 +23,28 @@ void append(std::vector<float>& air, const std::vector<float>& audio) {
   air.insert(air.end(), audio.begin(), audio.end());
 }
 
+// `chord` with `hole_ms` of silence after its first `at_ms`: an underrun.
+void append_with_a_hole(std::vector<float>& air, const std::vector<float>& chord, int at_ms, int hole_ms) {
+  const auto at = chord.begin() + at_ms * kRateHz / 1000;
+  air.insert(air.end(), chord.begin(), at);
+  append_silence(air, hole_ms);
+  air.insert(air.end(), at, chord.end());
+}
+
+std::vector<dtmf::test_support::SplitChord> split_in(const std::vector<float>& air) {
+  return find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
+                           seed.robot_detector.bandpass_high_hz);
+}
+
+// Exactly one split chord, with these pieces (±20 ms, two of the finder's 10 ms frames).
+void expect_one_split(const std::vector<float>& air, double first_ms, double gap_ms, double second_ms) {
+  const auto split = split_in(air);
+  ASSERT_EQ(split.size(), 1u);
+  EXPECT_NEAR(split[0].first_ms, first_ms, 20);
+  EXPECT_NEAR(split[0].gap_ms, gap_ms, 20);
+  EXPECT_NEAR(split[0].second_ms, second_ms, 20);
+}
+
 }  // namespace
 
 TEST(AirRecording, AChordWithAnUnderrunInItIsOneSplitChord) {
@@ -32,20 +54,14 @@ TEST(AirRecording, AChordWithAnUnderrunInItIsOneSplitChord) {
   append_silence(air, 500);
   append(air, chord);  // whole
   append_silence(air, 200);
-  append(air, std::vector<float>(chord.begin(), chord.begin() + 300 * kRateHz / 1000));  // 300 ms ...
-  append_silence(air, 320);                                                              // ... the underrun ...
-  append(air, std::vector<float>(chord.begin() + 300 * kRateHz / 1000, chord.end()));    // ... the rest
+  append_with_a_hole(air, chord, 300, 320);
   append_silence(air, 200);
   append(air, chord);
   append_silence(air, 500);
 
-  const auto split = find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
-                                       seed.robot_detector.bandpass_high_hz);
-  ASSERT_EQ(split.size(), 1u);
-  EXPECT_NEAR(split[0].start_s, 1.5, 0.02);
-  EXPECT_NEAR(split[0].first_ms, 300, 20);
-  EXPECT_NEAR(split[0].gap_ms, 320, 20);
-  EXPECT_NEAR(split[0].second_ms, 500, 20);
+  expect_one_split(air, 300, 320, 500);
+  ASSERT_FALSE(split_in(air).empty());
+  EXPECT_NEAR(split_in(air)[0].start_s, 1.5, 0.02);
 }
 
 // A sender kept off the CPU lost the time of the hole and played its next chord at once.
@@ -54,17 +70,10 @@ TEST(AirRecording, TheRestOfASplitChordMayRunIntoTheNextChord) {
   const auto next = dtmf::signal::synthesize_frame(seed, 0x0001);
   std::vector<float> air;
   append_silence(air, 500);
-  append(air, std::vector<float>(chord.begin(), chord.begin() + 460 * kRateHz / 1000));
-  append_silence(air, 400);
-  append(air, std::vector<float>(chord.begin() + 460 * kRateHz / 1000, chord.end()));
+  append_with_a_hole(air, chord, 460, 400);
   append(air, next);
   append_silence(air, 500);
-  const auto split = find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
-                                       seed.robot_detector.bandpass_high_hz);
-  ASSERT_EQ(split.size(), 1u);
-  EXPECT_NEAR(split[0].first_ms, 460, 20);
-  EXPECT_NEAR(split[0].gap_ms, 400, 20);
-  EXPECT_NEAR(split[0].second_ms, 1140, 20);
+  expect_one_split(air, 460, 400, 1140);
 }
 
 TEST(AirRecording, WholeChordsWithAnAckOverThemAreNotSplit) {
@@ -76,7 +85,5 @@ TEST(AirRecording, WholeChordsWithAnAckOverThemAreNotSplit) {
     append(air, chord);
     append_silence(air, 200);
   }
-  EXPECT_TRUE(find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
-                                seed.robot_detector.bandpass_high_hz)
-                  .empty());
+  EXPECT_TRUE(split_in(air).empty());
 }
