@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cstdio>
-
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -137,8 +136,9 @@ TEST_F(DtmfctlLive, BadValuesAreUsageErrorsAndAMissingServerIsOneLine) {
 
 // A sender kept off the CPU plays its chord with a hole in it: on a CI machine the air split
 // seed chords with up to 460 ms of silence, and the rest of one passed as a second chord.
-// Here the server is stopped (SIGSTOP) for 460 ms in the middle of the first frame's chord. The robot must hear each of
-// the command's three frames once and run the command (signal/debouncer.h: a chord resumed after a dropout).
+// Here the server is stopped (SIGSTOP) for 460 ms in the middle of the first frame's chord.
+// The robot must hear each of the command's three frames once and run the command
+// (signal/debouncer.h: a chord resumed after a dropout is the same chord).
 TEST_F(DtmfctlLive, AChordWithAHoleInItIsHeardOnce) {
   dtmf::test_support::AirRecording air((kDir / "hole.wav").string());
   const auto agent_log_at = fs::file_size(kDir / "agent.log");
@@ -149,7 +149,8 @@ TEST_F(DtmfctlLive, AChordWithAHoleInItIsHeardOnce) {
   for (char line[512]; std::fgets(line, sizeof line, ctl_out);) {
     out += line;
     // 0.4 s into the first chord: the robot's ACK has been heard (0.15-0.25 s after the
-    // chord's start), so the pause costs no answer; the rest of the chord ends after the lockout.
+    // chord's start), so the pause costs no answer. PulseAudio holds about 0.4 s of the
+    // chord ahead, so the hole is about 0.4 s, and the rest ends after the lockout.
     if (!paused && out.find("transmitting") != std::string::npos) {
       std::this_thread::sleep_for(std::chrono::milliseconds(400));
       ::kill(server_, SIGSTOP);
