@@ -1,7 +1,8 @@
-"""The rooms section of docs/benchmarks.md: dtmf-bench-rooms' table, its targets and its plot.
+"""The rooms section of docs/benchmarks.md: dtmf-bench-rooms' table and its plot.
 
 Kept apart from write_benchmarks.py (which imports it) so that each file stays readable.
-The targets are issue 15's, typed once here; every figure comes from BUILD/bench/PROFILE/rooms.json.
+The room targets are issue 15's, typed once here (targets_section.py judges them); every figure
+comes from BUILD/bench/PROFILE/rooms.json.
 """
 
 import os
@@ -79,25 +80,5 @@ def rooms_section(w, data, profiles, stem, png_dir, ok):
                       str(r["duplicated"]), str(r["wrong_accepts"]), str(r["check_failed"])]
         w(f"| {c['case']} | " + " | ".join(cells) + " |")
     w("")
-    w("Targets (issue 15), judged on these rows:")
-    w("")
-    w("| target | " + " | ".join(f"`{p}`" for p in docs) + " |")
-    w("|---|" + "---|" * len(docs))
-    for label, pick, least in TARGETS:
-        cells = []
-        for p, d in docs.items():
-            rows = [c for c in d["cases"] if pick(c["case"])]
-            if not rows:
-                cells.append("–")
-                continue
-            worst = min(rows, key=lambda c: c["success_rate"])
-            met = "met" if worst["success_rate"] >= least else "**missed**"
-            cells.append(f"{met}: worst {100 * worst['success_rate']:.2f} % ({worst['case']})")
-        w(f"| {label}: ≥ {100 * least:g} % | " + " | ".join(cells) + " |")
-    for label, key in (("no frame accepted twice", "duplicated"), ("zero wrong accepts", "wrong_accepts")):
-        cells = []
-        for p, d in docs.items():
-            total = sum(c[key] for c in d["cases"])
-            cells.append(("met" if total == 0 else f"**missed**: {total}") + f" in {sum(c['frames'] for c in d['cases'])} frames")
-        w(f"| {label} | " + " | ".join(cells) + " |")
+    w("The targets are judged on these rows in the section *Targets (issue 15)* at the end.")
     w("")

@@ -23,6 +23,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rooms_section import rooms_section  # noqa: E402
+from targets_section import targets_section  # noqa: E402
 
 BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "talkoff_speech", "talkoff_music", "talkoff_noise",
            "roundtrip", "e2e", "e2e_room"]
@@ -456,6 +457,7 @@ def main() -> int:
           f"| {d['latency_ms_max']:.0f} ms | {d['payload_bits']} bits | {d['wall_s']:.1f} s | {d['throughput_bps']:.2f} bit/s "
           f"| {d['frames_acked_first_attempt']} of {d['frames_first_attempt']} | {d['retransmissions']} |")
     w("")
+    targets_section(w, data, profiles, ok, decoder_factor)
     with open(args.out, "w") as f:
         f.write("\n".join(out))
     print(f"wrote {args.out} and its plots in {png_dir}")

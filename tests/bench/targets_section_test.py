@@ -1,0 +1,79 @@
+#!/usr/bin/env python3
+"""bench/targets_section.py on made-up benchmark figures: a met target says "met" with its
+figure, a missed one "**missed**" with its figure and its typed reason, a miss without a typed
+reason says so, a target that does not bind a profile shows only the figure, and a benchmark
+that did not run is named (ctest: bench.targets_section).
+
+    /usr/bin/python3 tests/bench/targets_section_test.py
+"""
+
+import sys
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
+import targets_section  # noqa: E402
+
+
+def ok(doc):
+    return "error" not in doc
+
+
+def profile_data(rooms_worst=1.0, e2e_bps=300.0, snr_10=1.0, wrong=0, decoder=6000.0):
+    cases = [dict(case="seminar_room_clap 1 m", frames=1000, success_rate=rooms_worst, duplicated=0, wrong_accepts=wrong),
+             dict(case="clock -2000 ppm", frames=1000, success_rate=1.0, duplicated=0, wrong_accepts=0)]
+    points = [dict(snr_db=-10.0, frames=10000, success_rate=snr_10, wrong_accepts=0),
+              dict(snr_db=-12.0, frames=1000, success_rate=0.5, wrong_accepts=0)]
+    talk = dict(accepted=0, hours=1.0)
+    return dict(rooms=dict(cases=cases), snr=dict(points=points), distance=dict(points=[]),
+                distance_loud=dict(points=[]),
+                e2e_room=dict(latency_ms_median=120.0, throughput_bps=e2e_bps, retransmissions=3, commands=100),
+                talkoff_speech=talk, talkoff_music=talk, talkoff_noise=talk, decoder=dict(factor=decoder))
+
+
+def table(data, profiles=("seed", "fast")):
+    out = []
+    targets_section.targets_section(out.append, data, list(profiles), ok, lambda d, signal: d["factor"])
+    rows = {}
+    for line in out:
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if line.startswith("| ") and len(cells) == 2 + len(profiles):
+            rows[cells[0]] = dict(zip(profiles, cells[2:]))
+    return rows
+
+
+class TargetsSection(unittest.TestCase):
+    def test_met_missed_with_and_without_a_reason(self):
+        rows = table({"seed": profile_data(), "fast": profile_data(rooms_worst=0.99, e2e_bps=180.0, snr_10=0.998)})
+        measured = rows["measured rooms (1 and 3 m)"]
+        self.assertEqual(measured["seed"], "met: worst 100.00 % (seminar_room_clap 1 m)")
+        self.assertTrue(measured["fast"].startswith("**missed**: worst 99.00 % (seminar_room_clap 1 m) — "))
+        self.assertIn("reason not yet analysed", measured["fast"])  # no reason typed for this one
+        bps = rows["end to end through the seminar room both ways: net throughput"]
+        self.assertEqual(bps["seed"], "300 bit/s, 3 retransmissions in 100 commands")  # binds fast only
+        self.assertIn("**missed**: 180 bit/s", bps["fast"])
+        self.assertIn("500 ms ACK timeout", bps["fast"])  # its typed reason
+        self.assertIn("**missed**: 99.80 % of 10000", rows["frame success at −10 dB SNR"]["fast"])
+        self.assertEqual(rows["decoder speed, one core (noise / frames)"]["fast"], "met: 6 000 × / 6 000 ×")
+
+    def test_a_wrong_accept_anywhere_misses_the_target(self):
+        rows = table({"seed": profile_data(wrong=1), "fast": profile_data()})
+        self.assertTrue(rows["zero wrong accepts"]["seed"].startswith("**missed**: 1 in 13 000 frames"))
+        self.assertEqual(rows["zero wrong accepts"]["fast"], "met: 0 in 13 000 frames")
+
+    def test_a_benchmark_that_did_not_run_is_named(self):
+        fast = profile_data()
+        fast["snr"] = dict(error="not built")
+        rows = table({"seed": profile_data(), "fast": fast})
+        self.assertEqual(rows["frame success at −10 dB SNR"]["fast"], "not run")
+        self.assertEqual(rows["zero wrong accepts"]["fast"], "snr not run")
+
+    def test_every_typed_reason_belongs_to_a_target(self):
+        keys = {key for key, _, _, _ in targets_section.targets(lambda d, s: 0)}
+        for key, profile in targets_section.REASONS:
+            self.assertIn(key, keys)
+            self.assertIn(profile, ("seed", "fast"))
+
+
+if __name__ == "__main__":
+    unittest.main()
