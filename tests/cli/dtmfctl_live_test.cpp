@@ -214,10 +214,9 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   // chord the air cut in two is heard once (AChordWithAHoleInItIsHeardOnce), unless its hole
   // is longer than the receiver bridges: each such one may be heard twice (an extra
   // reception, counted as a false positive), and each of them a frame that was sent.
-  const auto beyond_bridging =
-      std::count_if(split.begin(), split.end(), [&](const auto& s) { return s.gap_ms > seed.debounce.max_dropout_ms; });
-  EXPECT_LE(report[0]["duplicates"].get<long>(), static_cast<long>(beyond_bridging));
-  EXPECT_LE(report[0]["false_positives"].get<long>(), static_cast<long>(beyond_bridging));
+  const long beyond_bridging = dtmf::test_support::holes_longer_than(split, seed.debounce.max_dropout_ms);
+  EXPECT_LE(report[0]["duplicates"].get<long>(), beyond_bridging);
+  EXPECT_LE(report[0]["false_positives"].get<long>(), beyond_bridging);
   const std::string run_id = report[0]["run_id"];
   const auto unsent =
       run_command("psql \"$DTMF_DB_URL\" -tAc \"SELECT count(*) FROM run_receptions('" + run_id +

@@ -76,6 +76,21 @@ TEST(AirRecording, TheRestOfASplitChordMayRunIntoTheNextChord) {
   expect_one_split(air, 460, 400, 1140);
 }
 
+// A hole longer than the receiver bridges is found too, and counted apart.
+TEST(AirRecording, AHoleLongerThanTheReceiverBridgesIsFoundAndCounted) {
+  const auto chord = dtmf::signal::synthesize_frame(seed, 0x5a3c);
+  std::vector<float> air;
+  append_silence(air, 500);
+  append_with_a_hole(air, chord, 300, 900);
+  append_silence(air, 200);
+  append_with_a_hole(air, chord, 400, 250);
+  append_silence(air, 500);
+  const auto split = split_in(air);
+  ASSERT_EQ(split.size(), 2u);
+  EXPECT_NEAR(split[0].gap_ms, 900, 20);
+  EXPECT_EQ(dtmf::test_support::holes_longer_than(split, seed.debounce.max_dropout_ms), 1);
+}
+
 TEST(AirRecording, WholeChordsWithAnAckOverThemAreNotSplit) {
   auto chord = dtmf::signal::synthesize_frame(seed, 0x0000);
   const auto ack = dtmf::signal::synthesize_reply(seed, dtmf::signal::Reply::Ack);

@@ -36,6 +36,10 @@ struct SplitChord {
   double second_ms;  // the rest of the chord
 };
 
+// The longest silence inside a chord that find_split_chords looks for; a piece shorter than
+// a chord only comes from a split, so a long limit finds no false ones.
+inline constexpr double kLongestHoleMs = 2000;
+
 // Every chord of chord_ms in `audio` that silence cut in two (see the top of this file).
 inline std::vector<SplitChord> find_split_chords(const std::vector<float>& audio, int rate_hz, double chord_ms,
                                                  double low_hz, double high_hz) {
@@ -75,13 +79,22 @@ inline std::vector<SplitChord> find_split_chords(const std::vector<float>& audio
     const double second_ms = 10.0 * static_cast<double>(runs[r + 1].frames);
     const double gap_ms = 10.0 * static_cast<double>(runs[r + 1].start - runs[r].start - runs[r].frames);
     // The rest may run straight into the next chord: a sender that lost the time of the
-    // silence plays its next chord without the gap.
-    if (first_ms < chord_ms - 30 && gap_ms < 600 && first_ms + second_ms >= chord_ms - 40) {
+    // silence plays its next chord without the gap. Holes up to kLongestHoleMs are found,
+    // beyond what the receiver bridges, so that a test can tell the two kinds apart.
+    if (first_ms < chord_ms - 30 && gap_ms < kLongestHoleMs && first_ms + second_ms >= chord_ms - 40) {
       split.push_back({static_cast<double>(runs[r].start) / 100.0, first_ms, gap_ms, second_ms});
       ++r;
     }
   }
   return split;
+}
+
+// How many of `split` have a hole longer than `bridged_ms` (a receiver's max_dropout_ms):
+// each such chord may be heard twice by a receiver without sequence numbers.
+inline long holes_longer_than(const std::vector<SplitChord>& split, double bridged_ms) {
+  long count = 0;
+  for (const SplitChord& s : split) count += s.gap_ms > bridged_ms;
+  return count;
 }
 
 class AirRecording {
