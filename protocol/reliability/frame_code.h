@@ -1,14 +1,8 @@
-// Reliability layer: the fast frame's code, RS(16, 10) over GF(32) (command_frame.h), and its
-// decoding from tones read with unequal certainty.
-//
-// The listener reads each of the sixteen tones as a symbol with a certainty (how far its bin
-// stood above the runner-up) and a flag for tones it could not hear at all (no bin stood out,
-// or the bin did not rise when the chord began: a reverberant tail). Decoding tries the
-// codeword with the unheard tones erased, then with the least certain heard tones erased too,
-// one more at a time, up to `max_erasures`; the first decode whose CRC holds is the frame.
-// Two of the six parity symbols are kept for detection (2 * errors + erasures <= 4): pushed
-// to its limit, the code turns noise into some codeword and only the CRC would be left to
-// refuse it. Pure logic: no I/O, no clock.
+// Reliability layer: the fast frame's code, RS(16, 10) over GF(32) (command_frame.h), decoded
+// from tones read with unequal certainty (symbol_decoder.h): unheard tones erased first, then
+// the least certain, up to `max_erasures`; the first decode whose CRC-16 holds is the frame.
+// Two of the six parity symbols are kept for detection (2 * errors + erasures <= 4).
+// Pure logic: no I/O, no clock.
 #pragma once
 
 #include <array>
@@ -18,6 +12,7 @@
 
 #include "reliability/command_frame.h"
 #include "reliability/reed_solomon.h"
+#include "reliability/symbol_decoder.h"
 
 namespace dtmf::reliability {
 
@@ -25,12 +20,6 @@ inline constexpr int kCodeReserveSymbols = 2;
 
 // The code itself, shared (libfec's tables are built once).
 const ReedSolomon& frame_code();
-
-struct SymbolReading {
-  std::uint8_t symbol = 0;  // the strongest tone of its band
-  float certainty = 1;      // its power over the runner-up's (>= 1)
-  bool heard = true;        // false: erase it
-};
 
 struct DecodedFrame {
   CommandFrame frame;

@@ -10,6 +10,7 @@ DTMF_PACKAGES=(
   pulseaudio pulseaudio-utils libasound2-plugins alsa-utils
   postgresql libpqxx-dev cyclonedds-dev cyclonedds-tools
   libfec-dev  # Reed-Solomon codecs (protocol/reliability/reed_solomon.h)
+  libsodium-dev  # keys, MACs and random numbers of authenticated frames (protocol/security/)
   libfastrtps-dev fastddsgen  # tests/interop/fastdds: ROS 2 Jazzy's default middleware as the subscriber
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
   espeak-ng sox openssl
@@ -26,7 +27,7 @@ DTMF_PACKAGES=(
 DTMF_ROBOT_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libfftw3-dev libsndfile1-dev libsamplerate0-dev portaudio19-dev libasound2-dev libjack-jackd2-dev
-  libspdlog-dev libcli11-dev nlohmann-json3-dev libpqxx-dev cyclonedds-dev cyclonedds-tools libfec-dev
+  libspdlog-dev libcli11-dev nlohmann-json3-dev libpqxx-dev cyclonedds-dev cyclonedds-tools libfec-dev libsodium-dev
 )
 
 # Installs what is missing (as root), or says exactly what to run and fails.

@@ -1,0 +1,73 @@
+// Reliability layer: the fast profile's authenticated ("sealed") frame — 80 bits sent as one
+// RS(24, 16) codeword over GF(32), twenty-four 32-ary tones on three chords.
+//
+//   bits 79..77  address (0..7): the robot it is for
+//   bit  76      form: 0 a command, 1 a counter synchronisation
+//   command:     bits 75..67  the freshness counter's low 9 bits (security/freshness.h)
+//                bits 66..40  payload, 27 bits (command/command_payload.h)
+//   sync:        bits 75..40  the whole counter, 36 bits
+//   bits 39..8   MAC, 32 bits (security/frame_mac.h): address, form, the full counter, payload
+//   bits 7..0    CRC-8/AUTOSAR (polynomial 0x2F, initial and final XOR 0xFF) of bits 79..8
+//
+// The CRC tells a damaged frame (NACK: the sender retransmits) from an intact one whose MAC
+// fails (forged, replayed, or under another key: refused); the MAC is what admits a frame.
+// Decoding (symbol_decoder.h) keeps two of the eight parity symbols for detection, as the
+// 50-bit frame does. Pure logic: no I/O, no clock.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "reliability/frame_bits.h"
+#include "reliability/reed_solomon.h"
+#include "reliability/symbol_decoder.h"
+
+namespace dtmf::reliability {
+
+inline constexpr int kSealedFrameBits = 80;
+inline constexpr int kSealedSymbols = 24;
+inline constexpr int kSealedDataSymbols = 16;
+inline constexpr int kSealedCheckBits = 8;  // the CRC; the MAC counts as payload-carried security
+inline constexpr int kSealedMacBits = 32;
+inline constexpr int kSealedCounterLowBits = 9;
+inline constexpr int kSealedSyncCounterBits = 36;
+inline constexpr int kSealedReserveSymbols = 2;
+
+enum class SealedForm : std::uint8_t { Command = 0, Sync = 1 };
+
+struct SealedFrame {
+  std::uint8_t address = 0;
+  SealedForm form = SealedForm::Command;
+  std::uint64_t counter = 0;  // the low 9 bits (a command) or the whole 36 (a sync), as sent
+  std::uint32_t payload = 0;  // a command's 27 bits; 0 for a sync
+  std::uint32_t mac = 0;
+  bool operator==(const SealedFrame&) const = default;
+};
+
+using SealedSymbols = std::array<std::uint8_t, kSealedSymbols>;
+
+// CRC-8/AUTOSAR of the low `width` bits of `bits`, most significant first.
+std::uint8_t crc8_autosar(WideBits bits, int width);
+
+FrameBits pack(const SealedFrame& frame);
+// The frame in `bits` when its CRC holds.
+std::optional<SealedFrame> unpack_sealed(FrameBits bits);
+
+const ReedSolomon& sealed_code();
+SealedSymbols encode_sealed_symbols(FrameBits bits);
+FrameBits sealed_data_bits(std::span<const std::uint8_t> data_symbols);
+
+struct DecodedSealed {
+  SealedFrame frame;
+  FrameBits bits;
+  int erasures = 0;
+  int errors = 0;
+};
+// The first decode whose CRC holds.
+std::optional<DecodedSealed> decode_sealed(std::span<const SymbolReading, kSealedSymbols> readings, int max_erasures);
+// The hard decision's data symbols, for logs of a frame that did not decode.
+FrameBits read_sealed_bits(std::span<const SymbolReading, kSealedSymbols> readings);
+
+}  // namespace dtmf::reliability

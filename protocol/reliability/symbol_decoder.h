@@ -1,0 +1,76 @@
+// Reliability layer: decoding a Reed–Solomon codeword from tones heard with unequal
+// certainty — the one decoder behind every frame of the fast profile (frame_code.h,
+// sealed_frame.h).
+//
+// The listener reads each tone as a symbol with a certainty (how far its bin stood above the
+// runner-up) and a flag for tones it could not hear at all. Decoding tries the codeword with
+// the unheard tones erased, then with the least certain heard tones erased too, one more at a
+// time, up to `max_erasures`; the first data whose `check` holds (a CRC) is the frame. The
+// code keeps `reserve` parity symbols for detection (2 * errors + erasures <= parity -
+// reserve): pushed to its limit, it turns noise into some codeword. Pure logic; allocates
+// nothing (it runs in the robot's receive path).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <numeric>
+#include <optional>
+#include <span>
+
+#include "reliability/reed_solomon.h"
+
+namespace dtmf::reliability {
+
+struct SymbolReading {
+  std::uint8_t symbol = 0;  // the strongest tone of its band
+  float certainty = 1;      // its power over the runner-up's (>= 1)
+  bool heard = true;        // false: erase it
+};
+
+struct DecodedSymbols {
+  int erasures = 0;  // symbols erased to decode it
+  int errors = 0;    // symbols corrected beyond those
+};
+
+inline constexpr int kMaxCodeSymbols = 32;
+
+// `check(data)` says whether the data symbols decoded are a frame; the data of the first that
+// is stays in `data`.
+template <typename Check>
+std::optional<DecodedSymbols> decode_symbols(std::span<const SymbolReading> readings, const ReedSolomon& code,
+                                             int max_erasures, int reserve, std::span<std::uint8_t> data,
+                                             Check&& check) {
+  const std::size_t n = readings.size();
+  std::array<std::uint8_t, kMaxCodeSymbols> received{};
+  std::array<int, kMaxCodeSymbols> order{};
+  std::iota(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n), 0);
+  // Unheard tones first, then the heard ones from the least certain. An insertion sort:
+  // stable, and unlike std::stable_sort it allocates nothing.
+  const auto before = [&](int a, int b) {
+    const auto& x = readings[static_cast<std::size_t>(a)];
+    const auto& y = readings[static_cast<std::size_t>(b)];
+    if (x.heard != y.heard) return !x.heard;
+    return x.certainty < y.certainty;
+  };
+  for (std::size_t i = 1; i < n; ++i) {
+    const int v = order[i];
+    std::size_t j = i;
+    for (; j > 0 && before(v, order[j - 1]); --j) order[j] = order[j - 1];
+    order[j] = v;
+  }
+  int unheard = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    received[i] = readings[i].symbol;
+    unheard += readings[i].heard ? 0 : 1;
+  }
+  const int limit = std::min(max_erasures, code.parity() - reserve);
+  for (int erased = unheard; erased <= limit; ++erased) {
+    const auto errors = code.decode(std::span<const std::uint8_t>(received.data(), n),
+                                    std::span<const int>(order.data(), static_cast<std::size_t>(erased)), data, reserve);
+    if (errors && check(std::span<const std::uint8_t>(data))) return DecodedSymbols{erased, *errors};
+  }
+  return std::nullopt;
+}
+
+}  // namespace dtmf::reliability

@@ -1,0 +1,51 @@
+#include "security/frame_mac.h"
+
+#include <sodium.h>
+
+#include <array>
+#include <cstring>
+
+namespace dtmf::security {
+
+namespace {
+
+constexpr char kLabel[] = "dtmf-teleop/1";
+constexpr std::size_t kLabelBytes = sizeof kLabel - 1;
+constexpr std::size_t kMessageBytes = kLabelBytes + 1 + 4 + 1 + 1 + 8 + 4;
+
+void put_be(unsigned char* at, std::uint64_t value, int bytes) {
+  for (int i = bytes - 1; i >= 0; --i) {
+    at[i] = static_cast<unsigned char>(value & 0xFF);
+    value >>= 8;
+  }
+}
+
+std::uint32_t mac32(const LinkKey& key, Direction direction, const FrameMacInput& in, std::uint32_t body) {
+  std::array<unsigned char, kMessageBytes> message{};
+  unsigned char* at = message.data();
+  std::memcpy(at, kLabel, kLabelBytes);
+  at += kLabelBytes;
+  *at++ = static_cast<unsigned char>(direction);
+  put_be(at, key.id(), 4);
+  at += 4;
+  *at++ = in.address;
+  *at++ = in.form;
+  put_be(at, in.counter, 8);
+  at += 8;
+  put_be(at, body, 4);
+  std::array<unsigned char, crypto_generichash_BYTES_MIN> out{};
+  crypto_generichash(out.data(), out.size(), message.data(), message.size(), key.bytes().data(), key.bytes().size());
+  return (std::uint32_t{out[0]} << 24) | (std::uint32_t{out[1]} << 16) | (std::uint32_t{out[2]} << 8) | out[3];
+}
+
+}  // namespace
+
+std::uint32_t frame_mac(const LinkKey& key, const FrameMacInput& input) {
+  return mac32(key, Direction::ToRobot, input, input.payload);
+}
+
+std::uint32_t answer_tag(const LinkKey& key, const FrameMacInput& frame, std::uint32_t mac) {
+  return mac32(key, Direction::ToSender, frame, mac);
+}
+
+}  // namespace dtmf::security
