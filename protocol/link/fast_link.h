@@ -1,5 +1,7 @@
 // The `fast` profile's link: a whole command per numbered frame behind the Link interface
-// (link.h). Its ACK names the frame's sequence number, and only that ACK answers the frame.
+// (link.h). Without a key, a 50-bit frame of two chords, its ACK naming the frame's sequence
+// number; with one, an 80-bit frame of three chords carrying a freshness counter and a MAC,
+// its ACK a tag only the key makes for that frame (docs/protocol.md §10, docs/security.md).
 #pragma once
 
 #include "link/link.h"
@@ -8,18 +10,27 @@ namespace dtmf::link {
 
 class FastLink final : public Link {
  public:
-  using Link::Link;
-  std::vector<TransmitFrame> plan(const command::Command& command, std::uint8_t& next_sequence) const override;
+  FastLink(const LinkProfile& profile, LinkOptions options);
+  std::vector<TransmitFrame> plan(const command::Command& command) override;
+  std::size_t frame_count(const command::Command& command) const override;
+  bool can_authenticate() const override { return true; }
   command::Command as_received(const command::Command& command) const override;
   int payload_bits(const command::Command& command) const override;
-  TransmitFrame random_frame(std::uint64_t seed) const override;
+  TransmitFrame random_frame(std::uint64_t seed) override;
   double frame_start_ms(std::size_t index) const override;
+  void confirmed(const TransmitFrame& frame) override;
   std::unique_ptr<FrameReceiver> receiver() const override;
   std::vector<float> answer_audio(const Reception& reception) const override;
   int receiver_block_samples() const override;
   std::unique_ptr<AnswerListener> answer_listener() const override;
   int answer_block_samples() const override;
   bool answers(const Answer& answer, const TransmitFrame& frame) const override;
+
+ private:
+  TransmitFrame plain_frame(std::uint32_t payload);
+  TransmitFrame sealed_frame(std::uint32_t payload, bool synchronisation, std::uint64_t counter) const;
+
+  std::uint8_t next_sequence_;
 };
 
 }  // namespace dtmf::link

@@ -1,22 +1,30 @@
 #include "link/hop_frame_path.h"
 
-#include "command/command_payload.h"
+#include <cmath>
+
+#include "reliability/command_frame.h"
+#include "reliability/frame_code.h"
+#include "reliability/sealed_frame.h"
 
 namespace dtmf::link {
 
-HopFramePath::HopFramePath(const LinkProfile& profile)
+HopFramePath::HopFramePath(const LinkProfile& profile, reliability::SealedCheck authentic)
     : hops_(profile.hops),
+      authentic_(std::move(authentic)),
+      budgeted_([this](const reliability::FrameBits& bits) { return checked_authentic(bits); }),
       listener_(profile),
       // Candidates of one frame come from its inner window and a hop or two either side:
-      // after an accept, seven hops are the frame's. Failed candidates 2.5 hops apart are
-      // separate clusters, and a failed cluster waits a chord and three hops before its
-      // NACK, so that an accept of the frame a hop later can close it silently.
+      // after an accept, seven hops are the frame's. Failed candidates belong to one cluster
+      // while they come less than a chord and a hop apart (the two-chord reading of an
+      // authenticated frame's start and its three-chord reading a chord later), and a failed
+      // cluster waits two chords and three hops before its NACK, so that an accept of the
+      // frame's longer reading can close it silently.
       gate_(profile.hops.lockout_hops * listener_.hop_ms(), profile.hops.cluster_gap_hops * listener_.hop_ms(),
             profile.hops.nack_settle_hops * listener_.hop_ms()) {
   received_.reserve(8);
 }
 
-std::span<const ReceivedHopFrame> HopFramePath::feed(std::span<const float> samples) {
+std::span<const HeardHopFrame> HopFramePath::feed(std::span<const float> samples) {
   received_.clear();
   listener_.feed(samples, *this);
   if (const auto nack = gate_.on_time(listener_.now_ms())) deliver(*nack, 0);
@@ -24,19 +32,45 @@ std::span<const ReceivedHopFrame> HopFramePath::feed(std::span<const float> samp
 }
 
 namespace {
-std::array<reliability::SymbolReading, reliability::kCodeSymbols> readings_of(const signal::HopCandidate& c) {
-  std::array<reliability::SymbolReading, reliability::kCodeSymbols> r{};
-  for (std::size_t t = 0; t < r.size(); ++t) r[t] = {c.tones[t].symbol, c.tones[t].certainty, c.tones[t].heard};
+
+template <std::size_t N>
+std::array<reliability::SymbolReading, N> readings_of(const signal::HopCandidate& c) {
+  std::array<reliability::SymbolReading, N> r{};
+  for (std::size_t t = 0; t < N; ++t) {
+    r[t] = {c.tones[t].symbol, c.tones[t].certainty, c.tones[t].heard, c.tones[t].risen};
+  }
   return r;
 }
+
 }  // namespace
 
 bool HopFramePath::take(const signal::HopCandidate& c) {
   if (const auto nack = gate_.on_time(c.heard_ms)) deliver(*nack, 0);
-  const auto decoded = reliability::decode_frame(readings_of(c), hops_.max_erasures);
-  if (!decoded) return false;
-  if (const auto verdict = gate_.on_candidate(c.start_ms, c.heard_ms, decoded, 0)) {
-    listener_.confirm(c, reliability::encode_symbols(decoded->bits));
+  // Candidates a cluster's gap apart belong to different frames: each its own budget.
+  if (c.heard_ms - last_candidate_ms_ > hops_.cluster_gap_hops * listener_.hop_ms()) checks_ = 0;
+  last_candidate_ms_ = c.heard_ms;
+  std::optional<reliability::FrameBits> bits;
+  if (c.chords == 2) {
+    if (const auto d = reliability::decode_frame(readings_of<reliability::kCodeSymbols>(c), hops_.max_erasures)) {
+      bits = d->bits;
+      listener_.confirm(c, reliability::encode_symbols(d->bits));
+    }
+  } else {
+    const auto d =
+        reliability::decode_sealed(readings_of<reliability::kSealedSymbols>(c), hops_.sealed_max_erasures, budgeted_);
+    if (d.authentic) {
+      bits = d.authentic->bits;
+      listener_.confirm(c, reliability::encode_sealed_symbols(d.authentic->bits));
+    } else if (d.intact && !shadow_of_accepted(c)) {
+      // Intact but not authentic: a later window may still read the real frame; if none does,
+      // the cluster ends with this one, refused.
+      gate_.on_candidate(c.start_ms, c.heard_ms, false, {c.chords, d.intact->bits, true});
+      return false;
+    }
+  }
+  if (!bits) return false;
+  if (*bits == last_bits_ && !rose_with_its_chords(c)) return true;  // the last frame's tail: taken, and dropped
+  if (const auto verdict = gate_.on_candidate(c.start_ms, c.heard_ms, true, {c.chords, *bits})) {
     // The frame's later windows would only read it again: build no candidates from them.
     listener_.hold_until(c.heard_ms + hops_.lockout_hops * listener_.hop_ms());
     deliver(*verdict, c.offset_ppm);
@@ -44,43 +78,71 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
   return true;
 }
 
+// A candidate that begins while the frame accepted last sounded reads that frame's chords in
+// the other shape (its two chords and what follows them as three, an authenticated frame's
+// first two or last two as a frame of two, or in a room a chord and its echo a few hops
+// later): no frame of its own, nothing to NACK. A sender's next frame begins after its last
+// has ended.
+bool HopFramePath::shadow_of_accepted(const signal::HopCandidate& c) const {
+  const double slack_ms = 1.5 * listener_.hop_ms();
+  return c.start_ms > last_start_ms_ - slack_ms && c.start_ms < last_end_ms_ - slack_ms;
+}
+
 void HopFramePath::none_taken(const signal::HopCandidate& first) {
+  if (shadow_of_accepted(first)) return;
+  // (A cluster already holding an intact frame ends with it whatever this candidate adds.)
   // Only what sounded like a frame — as many tones heard clearly as decoding needs — and still
   // did not decode is a damaged frame to NACK: a seed chord or a whistle that passed the gate is not.
+  const int max_erasures = first.chords == 2 ? hops_.max_erasures : hops_.sealed_max_erasures;
   int clear = 0;
-  for (const auto& tone : first.tones) clear += tone.heard && tone.certainty >= hops_.clear_certainty ? 1 : 0;
-  if (clear < reliability::kCodeSymbols - hops_.max_erasures) return;
-  if (const auto verdict = gate_.on_candidate(first.start_ms, first.heard_ms, std::nullopt,
-                                              reliability::read_bits(readings_of(first)))) {
+  for (std::size_t t = 0; t < first.tone_count(); ++t) {
+    clear += first.tones[t].heard && first.tones[t].certainty >= hops_.clear_certainty ? 1 : 0;
+  }
+  if (clear < static_cast<int>(first.tone_count()) - max_erasures) return;
+  const reliability::FrameBits read =
+      first.chords == 2 ? reliability::FrameBits(reliability::read_bits(readings_of<reliability::kCodeSymbols>(first)))
+                        : reliability::read_sealed_bits(readings_of<reliability::kSealedSymbols>(first));
+  if (const auto verdict = gate_.on_candidate(first.start_ms, first.heard_ms, false, {first.chords, read})) {
     deliver(*verdict, first.offset_ppm);
   }
 }
 
+// Most of the candidate's tones rose with their chords (more than the code may erase did not).
+bool HopFramePath::rose_with_its_chords(const signal::HopCandidate& c) const {
+  int unrisen = 0;
+  for (std::size_t t = 0; t < c.tone_count(); ++t) unrisen += c.tones[t].risen ? 0 : 1;
+  return unrisen <= (c.chords == 2 ? hops_.max_erasures : hops_.sealed_max_erasures);
+}
+
+bool HopFramePath::checked_authentic(const reliability::FrameBits& bits) {
+  for (int i = 0; i < checks_; ++i) {
+    if (checked_[static_cast<std::size_t>(i)].first == bits) return checked_[static_cast<std::size_t>(i)].second;
+  }
+  if (checks_ == kMacChecksPerFrame) return false;
+  const bool holds = authentic_(bits);
+  checked_[static_cast<std::size_t>(checks_++)] = {bits, holds};
+  return holds;
+}
+
 void HopFramePath::deliver(const reliability::Verdict& verdict, int offset_ppm) {
-  ReceivedHopFrame r;
+  checks_ = 0;  // a new frame, a new budget
+  HeardHopFrame r;
   r.start_ms = verdict.start_ms;
   r.heard_ms = verdict.heard_ms;
-  r.bits = verdict.read_bits;
+  r.chords = verdict.frame.chords;
+  r.intact = verdict.accepted || verdict.frame.intact;
+  r.bits = verdict.frame.bits;
   r.offset_ppm = offset_ppm;
-  if (verdict.accepted) {
-    r.bits = verdict.accepted->bits;
+  if (r.intact) {
     // The same frame accepted again before a retransmission could have come: the room
     // gave its sound back (a strong reflection) — the same transmission, not a new one.
     if (last_bits_ == r.bits && verdict.start_ms - last_start_ms_ < hops_.repeat_guard_ms) return;
-    // Another robot's frame: not ours to answer (address 0 is every robot's).
-    if (verdict.accepted->frame.address != 0) return;
     last_bits_ = r.bits;
     last_start_ms_ = verdict.start_ms;
-    const auto decoded = command::decode_payload(verdict.accepted->frame.payload);
-    if (decoded.command) {
-      r.frame = verdict.accepted->frame;
-      r.repeat = !sequence_.first_time(*r.frame);
-      if (!r.repeat) r.command = decoded.command;
-    } else {
-      r.error = decoded.error;  // passed the checks by chance, or a kind this robot lacks: NACK
-    }
+    const double chord_ms = listener_.hop_ms() * hops_.chord_samples() / hops_.hop_samples;
+    last_end_ms_ = verdict.start_ms + verdict.frame.chords * chord_ms;
   }
-  received_.push_back(std::move(r));
+  received_.push_back(r);
 }
 
 }  // namespace dtmf::link

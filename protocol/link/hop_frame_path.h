@@ -1,56 +1,75 @@
-// The fast profile's receive path through the layers (FrameFormat::HoppedCommand).
+// The fast profile's receive path through the signal and reliability layers, for frames of
+// both shapes: two chords (50 bits, unauthenticated) and three (80 bits, authenticated).
 //
-//   audio -> HopListener (candidates: sixteen tone readings per frequency-offset hypothesis)
-//         -> Reed-Solomon + CRC-16 (reliability/frame_code.h), hypotheses in order
-//         -> FrameGate (one verdict per frame: accepted once, or one NACK for a failed cluster)
-//         -> the same frame again within repeat_guard_ms: the same sound, dropped
-//         -> SequenceFilter (a retransmission after a lost ACK is answered, not re-executed)
-//         -> payload -> command
-// Every verdict is reported, accepted or not, so the caller can answer it — ACK naming the
-// frame's sequence number, or NACK — and log it.
+//   audio -> HopListener (candidates of either shape: tone readings per frequency-offset hypothesis)
+//         -> Reed-Solomon + CRC (reliability/frame_code.h, reliability/sealed_frame.h), hypotheses in order
+//         -> FrameGate (one verdict per frame, whatever its shape: accepted once, or one NACK
+//            for a failed cluster; the first two chords of an authenticated frame fail as a
+//            two-chord frame and belong to its cluster)
+//         -> the same bits again within repeat_guard_ms: the same sound (an echo), dropped;
+//            and the frame accepted last, read again where most of its tones did not rise
+//            with their chords: its reverberant tail (in a quiet room it stays over the
+//            floor for most of a second), dropped
+// An authenticated frame's MAC is checked for at most kMacChecksPerFrame different frames
+// read between two verdicts, or in one run of candidates (the same bits read again cost no
+// check): a forger gets that many guesses at a 32-bit MAC per frame he plays, and no more
+// (docs/security.md).
+// Every verdict is reported, intact or not; what it means to the robot (a command, a repeat,
+// a refusal) is the admission's to say (frame_admission.h).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <span>
-#include <string>
+#include <utility>
 #include <vector>
 
-#include "command/command.h"
 #include "profile/link_profile.h"
+#include "reliability/frame_bits.h"
 #include "reliability/frame_gate.h"
-#include "reliability/sequence_filter.h"
+#include "reliability/sealed_frame.h"
 #include "signal/hop_listener.h"
 
 namespace dtmf::link {
 
-struct ReceivedHopFrame {
+struct HeardHopFrame {
   double start_ms = 0;
   double heard_ms = 0;
-  std::optional<reliability::CommandFrame> frame;  // nullopt: not intact, answer NACK
-  std::uint64_t bits = 0;                          // the 50 bits as accepted; for a NACK, as first read
-  int offset_ppm = 0;                              // the frequency offset it was heard at
-  bool repeat = false;                             // same frame as the last executed
-  std::optional<command::Command> command;         // for new intact frames
-  std::string error;                               // why an intact frame was refused
+  int chords = 2;               // 2: a 50-bit frame, 3: an 80-bit authenticated one
+  bool intact = false;          // passed the code and the CRC (and for 3 chords its MAC, or it is refused)
+  reliability::FrameBits bits;  // as accepted; for a failed frame, as first read
+  int offset_ppm = 0;           // the frequency offset it was heard at
 };
+
+inline constexpr int kMacChecksPerFrame = 4;
 
 class HopFramePath final : private signal::CandidateSink {
  public:
-  explicit HopFramePath(const LinkProfile& profile);
-  std::span<const ReceivedHopFrame> feed(std::span<const float> samples);
+  // `authentic`: whether an 80-bit frame whose CRC holds is authentic (its MAC holds): the
+  // robot's admission says, and decoding goes on past a frame it would refuse.
+  HopFramePath(const LinkProfile& profile, reliability::SealedCheck authentic);
+  std::span<const HeardHopFrame> feed(std::span<const float> samples);
 
  private:
   bool take(const signal::HopCandidate& candidate) override;
   void none_taken(const signal::HopCandidate& first) override;
   void deliver(const reliability::Verdict& verdict, int offset_ppm);
+  bool checked_authentic(const reliability::FrameBits& bits);
+  bool rose_with_its_chords(const signal::HopCandidate& c) const;
+  bool shadow_of_accepted(const signal::HopCandidate& c) const;
 
   const HopLink& hops_;
+  reliability::SealedCheck authentic_;
+  reliability::SealedCheck budgeted_;  // authentic_ within the per-frame budget
+  std::array<std::pair<reliability::FrameBits, bool>, kMacChecksPerFrame> checked_{};
+  int checks_ = 0;
+  double last_candidate_ms_ = -1e300;
   signal::HopListener listener_;
   reliability::FrameGate gate_;
-  reliability::SequenceFilter sequence_;
-  std::optional<std::uint64_t> last_bits_;
+  std::optional<reliability::FrameBits> last_bits_;
   double last_start_ms_ = -1e300;
-  std::vector<ReceivedHopFrame> received_;
+  double last_end_ms_ = -1e300;
+  std::vector<HeardHopFrame> received_;
 };
 
 }  // namespace dtmf::link

@@ -7,12 +7,49 @@
 
 namespace dtmf::link {
 
-std::size_t Link::frame_count(const command::Command& command) const {
-  std::uint8_t scratch_sequence = 0;
-  return plan(command, scratch_sequence).size();
+std::string_view event_name(ReceptionEvent event) {
+  switch (event) {
+    case ReceptionEvent::Broken:
+      return "";
+    case ReceptionEvent::Reset:
+      return "reset";
+    case ReceptionEvent::ModeSelected:
+      return "mode_selected";
+    case ReceptionEvent::Command:
+      return "command";
+    case ReceptionEvent::Ignored:
+      return "ignored";
+    case ReceptionEvent::Repeat:
+      return "repeat";
+    case ReceptionEvent::Synchronised:
+      return "sync";
+    case ReceptionEvent::Refused:
+      return "refused";
+  }
+  return "";
+}
+
+std::string_view reason_name(RefusalReason reason) {
+  switch (reason) {
+    case RefusalReason::None:
+      return "";
+    case RefusalReason::Authentication:
+      return "authentication";
+    case RefusalReason::Payload:
+      return "payload";
+  }
+  return "";
+}
+
+Link::Link(const LinkProfile& profile, LinkOptions options) : profile_(profile), options_(std::move(options)) {
+  if (options_.address > 7)
+    throw std::invalid_argument("a robot's address is 0..7, not " + std::to_string(options_.address));
+  if (options_.key && !options_.counters) options_.counters = std::make_shared<security::MemoryCounterStore>();
 }
 
 std::optional<TransmitFrame> Link::plan_word(std::uint32_t) const { return std::nullopt; }
+
+void Link::confirmed(const TransmitFrame&) {}
 
 std::vector<float> Link::render(std::span<const TransmitFrame> frames) const {
   std::vector<float> audio(static_cast<std::size_t>(profile_.samples_for_ms(frame_start_ms(frames.size()))), 0.0f);
@@ -24,27 +61,17 @@ std::vector<float> Link::render(std::span<const TransmitFrame> frames) const {
   return audio;
 }
 
-const std::vector<const Link*>& all_links() {
-  static const std::vector<const Link*> links = [] {
-    std::vector<const Link*> out;
-    for (const LinkProfile* p : all_profiles()) {
-      if (p->frame_format == FrameFormat::HoppedCommand)
-        out.push_back(new FastLink(*p));
-      else
-        out.push_back(new SeedLink(*p));
-    }
-    return out;
-  }();
+std::unique_ptr<Link> make_link(const LinkProfile& profile, LinkOptions options) {
+  if (profile.frame_format == FrameFormat::HoppedCommand)
+    return std::make_unique<FastLink>(profile, std::move(options));
+  return std::make_unique<SeedLink>(profile, std::move(options));
+}
+
+std::vector<std::unique_ptr<Link>> make_links(const LinkOptions& options,
+                                              const std::vector<const LinkProfile*>& profiles) {
+  std::vector<std::unique_ptr<Link>> links;
+  for (const LinkProfile* p : profiles) links.push_back(make_link(*p, options));
   return links;
 }
-
-const Link& link_for(const LinkProfile& profile) {
-  for (const Link* l : all_links()) {
-    if (&l->profile() == &profile) return *l;
-  }
-  throw std::invalid_argument("no link for profile '" + profile.name + "'");
-}
-
-const Link& link_by_name(std::string_view name) { return link_for(profile_by_name(name)); }
 
 }  // namespace dtmf::link

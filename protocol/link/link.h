@@ -2,11 +2,15 @@
 // (command -> frames -> audio), the robot's path (audio -> verdicts on frames -> commands)
 // with its answer (ACK / NACK audio), and the sender's ear (audio -> answers).
 //
-// Programs and benchmarks choose a link by profile name (link_by_name) and use only this:
-// none of them asks which wire format a profile has. Each format keeps its own paths behind
-// it (the seed's words: sender_path.h, receiver_path.h; the fast profile's frames:
-// command_frame_path.h), so adding or changing a profile touches protocol/ and the docs only.
-// Pure: no device, no clock; the audio is rendered, not played.
+// Programs and benchmarks make a link with make_link(profile, options) and use only this:
+// none of them asks which wire format a profile has. The options carry what a link needs
+// beyond its profile: the key it shares with its peer, where its freshness counters live,
+// and the robot's address. Each format keeps its own paths behind it (the seed's words:
+// seed_link.cpp with sender_path.h and receiver_path.h; the fast profile's frames:
+// fast_link.cpp with hop_frame_path.h), so adding or changing a profile touches protocol/
+// and the docs only. A link numbers the frames it plans (sequence numbers, or with a key its
+// freshness counter) and the robot's side remembers what it accepted: a link is one sender's
+// or one robot's, used from one thread at a time. No device, no clock: audio is rendered.
 #pragma once
 
 #include <cstdint>
@@ -18,37 +22,31 @@
 #include <vector>
 
 #include "command/command.h"
+#include "link/reception.h"
 #include "link/transmit_plan.h"
 #include "profile/link_profile.h"
+#include "security/counter_store.h"
+#include "security/link_key.h"
 
 namespace dtmf::link {
 
-// A frame the robot reached a verdict on: intact (answer ACK) or not (answer NACK).
-struct Reception {
-  double start_ms = 0;     // when the frame began sounding (within an analysis hop)
-  double heard_ms = 0;     // when the verdict was reached: the robot's decision time
-  std::uint64_t bits = 0;  // the frame as accepted, or as first read when broken
-  int bit_count = 0;
-  int check_bit_count = 0;  // the low bits that are the check
-  bool intact = false;
-  std::optional<std::uint8_t> sequence;     // formats whose ACK names the frame
-  std::optional<command::Word> word;        // word formats: the intact frame's word
-  std::optional<command::Command> command;  // the command to execute now: completed by this
-                                            // word, or carried by a new frame
-  // What the frame did: "reset", "mode_selected", "command", "ignored" (word formats),
-  // "command", "repeat" (answered, not executed again), "refused" (intact but no command
-  // a sender makes), or "" for a broken frame.
-  std::string event;
-  std::string state_after;       // word formats: the command state machine afterwards
-  std::string detail;            // for people: what it did, or why it was refused
-  std::vector<double> tones_hz;  // the tones that carry `bits`, in order
-};
-
-// An ACK or a NACK the sender heard.
-struct Answer {
-  bool ack = false;
-  std::optional<std::uint8_t> sequence;  // named by the ACK, in formats that name frames
-  double heard_ms = 0;
+struct LinkOptions {
+  // The key the sender and its robots share. With one, every frame that can carry a MAC
+  // does (the fast profile's), and the robot executes only frames whose MAC holds and whose
+  // counter is new; without one, frames go unauthenticated and authenticated ones are
+  // refused, since there is nothing to check them with.
+  std::shared_ptr<const security::LinkKey> key;
+  // The freshness counters (the sender's next, the robot's last accepted): on disk for a
+  // program (security/counter_file.h); none given with a key, one in memory for this link.
+  std::shared_ptr<security::CounterStore> counters;
+  std::uint8_t address = 0;  // the robot's address (0..7): a robot takes frames sent to it
+  // A robot with a key that executes unauthenticated frames too (the seed profile's, which
+  // cannot carry a MAC): the exception `dtmf-agent --accept-unauthenticated` makes.
+  bool accept_unauthenticated = false;
+  // The sender's first sequence number for unauthenticated numbered frames; none: random,
+  // so that a robot that executed frame n of a sender's former run does not take this run's
+  // first frame for a retransmission of it.
+  std::optional<std::uint8_t> first_sequence;
 };
 
 // The robot's receive path: audio in, verdicts out. Times are milliseconds since the first
@@ -68,39 +66,50 @@ class AnswerListener {
 
 class Link {
  public:
-  explicit Link(const LinkProfile& profile) : profile_(profile) {}
+  Link(const LinkProfile& profile, LinkOptions options);
   virtual ~Link() = default;
   Link(const Link&) = delete;
   Link& operator=(const Link&) = delete;
 
   const LinkProfile& profile() const { return profile_; }
   const std::string& name() const { return profile_.name; }
+  const LinkOptions& options() const { return options_; }
+  // Whether this link has a key (its frames are authenticated where the format allows).
+  bool keyed() const { return options_.key != nullptr; }
+  // Whether its format carries a MAC at all (the seed's 16-bit frames cannot).
+  virtual bool can_authenticate() const = 0;
 
   // --- the sender ---
-  // The frames of `command` in transmission order, with their audio. Formats that number
-  // frames take `next_sequence` (or the next usable number) and advance it past the number
-  // used. Throws command::ParameterError for a bad parameter.
-  virtual std::vector<TransmitFrame> plan(const command::Command& command, std::uint8_t& next_sequence) const = 0;
-  // How many frames `command` takes.
-  std::size_t frame_count(const command::Command& command) const;
+  // The frames of `command` in transmission order, with their audio, each numbered anew (a
+  // sequence number, or a freshness counter that is never used again). With a key, a
+  // counter synchronisation frame goes first when the robot may not be able to complete the
+  // counter (security/freshness.h). Throws command::ParameterError for a bad parameter.
+  virtual std::vector<TransmitFrame> plan(const command::Command& command) = 0;
+  // How many frames `command` takes (a synchronisation frame not counted); throws
+  // command::ParameterError for a command the format cannot carry, as plan() would.
+  virtual std::size_t frame_count(const command::Command& command) const = 0;
   // One frame carrying a raw word, for formats whose frames are words (dtmfctl encode
   // --word); nothing for formats that only send whole commands.
   virtual std::optional<TransmitFrame> plan_word(std::uint32_t word) const;
   // `command` as the robot will execute it: its parameters through the format's fields.
   virtual command::Command as_received(const command::Command& command) const = 0;
-  // Payload bits a command's frames carry, the check excluded (for throughput figures).
+  // Payload bits a command's frames carry, the check and the MAC excluded (throughput).
   virtual int payload_bits(const command::Command& command) const = 0;
   // A frame of random content that a sender could send (seeded), for benchmarks: every
-  // value its fields can take, not just the commands of a test sequence.
-  virtual TransmitFrame random_frame(std::uint64_t seed) const = 0;
+  // value its fields can take, not just the commands of a test sequence. Numbered like plan().
+  virtual TransmitFrame random_frame(std::uint64_t seed) = 0;
   // Offline (dtmfctl encode --wav): where frame `index` of a recording starts, and the
   // frames laid out so, each followed by the silence a sender leaves for its answer.
   virtual double frame_start_ms(std::size_t index) const = 0;
   std::vector<float> render(std::span<const TransmitFrame> frames) const;
+  // The robot confirmed `frame` (an answer for which answers() held): with a key, the
+  // counter it confirmed is on record.
+  virtual void confirmed(const TransmitFrame& frame);
 
   // --- the robot ---
   virtual std::unique_ptr<FrameReceiver> receiver() const = 0;
-  // The answer to `reception`: ACK (naming the frame where the format does) or NACK.
+  // The answer to `reception`: ACK (naming the frame, or with a key bound to it by a tag)
+  // for an intact frame it accepted, NACK for any other.
   virtual std::vector<float> answer_audio(const Reception& reception) const = 0;
   // The block a live receiver should be fed in (its analysis hop).
   virtual int receiver_block_samples() const = 0;
@@ -109,17 +118,18 @@ class Link {
   virtual std::unique_ptr<AnswerListener> answer_listener() const = 0;
   // The block to read the microphone in, so an answer is heard as soon as it is complete.
   virtual int answer_block_samples() const = 0;
-  // Whether `answer` is an answer to `frame` (a named ACK must name it).
+  // Whether `answer` answers `frame`: a named ACK must name it, a tagged one carry its tag.
   virtual bool answers(const Answer& answer, const TransmitFrame& frame) const = 0;
 
- private:
+ protected:
   const LinkProfile& profile_;
+  LinkOptions options_;
 };
 
-// The link of every profile in all_profiles(), in the same order.
-const std::vector<const Link*>& all_links();
-const Link& link_for(const LinkProfile& profile);
-// Throws std::invalid_argument naming the known profiles.
-const Link& link_by_name(std::string_view name);
+// The link of `profile` with `options`: what every program, benchmark and test uses.
+std::unique_ptr<Link> make_link(const LinkProfile& profile, LinkOptions options = {});
+// One link per profile in all_profiles() (or those given), with the same options.
+std::vector<std::unique_ptr<Link>> make_links(const LinkOptions& options,
+                                              const std::vector<const LinkProfile*>& profiles = all_profiles());
 
 }  // namespace dtmf::link

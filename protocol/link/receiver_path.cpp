@@ -2,14 +2,15 @@
 
 namespace dtmf::link {
 
-ReceiverPath::ReceiverPath(const LinkProfile& profile) : listener_(signal::chord_listener(profile)) {}
+ReceiverPath::ReceiverPath(const LinkProfile& profile, bool execute_words)
+    : listener_(signal::chord_listener(profile)), execute_words_(execute_words) {}
 
 std::span<const ReceivedFrame> ReceiverPath::feed(std::span<const float> samples) {
   received_.clear();
   for (const signal::Heard& heard : listener_.feed(samples)) {
     const auto frame = static_cast<reliability::Frame>(heard.symbol);
     ReceivedFrame received{heard.start_ms, heard.heard_ms, frame, reliability::frame_ok(frame), std::nullopt};
-    if (received.crc_ok) received.event = commands_.on_word(reliability::frame_word(frame));
+    if (received.crc_ok && execute_words_) received.event = commands_.on_word(reliability::frame_word(frame));
     received_.push_back(std::move(received));
   }
   return received_;

@@ -27,7 +27,9 @@ struct ReceivedFrame {
 
 class ReceiverPath {
  public:
-  explicit ReceiverPath(const LinkProfile& profile);
+  // `execute_words` false: intact frames are reported but never reach the state machine (a
+  // robot with a key refuses the seed's unauthenticated words).
+  explicit ReceiverPath(const LinkProfile& profile, bool execute_words = true);
 
   // Frames heard within `samples`; valid until the next call.
   std::span<const ReceivedFrame> feed(std::span<const float> samples);
@@ -37,6 +39,7 @@ class ReceiverPath {
 
  private:
   signal::ToneListener listener_;
+  bool execute_words_;
   command::CommandReceiver commands_;
   std::vector<ReceivedFrame> received_;
 };

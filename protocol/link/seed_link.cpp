@@ -30,9 +30,25 @@ std::string event_detail(const command::ReceiverEvent& event) {
   return "";
 }
 
+ReceptionEvent event_of(command::ReceiverEvent::Kind kind) {
+  using Kind = command::ReceiverEvent::Kind;
+  switch (kind) {
+    case Kind::Reset:
+      return ReceptionEvent::Reset;
+    case Kind::ModeSelected:
+      return ReceptionEvent::ModeSelected;
+    case Kind::CommandReady:
+      return ReceptionEvent::Command;
+    case Kind::Ignored:
+      return ReceptionEvent::Ignored;
+  }
+  return ReceptionEvent::Ignored;
+}
+
 class SeedReceiver final : public FrameReceiver {
  public:
-  explicit SeedReceiver(const LinkProfile& profile) : profile_(profile), path_(profile) {}
+  SeedReceiver(const LinkProfile& profile, bool refuse_all)
+      : profile_(profile), refuse_(refuse_all), path_(profile, !refuse_all) {}
   std::span<const Reception> feed(std::span<const float> samples) override {
     receptions_.clear();
     for (const ReceivedFrame& f : path_.feed(samples)) {
@@ -45,9 +61,15 @@ class SeedReceiver final : public FrameReceiver {
       r.intact = f.crc_ok;
       const signal::Chord chord = signal::chord_for(profile_.tones, f.frame);
       r.tones_hz.assign(chord.begin(), chord.end());
-      if (f.event) {
-        r.word = reliability::frame_word(f.frame);
-        r.event = command::event_kind_name(f.event->kind);
+      if (f.crc_ok) r.word = reliability::frame_word(f.frame);
+      if (f.crc_ok && refuse_) {
+        r.event = ReceptionEvent::Refused;
+        r.refusal = RefusalReason::Authentication;
+        r.detail =
+            "a seed frame cannot carry a MAC, and this robot has a key (dtmf-agent --accept-unauthenticated lets "
+            "them in)";
+      } else if (f.event) {
+        r.event = event_of(f.event->kind);
         r.state_after = command::state_name(f.event->state_after);
         r.command = f.event->command;
         r.detail = event_detail(*f.event);
@@ -59,6 +81,7 @@ class SeedReceiver final : public FrameReceiver {
 
  private:
   const LinkProfile& profile_;
+  bool refuse_;
   ReceiverPath path_;
   std::vector<Reception> receptions_;
 };
@@ -69,7 +92,8 @@ class SeedAnswerListener final : public AnswerListener {
   std::span<const Answer> feed(std::span<const float> samples) override {
     answers_.clear();
     for (const signal::Heard& h : listener_.feed(samples)) {
-      answers_.push_back({static_cast<signal::Reply>(h.symbol) == signal::Reply::Ack, std::nullopt, h.heard_ms});
+      answers_.push_back(
+          {static_cast<signal::Reply>(h.symbol) == signal::Reply::Ack, std::nullopt, std::nullopt, h.heard_ms});
     }
     return answers_;
   }
@@ -93,10 +117,14 @@ TransmitFrame SeedLink::transmit_frame(const PlannedFrame& planned) const {
   return f;
 }
 
-std::vector<TransmitFrame> SeedLink::plan(const command::Command& command, std::uint8_t&) const {
+std::vector<TransmitFrame> SeedLink::plan(const command::Command& command) {
   std::vector<TransmitFrame> frames;
   for (const PlannedFrame& planned : plan_command(profile(), command)) frames.push_back(transmit_frame(planned));
   return frames;
+}
+
+std::size_t SeedLink::frame_count(const command::Command& command) const {
+  return plan_command(profile(), command).size();
 }
 
 std::optional<TransmitFrame> SeedLink::plan_word(std::uint32_t word) const {
@@ -110,17 +138,19 @@ int SeedLink::payload_bits(const command::Command& command) const {
 }
 
 // Any of the 4096 words, not just the commands': the CRC and the tone plan see them all.
-TransmitFrame SeedLink::random_frame(std::uint64_t seed) const {
+TransmitFrame SeedLink::random_frame(std::uint64_t seed) {
   return transmit_frame(
       link::plan_word(profile(), static_cast<command::Word>(std::mt19937_64(seed)() & command::kWordMask)));
 }
 
 double SeedLink::frame_start_ms(std::size_t index) const { return link::frame_start_ms(profile(), index); }
 
-std::unique_ptr<FrameReceiver> SeedLink::receiver() const { return std::make_unique<SeedReceiver>(profile()); }
+std::unique_ptr<FrameReceiver> SeedLink::receiver() const {
+  return std::make_unique<SeedReceiver>(profile(), keyed() && !options_.accept_unauthenticated);
+}
 
 std::vector<float> SeedLink::answer_audio(const Reception& reception) const {
-  return signal::synthesize_reply(profile(), reception.intact ? signal::Reply::Ack : signal::Reply::Nack);
+  return signal::synthesize_reply(profile(), reception.acknowledged() ? signal::Reply::Ack : signal::Reply::Nack);
 }
 
 int SeedLink::receiver_block_samples() const { return profile().hop_samples(); }

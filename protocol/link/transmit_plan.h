@@ -7,15 +7,20 @@
 #include <vector>
 
 #include "command/command.h"
+#include "reliability/frame_bits.h"
 
 namespace dtmf::link {
 
 struct TransmitFrame {
-  std::optional<command::Word> word;     // word formats: the 12-bit word the frame carries
-  std::uint64_t bits = 0;                // the frame as sent, check included
-  int bit_count = 0;                     // 16 (seed), 48 (fast), ...
+  std::optional<command::Word> word;     // seed words: the 12-bit word the frame carries
+  reliability::FrameBits bits;           // the frame as sent, check included
+  int bit_count = 0;                     // 16 (seed), 50 (fast), 80 (fast, authenticated)
   int check_bit_count = 0;               // the low bits that are the check (CRC)
-  std::optional<std::uint8_t> sequence;  // numbered formats: the number its ACK must name
+  std::optional<std::uint8_t> sequence;  // numbered frames: the number its ACK must name
+  bool authenticated = false;            // carries a MAC (sealed frames)
+  bool synchronisation = false;          // a counter synchronisation, no command
+  std::optional<std::uint64_t> counter;  // authenticated frames: the freshness counter
+  std::uint32_t answer_tag = 0;          // authenticated frames: the tag its ACK must carry
   std::vector<double> tones_hz;          // every tone, chord after chord, in order
   std::vector<float> audio;              // what the loudspeaker plays, tone_ms long
   double tone_ms = 0;                    // sound on air

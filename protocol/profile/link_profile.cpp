@@ -90,6 +90,7 @@ LinkProfile make_fast_profile() {
   h.edge_samples = 24;      // 0.5 ms fades
   h.hop_samples = 492;      // 10.25 ms; chord = 1920 + 2 * 24 + 492 = 2460 = 5 hops (51.25 ms)
   h.chords_per_frame = 2;
+  h.sealed_chords_per_frame = 3;  // 153.75 ms: 24 tones carry an 80-bit authenticated frame
   h.tones_per_band = 32;
   // Sixteen bands of 32 tones and 2 guard bins from 4 kHz: band k starts at bin 160 + 34 k;
   // the first chord sends on the even bands, the second on the odd ones (4.0-17.5 kHz).
@@ -103,21 +104,40 @@ LinkProfile make_fast_profile() {
   h.onset_db = 3;
   h.clear_certainty = 3;  // 4.8 dB: a noise band's best beats its second by this 1 time in 30
   h.background_rise_db_per_s = 10;
-  h.max_erasures = 4;  // RS(16, 10) keeps 2 of its 6 parity symbols for detection
+  h.max_erasures = 4;         // RS(16, 10) keeps 2 of its 6 parity symbols for detection
+  h.sealed_max_erasures = 7;  // RS(24, 16) keeps 1 of its 8
   h.max_offset_ppm = 3000;
+  // One verdict per frame: an accept holds its frame's later windows (7 hops); failed
+  // candidates less than a chord and a hop apart are one cluster (the first two chords of an
+  // authenticated frame fail as a two-chord frame a chord before its own reading), which NACKs
+  // no earlier than two chords and three hops after its first candidate.
   h.lockout_hops = 7;
-  h.cluster_gap_hops = 2.5;
-  h.nack_settle_hops = 8;
-  h.repeat_guard_ms = 400;       // a retransmission comes no sooner than the 500 ms ACK timeout
-  h.reply_window_samples = 768;  // 16 ms; reply tones 62.5 Hz apart
-  h.reply_hop_samples = 192;     // 4 ms; a reply is 768 + 2 * 48 + 2 * 192 = 1248 samples (26 ms)
+  h.cluster_gap_hops = 5.5;
+  h.nack_settle_hops = 13;
+  h.repeat_guard_ms = 400;  // a retransmission comes no sooner than the 500 ms ACK timeout
+  // Replies: 32 ms windows (31.25 Hz bins), a hop of 4.25 ms, 1 ms fades: a reply chord is
+  // 1536 + 2 * 48 + 204 = 1836 samples = 9 hops (38.25 ms), a reply two chords (76.5 ms). In a
+  // room a tone of 20 ms smeared into the bins beside it (its early reflections arrive within
+  // the window) and was misread, measured through the three rooms, about 10 % of the time; a
+  // 32 ms window over a 38 ms chord reads it right.
+  h.reply_window_samples = 1536;
+  h.reply_hop_samples = 204;
   h.reply_edge_samples = 48;
-  h.reply_band_first_bin = {32, 40, 48, 56};  // 2000-3937.5 Hz, below the chords
-  h.reply_tones_per_band = 8;
-  h.reply_amplitude = 0.2;  // four tones sum to at most 0.8 full scale
-  h.reply_presence_db = 6;
-  h.reply_onset_db = 1.5;
-  h.reply_bands_needed = 3;
+  h.reply_tones_per_band = HopLink::kReplyToneValues;
+  // Six bands of four tones four bins (125 Hz) apart, from 562.5 Hz: no tone lies within
+  // three bins of another, whatever the room smears. None is 2000, 2500, 3000 or 3500 Hz (bins
+  // 64, 80, 96, 112: the seed profile's ACK and NACK tones), so no fast reply sounds like a
+  // seed answer. The top tone, 3437.5 Hz, lies 15 bins of the robot's 25 Hz grid below its
+  // lowest band.
+  for (int b = 0; b < HopLink::kReplyBands; ++b) {
+    for (int v = 0; v < HopLink::kReplyToneValues; ++v)
+      h.reply_tone_bin[static_cast<std::size_t>(b)][static_cast<std::size_t>(v)] = 18 + 16 * b + 4 * v;
+  }
+  h.reply_amplitude = 0.8 / HopLink::kReplyBands;  // the tones of a chord sum to at most 0.8 full scale
+  h.reply_presence_db = 3;
+  h.reply_onset_db = 3;
+  h.reply_background_rise_db_per_s = 10;
+  h.reply_tones_needed = 9;  // of 12: named replies differ in at least 7 (reliability/reply_code.h)
 
   // The shared fields, in the units the rest of the code base reads them in.
   const double ms_per_sample = 1000.0 / p.sample_rate_hz;

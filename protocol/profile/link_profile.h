@@ -91,11 +91,12 @@ enum class FrameFormat { Word16, HoppedCommand };
 // lies in bands the next chord's symbols are not read from.
 struct HopLink {
   static constexpr int kBandsPerChord = 8;
-  int window_samples = 0;  // W; also the tone spacing: rate / W
-  int hop_samples = 0;     // one analysis every hop; a chord lasts W + 2 * edge + hop
-  int edge_samples = 0;    // raised-cosine fade at both ends of every chord
-  int chords_per_frame = 0;
-  int tones_per_band = 0;  // 32: one 5-bit Reed-Solomon symbol per band and chord
+  int window_samples = 0;           // W; also the tone spacing: rate / W
+  int hop_samples = 0;              // one analysis every hop; a chord lasts W + 2 * edge + hop
+  int edge_samples = 0;             // raised-cosine fade at both ends of every chord
+  int chords_per_frame = 0;         // an unauthenticated frame
+  int sealed_chords_per_frame = 0;  // an authenticated frame (reliability/sealed_frame.h)
+  int tones_per_band = 0;           // 32: one 5-bit Reed-Solomon symbol per band and chord
   // band_first_bin[c][b]: chord c's band b carries symbol values at first_bin + v.
   std::array<std::array<int, kBandsPerChord>, 2> band_first_bin{};
   double tone_amplitude = 0;  // linear, per tone
@@ -107,28 +108,39 @@ struct HopLink {
                                         // a cluster that fails to decode NACKs only with 16 - max_erasures such
   double background_rise_db_per_s = 0;  // how fast a bin's steady background may rise (whines)
   int max_erasures = 0;                 // tones the decoder may erase (unheard, or least certain first)
+  int sealed_max_erasures = 0;          // ... in an authenticated frame
   int max_offset_ppm = 0;               // the frequency offsets (clocks, Doppler) searched for
   // One verdict per frame (reliability/frame_gate.h), in analysis hops.
   double lockout_hops = 0;
   double cluster_gap_hops = 0;
   double nack_settle_hops = 0;
   double repeat_guard_ms = 0;  // the same frame accepted again this soon is the same sound
-  // The sender's reply detector: four bands of 8 tones, one tone each; a reply is a codeword
-  // of RS(4, 2) over GF(8) (signal/hop_reply.h), heard when `reply_bands_needed` agree.
+  // The robot's answers, below the chords so it may answer while a chord sounds: two chords
+  // (a reply window wholly inside each, read with a Hann window) of one tone in each of
+  // kReplyBands bands of kReplyToneValues (signal/hop_reply.h); which tones is the reliability
+  // layer's reply code (reliability/reply_code.h). reply_tone_bin[b][v]: band b's tone v, in
+  // bins of the reply window.
+  static constexpr int kReplyBands = 6;
+  static constexpr int kReplyToneValues = 4;
+  static constexpr int kReplyChords = 2;
+  static constexpr int kReplyTones = kReplyBands * kReplyChords;
   int reply_window_samples = 0;
   int reply_hop_samples = 0;
   int reply_edge_samples = 0;
-  std::array<int, 4> reply_band_first_bin{};
   int reply_tones_per_band = 0;
+  std::array<std::array<int, kReplyToneValues>, kReplyBands> reply_tone_bin{};
   double reply_amplitude = 0;  // linear, per tone
   double reply_presence_db = 0;
   double reply_onset_db = 0;
-  int reply_bands_needed = 0;
+  double reply_background_rise_db_per_s = 0;
+  int reply_tones_needed = 0;  // tones of 12 that must agree with a named reply
 
   int chord_samples() const { return window_samples + 2 * edge_samples + hop_samples; }
   int frame_samples() const { return chords_per_frame * chord_samples(); }
-  // Two whole analysis windows fit in a reply, one hop apart: the sender wants both to agree.
-  int reply_samples() const { return reply_window_samples + 2 * reply_edge_samples + 2 * reply_hop_samples; }
+  int sealed_frame_samples() const { return sealed_chords_per_frame * chord_samples(); }
+  // One whole reply window fits in each reply chord, which is a whole number of reply hops.
+  int reply_chord_samples() const { return reply_window_samples + 2 * reply_edge_samples + reply_hop_samples; }
+  int reply_samples() const { return kReplyChords * reply_chord_samples(); }
 };
 
 struct LinkProfile {

@@ -22,7 +22,8 @@ std::string FrameBits::decimal() const {
 }
 
 FrameBits FrameBits::parse_decimal(const std::string& digits) {
-  if (digits.empty() || digits.size() > 39) throw std::invalid_argument("not a frame number: '" + digits.substr(0, 40) + "'");
+  if (digits.empty() || digits.size() > 39)
+    throw std::invalid_argument("not a frame number: '" + digits.substr(0, 40) + "'");
   WideBits v = 0;
   for (char c : digits) {
     if (c < '0' || c > '9') throw std::invalid_argument("not a frame number: '" + digits.substr(0, 40) + "'");

@@ -43,6 +43,7 @@ class FrameBits {
 template <>
 struct std::hash<dtmf::reliability::FrameBits> {
   std::size_t operator()(dtmf::reliability::FrameBits f) const noexcept {
-    return std::hash<std::uint64_t>{}(f.low64() ^ (static_cast<std::uint64_t>(f.value() >> 64) * 0x9E3779B97F4A7C15ull));
+    return std::hash<std::uint64_t>{}(f.low64() ^
+                                      (static_cast<std::uint64_t>(f.value() >> 64) * 0x9E3779B97F4A7C15ull));
   }
 };

@@ -10,19 +10,20 @@ void FrameGate::reset() {
   cluster_open_ = false;
 }
 
-std::optional<Verdict> FrameGate::on_candidate(double start_ms, double heard_ms,
-                                               const std::optional<DecodedFrame>& frame, std::uint64_t read_bits) {
+std::optional<Verdict> FrameGate::on_candidate(double start_ms, double heard_ms, bool decoded, const GateFrame& frame) {
   if (heard_ms <= locked_until_ms_) return std::nullopt;
-  if (frame) {
+  if (decoded) {
     cluster_open_ = false;
     locked_until_ms_ = heard_ms + lockout_ms_;
-    return Verdict{start_ms, heard_ms, frame, 0};
+    return Verdict{start_ms, heard_ms, true, frame};
   }
   if (!cluster_open_) {
     cluster_open_ = true;
     cluster_start_ms_ = start_ms;
     cluster_first_ms_ = heard_ms;
-    cluster_bits_ = read_bits;
+    cluster_frame_ = frame;
+  } else if (frame.intact && !cluster_frame_.intact) {
+    cluster_frame_ = frame;
   }
   cluster_last_ms_ = heard_ms;
   return std::nullopt;
@@ -33,7 +34,7 @@ std::optional<Verdict> FrameGate::on_time(double now_ms) {
     return std::nullopt;
   }
   cluster_open_ = false;
-  return Verdict{cluster_start_ms_, now_ms, std::nullopt, cluster_bits_};
+  return Verdict{cluster_start_ms_, now_ms, false, cluster_frame_};
 }
 
 }  // namespace dtmf::reliability

@@ -1,8 +1,8 @@
 #include "reliability/reply_code.h"
 
 #include <algorithm>
-
-#include "reliability/reed_solomon.h"
+#include <random>
+#include <vector>
 
 namespace dtmf::reliability {
 
@@ -10,19 +10,32 @@ namespace {
 
 constexpr int kReplies = 17;  // ACK(0..15), then NACK
 constexpr int kNack = 16;
+constexpr int kMinDistance = 7;
 
-// The first 17 codewords of RS(4, 2) over GF(8), in data order, that have no tone 0.
+int distance(const ReplyTones& a, const ReplyTones& b) {
+  int d = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) d += a[i] != b[i] ? 1 : 0;
+  return d;
+}
+
+// The 17 words, found once by a seeded search (the same on every machine: mt19937's output is
+// fixed by the standard): each new candidate is kept when it repeats no band's tone across
+// its chords and differs from every word kept in at least kMinDistance tones. Random words
+// differ in 9 of the 12 on average, so the search ends after some dozens of candidates.
 const std::array<ReplyTones, kReplies>& codewords() {
   static const auto words = [] {
-    const ReedSolomon code(3, 4, 2);
-    std::array<ReplyTones, kReplies> out{};
-    int found = 0;
-    for (int data = 0; data < 64 && found < kReplies; ++data) {
-      const std::array<std::uint8_t, 2> d{static_cast<std::uint8_t>(data >> 3), static_cast<std::uint8_t>(data & 7)};
-      const auto word = code.encode(d);
-      if (std::find(word.begin(), word.end(), 0) != word.end()) continue;
-      std::copy(word.begin(), word.end(), out[static_cast<std::size_t>(found++)].begin());
+    std::mt19937 rng(20261125);
+    std::vector<ReplyTones> kept;
+    while (kept.size() < kReplies) {
+      ReplyTones w{};
+      for (auto& t : w) t = static_cast<std::uint8_t>(rng() % kReplyToneValues);
+      bool far = true;
+      for (std::size_t b = 0; b < kReplyBandsPerChord; ++b) far = far && w[b] != w[b + kReplyBandsPerChord];
+      for (const auto& k : kept) far = far && distance(w, k) >= kMinDistance;
+      if (far) kept.push_back(w);
     }
+    std::array<ReplyTones, kReplies> out{};
+    std::copy(kept.begin(), kept.end(), out.begin());
     return out;
   }();
   return words;
@@ -34,15 +47,62 @@ ReplyTones reply_codeword(const NamedReply& reply) {
   return codewords()[static_cast<std::size_t>(reply.ack ? (reply.sequence & 15) : kNack)];
 }
 
-std::optional<NamedReply> read_reply(const std::array<int, 4>& tones, int bands_needed) {
+std::optional<NamedReply> read_reply(const ReplyReading& reading, int tones_needed) {
   for (int r = 0; r < kReplies; ++r) {
     const ReplyTones& word = codewords()[static_cast<std::size_t>(r)];
     int agree = 0;
-    for (std::size_t b = 0; b < 4; ++b) agree += tones[b] == word[b] ? 1 : 0;
-    if (agree >= bands_needed)
+    for (std::size_t t = 0; t < word.size(); ++t) agree += reading[t] == word[t] ? 1 : 0;
+    if (agree >= tones_needed)
       return r == kNack ? NamedReply{false, 0} : NamedReply{true, static_cast<std::uint8_t>(r)};
   }
   return std::nullopt;
+}
+
+namespace {
+constexpr std::uint32_t kOffsets = 3 * 3 * 3 * 3 * 3 * 3;  // the second chord's, base 3
+}  // namespace
+
+ReplyTones tag_tones(std::uint32_t tag) {
+  std::uint32_t first = (tag % kReplyTagSpace) / kOffsets, offsets = tag % kOffsets;
+  ReplyTones tones{};
+  for (int b = kReplyBandsPerChord - 1; b >= 0; --b) {
+    tones[static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(first % kReplyToneValues);
+    first /= kReplyToneValues;
+  }
+  for (int b = kReplyBandsPerChord - 1; b >= 0; --b) {
+    const std::uint32_t step = 1 + offsets % (kReplyToneValues - 1);
+    tones[static_cast<std::size_t>(kReplyBandsPerChord + b)] =
+        static_cast<std::uint8_t>((tones[static_cast<std::size_t>(b)] + step) % kReplyToneValues);
+    offsets /= kReplyToneValues - 1;
+  }
+  return tones;
+}
+
+std::optional<std::uint32_t> read_tag(const ReplyReading& reading) {
+  std::uint32_t first = 0, offsets = 0;
+  for (int b = 0; b < kReplyBandsPerChord; ++b) {
+    const int a = reading[static_cast<std::size_t>(b)], z = reading[static_cast<std::size_t>(kReplyBandsPerChord + b)];
+    if (a < 0 || z < 0 || a == z) return std::nullopt;
+    first = first * kReplyToneValues + static_cast<std::uint32_t>(a);
+    offsets = offsets * (kReplyToneValues - 1) +
+              static_cast<std::uint32_t>((z - a + kReplyToneValues) % kReplyToneValues - 1);
+  }
+  return first * kOffsets + offsets;
+}
+
+int heard_tones(const ReplyReading& reading) {
+  return static_cast<int>(std::count_if(reading.begin(), reading.end(), [](int t) { return t >= 0; }));
+}
+
+bool spells_tag(const ReplyReading& reading, std::uint32_t tag) {
+  const ReplyTones expected = tag_tones(tag);
+  int agree = 0;
+  for (std::size_t t = 0; t < reading.size(); ++t) {
+    if (reading[t] < 0) continue;
+    if (reading[t] != expected[t]) return false;
+    ++agree;
+  }
+  return agree >= kTagTonesNeeded;
 }
 
 }  // namespace dtmf::reliability

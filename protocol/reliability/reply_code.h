@@ -1,12 +1,23 @@
-// Reliability layer: the fast profile's replies as a code — ACK naming a frame's sequence
-// number (0..15), or NACK — spelt as one tone index (0..7) in each of four reply bands.
+// Reliability layer: the fast profile's replies as a code — one tone index (0..3) in each of
+// the reply's twelve bands (two chords of six, signal/hop_reply.h).
 //
-// The 17 replies are codewords of RS(4, 2) over GF(8): any two differ in at least three of
-// the four bands, so a reply with one band lost (a fade in a room, a drowned tone) is still
-// told from every other, and a reply is read when `bands_needed` bands agree with it.
-// Codewords with a tone 0 in any band are not used: tone 0 of the four bands are 2000,
-// 2500, 3000 and 3500 Hz, the seed profile's ACK and NACK tones, and a fast reply must never
-// sound like a seed answer (signal/hop_reply.h). Pure logic.
+// Named replies: ACK naming a frame's sequence number (0..15), or NACK. They are 17 fixed
+// words any two of which differ in at least 7 of the 12 tones, so a reply with up to three
+// tones lost or misread (a fade, a click, a drowned tone) is still told from every other: a
+// reading names the reply that `tones_needed` (9) or more of its tones agree with.
+// Tagged ACKs: the ACK to an authenticated frame spells its tag (security/frame_mac.h: a MAC
+// over the frame's MAC under the key) reduced to kReplyTagSpace = 4^6 * 3^6 values (21.5
+// bits): the first chord's six tones in base 4, the second's as offsets 1..3 from the first
+// chord's tone of the same band. The sender knows the tag it waits for, so it does not decode
+// tags: a reading answers the frame when `kTagTonesNeeded` (11) of its tones are heard and
+// not one is wrong (in a room one tone of twelve is now and then drowned in a notch). A
+// reading with that many tones heard that does not spell the tag is a guess, and the sender
+// takes at most `kTagGuessesPerAttempt` per transmission: a sender that does not hold the key
+// has one chance in 995 328 a guess (one tone left out: 4^6 * 3^5), docs/security.md has what
+// that means per frame and per hour.
+// No reply repeats a band's tone from its first chord in its second: in a room the first
+// chord's tone rings on into the second, and the listener never takes it for a second-chord
+// tone (signal/hop_reply.h). Pure logic.
 #pragma once
 
 #include <array>
@@ -15,18 +26,38 @@
 
 namespace dtmf::reliability {
 
+inline constexpr int kReplyTones = 12;
+inline constexpr int kReplyBandsPerChord = kReplyTones / 2;
+inline constexpr int kReplyToneValues = 4;
+inline constexpr std::uint32_t kReplyTagSpace = 4u * 4 * 4 * 4 * 4 * 4 * 3 * 3 * 3 * 3 * 3 * 3;  // 2 985 984
+inline constexpr int kTagTonesNeeded = 11;
+// Readings of 11 or more tones that do not spell the tag, per transmission: in the measured
+// rooms with the sender's own frames 20 dB over the answer, an answer came after at most 9
+// (bench/link/rooms.cpp, the answer-path case).
+inline constexpr int kTagGuessesPerAttempt = 16;
+
 struct NamedReply {
   bool ack = false;
   std::uint8_t sequence = 0;  // ACK only
   bool operator==(const NamedReply&) const = default;
 };
 
-using ReplyTones = std::array<std::uint8_t, 4>;
+using ReplyTones = std::array<std::uint8_t, kReplyTones>;
+// A reading: each band's tone, or -1 where the band was not heard.
+using ReplyReading = std::array<int, kReplyTones>;
 
 ReplyTones reply_codeword(const NamedReply& reply);
+// The named reply that at least `tones_needed` of the reading's tones agree with, or nothing.
+std::optional<NamedReply> read_reply(const ReplyReading& reading, int tones_needed);
 
-// The reply that at least `bands_needed` of the bands' tones agree with (a tone of -1: that
-// band was not heard), or nothing.
-std::optional<NamedReply> read_reply(const std::array<int, 4>& tones, int bands_needed);
+// The tones of a tagged ACK spelling `tag` (< kReplyTagSpace).
+ReplyTones tag_tones(std::uint32_t tag);
+// The tag a reading spells when every tone was heard and none repeats its band's first tone
+// (dtmfctl decode shows it).
+std::optional<std::uint32_t> read_tag(const ReplyReading& reading);
+// Tones of the reading that were heard.
+int heard_tones(const ReplyReading& reading);
+// Whether the reading spells `tag`: kTagTonesNeeded tones or more heard, and all of them agree.
+bool spells_tag(const ReplyReading& reading, std::uint32_t tag);
 
 }  // namespace dtmf::reliability

@@ -72,14 +72,22 @@ FrameBits sealed_data_bits(std::span<const std::uint8_t> data_symbols) {
   return FrameBits::wide(bits);
 }
 
-std::optional<DecodedSealed> decode_sealed(std::span<const SymbolReading, kSealedSymbols> readings, int max_erasures) {
+SealedDecode decode_sealed(std::span<const SymbolReading, kSealedSymbols> readings, int max_erasures,
+                           const SealedCheck& authentic) {
   std::array<std::uint8_t, kSealedDataSymbols> data{};
   std::optional<SealedFrame> frame;
-  const auto decoded =
-      decode_symbols(readings, sealed_code(), max_erasures, kSealedReserveSymbols, data,
-                     [&](std::span<const std::uint8_t> d) { return (frame = unpack_sealed(sealed_data_bits(d))).has_value(); });
-  if (!decoded) return std::nullopt;
-  return DecodedSealed{*frame, sealed_data_bits(data), decoded->erasures, decoded->errors};
+  SealedDecode result;
+  const auto decoded = decode_symbols(readings, sealed_code(), max_erasures, kSealedReserveSymbols, data,
+                                      [&](std::span<const std::uint8_t> d) {
+                                        const FrameBits bits = sealed_data_bits(d);
+                                        frame = unpack_sealed(bits);
+                                        if (!frame) return false;
+                                        if (authentic(bits)) return true;
+                                        if (!result.intact) result.intact = DecodedSealed{*frame, bits, 0, 0};
+                                        return false;
+                                      });
+  if (decoded) result.authentic = DecodedSealed{*frame, sealed_data_bits(data), decoded->erasures, decoded->errors};
+  return result;
 }
 
 FrameBits read_sealed_bits(std::span<const SymbolReading, kSealedSymbols> readings) {

@@ -11,12 +11,15 @@
 //
 // The CRC tells a damaged frame (NACK: the sender retransmits) from an intact one whose MAC
 // fails (forged, replayed, or under another key: refused); the MAC is what admits a frame.
-// Decoding (symbol_decoder.h) keeps two of the eight parity symbols for detection, as the
-// 50-bit frame does. Pure logic: no I/O, no clock.
+// Decoding (symbol_decoder.h) keeps one of the eight parity symbols for detection (the
+// 50-bit frame keeps two of its six, its CRC-16 being all that stands behind the code): the
+// MAC stands behind this one, so the code may correct more (2 errors + erasures <= 7).
+// Pure logic: no I/O, no clock.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 
@@ -33,7 +36,7 @@ inline constexpr int kSealedCheckBits = 8;  // the CRC; the MAC counts as payloa
 inline constexpr int kSealedMacBits = 32;
 inline constexpr int kSealedCounterLowBits = 9;
 inline constexpr int kSealedSyncCounterBits = 36;
-inline constexpr int kSealedReserveSymbols = 2;
+inline constexpr int kSealedReserveSymbols = 1;
 
 enum class SealedForm : std::uint8_t { Command = 0, Sync = 1 };
 
@@ -65,8 +68,16 @@ struct DecodedSealed {
   int erasures = 0;
   int errors = 0;
 };
-// The first decode whose CRC holds.
-std::optional<DecodedSealed> decode_sealed(std::span<const SymbolReading, kSealedSymbols> readings, int max_erasures);
+// Whether a frame whose CRC holds is the real thing: its MAC holds (the robot's admission,
+// link/frame_admission.h). A damaged frame the code corrects into another codeword passes
+// the 8-bit CRC one time in 256; then only its MAC tells, so decoding goes on past it.
+using SealedCheck = std::function<bool(const FrameBits& bits)>;
+struct SealedDecode {
+  std::optional<DecodedSealed> authentic;  // the first decode whose CRC and `authentic` hold
+  std::optional<DecodedSealed> intact;     // else the first whose CRC holds (forged, or under another key)
+};
+SealedDecode decode_sealed(std::span<const SymbolReading, kSealedSymbols> readings, int max_erasures,
+                           const SealedCheck& authentic);
 // The hard decision's data symbols, for logs of a frame that did not decode.
 FrameBits read_sealed_bits(std::span<const SymbolReading, kSealedSymbols> readings);
 

@@ -5,7 +5,14 @@
 // The listener reads each tone as a symbol with a certainty (how far its bin stood above the
 // runner-up) and a flag for tones it could not hear at all. Decoding tries the codeword with
 // the unheard tones erased, then with the least certain heard tones erased too, one more at a
-// time, up to `max_erasures`; the first data whose `check` holds (a CRC) is the frame. The
+// time, up to `max_erasures`; the first data whose `check` holds (a CRC) is the frame. When
+// more tones went unheard than may be erased (in a reverberant room a tone that rose with its
+// chord often stands too little over the band's other bins to count as heard, yet reads
+// right), the least certain of them are erased, max_erasures, then two fewer at a time: each
+// two erasures given back let the code correct one more wrong tone among the rest. Tones that
+// did not rise with their chord come first among those erased. (A frame's reverberant tail
+// reads every symbol right and rises nowhere: the receive path keeps it from passing as the
+// frame again, link/hop_frame_path.h.) The
 // code keeps `reserve` parity symbols for detection (2 * errors + erasures <= parity -
 // reserve): pushed to its limit, it turns noise into some codeword. Pure logic; allocates
 // nothing (it runs in the robot's receive path).
@@ -26,6 +33,7 @@ struct SymbolReading {
   std::uint8_t symbol = 0;  // the strongest tone of its band
   float certainty = 1;      // its power over the runner-up's (>= 1)
   bool heard = true;        // false: erase it
+  bool risen = true;        // false: it did not start with its chord (a tail): never trusted
 };
 
 struct DecodedSymbols {
@@ -50,6 +58,7 @@ std::optional<DecodedSymbols> decode_symbols(std::span<const SymbolReading> read
   const auto before = [&](int a, int b) {
     const auto& x = readings[static_cast<std::size_t>(a)];
     const auto& y = readings[static_cast<std::size_t>(b)];
+    if (x.risen != y.risen) return !x.risen;
     if (x.heard != y.heard) return !x.heard;
     return x.certainty < y.certainty;
   };
@@ -65,10 +74,21 @@ std::optional<DecodedSymbols> decode_symbols(std::span<const SymbolReading> read
     unheard += readings[i].heard ? 0 : 1;
   }
   const int limit = std::min(max_erasures, code.parity() - reserve);
-  for (int erased = unheard; erased <= limit; ++erased) {
-    const auto errors = code.decode(std::span<const std::uint8_t>(received.data(), n),
-                                    std::span<const int>(order.data(), static_cast<std::size_t>(erased)), data, reserve);
+  const auto attempt = [&](int erased) -> std::optional<DecodedSymbols> {
+    const auto errors =
+        code.decode(std::span<const std::uint8_t>(received.data(), n),
+                    std::span<const int>(order.data(), static_cast<std::size_t>(erased)), data, reserve);
     if (errors && check(std::span<const std::uint8_t>(data))) return DecodedSymbols{erased, *errors};
+    return std::nullopt;
+  };
+  if (unheard <= limit) {
+    for (int erased = unheard; erased <= limit; ++erased) {
+      if (const auto d = attempt(erased)) return d;
+    }
+    return std::nullopt;
+  }
+  for (int erased = limit; erased >= 0; erased -= 2) {
+    if (const auto d = attempt(erased)) return d;
   }
   return std::nullopt;
 }

@@ -59,7 +59,8 @@ std::optional<std::uint64_t> read_field(const std::filesystem::path& path, const
   while (in >> field >> value) {
     if (field == name) return value;
   }
-  if (!in.eof()) throw std::runtime_error("the counter state " + path.string() + " is damaged: it must hold lines 'name number'");
+  if (!in.eof())
+    throw std::runtime_error("the counter state " + path.string() + " is damaged: it must hold lines 'name number'");
   return std::nullopt;
 }
 
@@ -76,8 +77,10 @@ FileCounterStore::FileCounterStore(std::filesystem::path directory, const LinkKe
     : directory_(std::move(directory)), key_id_(key.id_hex()), clock_(std::move(clock)) {
   std::error_code error;
   if (!std::filesystem::is_directory(directory_, error)) {
-    if (::mkdir(directory_.c_str(), 0700) != 0 && errno != EEXIST) {
-      throw std::runtime_error("cannot make the state directory " + directory_.string() + ": " + std::strerror(errno) +
+    std::filesystem::create_directories(directory_, error);
+    if (!error) std::filesystem::permissions(directory_, std::filesystem::perms::owner_all, error);
+    if (error) {
+      throw std::runtime_error("cannot make the state directory " + directory_.string() + ": " + error.message() +
                                " (give --state-dir a directory this user may write)");
     }
   }
@@ -105,8 +108,9 @@ int FileCounterStore::lock(const std::string& role) const {
   if (fd < 0) fail("cannot open the lock", path);
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     ::close(fd);
-    throw std::runtime_error("another process keeps its " + role + " counter in " + directory_.string() +
-                             " for key " + key_id_ + ": two would reuse counter values; stop it, or give this one "
+    throw std::runtime_error("another process keeps its " + role + " counter in " + directory_.string() + " for key " +
+                             key_id_ +
+                             ": two would reuse counter values; stop it, or give this one "
                              "its own --state-dir");
   }
   return fd;
@@ -135,7 +139,8 @@ std::uint64_t FileCounterStore::next_counter() {
   open_sender();
   if (next_ >= reserved_) {
     if (next_ + kSenderBlock >= kCounterLimit) {
-      throw std::runtime_error("the freshness counter of key " + key_id_ + " is used up: make a new key (dtmfctl keygen)");
+      throw std::runtime_error("the freshness counter of key " + key_id_ +
+                               " is used up: make a new key (dtmfctl keygen)");
     }
     reserved_ = next_ + kSenderBlock;
     write_sender();  // on disk before any counter of the block is handed out

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cstdio>
@@ -65,6 +66,13 @@ std::shared_ptr<const LinkKey> LinkKey::generate() {
   return key;
 }
 
+std::shared_ptr<const LinkKey> LinkKey::from_bytes(std::span<const unsigned char, kKeyBytes> bytes) {
+  std::shared_ptr<LinkKey> key(new LinkKey());
+  std::copy(bytes.begin(), bytes.end(), key->bytes_);
+  key->id_ = derive_id(key->bytes_);
+  return key;
+}
+
 std::shared_ptr<const LinkKey> LinkKey::load(const std::filesystem::path& file) {
   const std::string name = file.string();
   struct stat info {};
@@ -118,10 +126,12 @@ std::shared_ptr<const LinkKey> LinkKey::load(const std::filesystem::path& file) 
     }
   }
   sodium_memzero(line.data(), line.size());
-  if (!have_key || !have_id) throw KeyFileError("key file " + name + " lacks its " + (have_key ? "key-id" : "key") + " line");
+  if (!have_key || !have_id)
+    throw KeyFileError("key file " + name + " lacks its " + (have_key ? "key-id" : "key") + " line");
   key->id_ = derive_id(key->bytes_);
   if (key->id_ != stated_id) {
-    throw KeyFileError("key file " + name + ": its key id does not match its key (the file is damaged or was edited); " +
+    throw KeyFileError("key file " + name +
+                       ": its key id does not match its key (the file is damaged or was edited); " +
                        "copy it again from the machine that made it");
   }
   return key;

@@ -34,6 +34,8 @@ class LinkKey {
  public:
   // A new random key.
   static std::shared_ptr<const LinkKey> generate();
+  // A key of the given bytes (tests and benchmarks that must be repeatable).
+  static std::shared_ptr<const LinkKey> from_bytes(std::span<const unsigned char, kKeyBytes> bytes);
   // The key in `file`; throws KeyFileError saying what is wrong and how to fix it.
   static std::shared_ptr<const LinkKey> load(const std::filesystem::path& file);
 

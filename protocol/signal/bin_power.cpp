@@ -3,6 +3,8 @@
 #include <fftw3.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -10,11 +12,17 @@
 
 namespace dtmf::signal {
 
-BinPower::BinPower(int window_samples, int first_bin, int bins)
+BinPower::BinPower(int window_samples, int first_bin, int bins, Weighting weighting)
     : window_samples_(window_samples), first_bin_(first_bin), bins_(bins) {
   if (first_bin < 1 || bins < 1 || first_bin + bins > window_samples / 2) {
     throw std::invalid_argument("bins " + std::to_string(first_bin) + ".." + std::to_string(first_bin + bins) +
                                 " do not fit a " + std::to_string(window_samples) + "-sample window");
+  }
+  if (weighting == Weighting::Hann) {
+    weights_.resize(static_cast<std::size_t>(window_samples));
+    for (int i = 0; i < window_samples; ++i)  // periodic Hann: a bin-centred tone reaches only its neighbours
+      weights_[static_cast<std::size_t>(i)] =
+          static_cast<float>(0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * i / window_samples));
   }
   std::lock_guard lock(planner_mutex());
   input_ = fftwf_alloc_real(static_cast<std::size_t>(window_samples));
@@ -40,7 +48,10 @@ void BinPower::analyze(std::span<const float> window, std::span<float> out) {
   }
   // The plan preserves its input, so it reads the window in place when that is aligned as
   // its own input array was (SlidingWindow's windows are); otherwise, a copy.
-  if (fftwf_alignment_of(const_cast<float*>(window.data())) == fftwf_alignment_of(input_)) {
+  if (!weights_.empty()) {
+    for (std::size_t i = 0; i < window.size(); ++i) input_[i] = window[i] * weights_[i];
+    fftwf_execute(plan_);
+  } else if (fftwf_alignment_of(const_cast<float*>(window.data())) == fftwf_alignment_of(input_)) {
     fftwf_execute_dft_r2c(plan_, const_cast<float*>(window.data()), static_cast<fftwf_complex*>(output_));
   } else {
     std::copy(window.begin(), window.end(), input_);

@@ -1,22 +1,28 @@
-// Signal layer: the power of a range of bins of a rectangular analysis window.
+// Signal layer: the power of a range of bins of an analysis window.
 //
-// FFTW (single precision, r2c, planned once) transforms the window as it is, unweighted: the
-// fast profile's tones sit on bin centres, so a window lying wholly inside a chord holds
-// each tone in one bin with nothing of it in the others, and a rectangular window keeps all
-// of a tone's energy (a Hann window would lose 1.8 dB of signal-to-noise ratio). Powers are
-// |X|^2 of the raw FFT; only ratios are used. Nothing is allocated per window.
+// FFTW (single precision, r2c, planned once) transforms the window. Rectangular (as it is):
+// the fast profile's frame tones sit on bin centres, so a window lying wholly inside a chord
+// holds each tone in one bin with nothing of it in the others, and a rectangular window keeps
+// all of a tone's energy (a Hann window would lose 1.8 dB of signal-to-noise ratio). Hann:
+// for the replies, which must be read beside frames 20 dB louder a few hundred hertz above
+// them; a tone on a bin centre then spreads over three bins and nothing of it reaches the
+// bins beyond. Powers are |X|^2 of the FFT; only ratios are used. Nothing is allocated per
+// window.
 #pragma once
 
 #include <span>
+#include <vector>
 
 struct fftwf_plan_s;
 
 namespace dtmf::signal {
 
+enum class Weighting { Rectangular, Hann };
+
 class BinPower {
  public:
   // Bins [first_bin, first_bin + bins) of a window of `window_samples`.
-  BinPower(int window_samples, int first_bin, int bins);
+  BinPower(int window_samples, int first_bin, int bins, Weighting weighting = Weighting::Rectangular);
   ~BinPower();
   BinPower(const BinPower&) = delete;
   BinPower& operator=(const BinPower&) = delete;
@@ -30,6 +36,7 @@ class BinPower {
   int window_samples_;
   int first_bin_;
   int bins_;
+  std::vector<float> weights_;  // empty: rectangular
   float* input_;
   void* output_;
   fftwf_plan_s* plan_;

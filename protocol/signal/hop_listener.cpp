@@ -51,14 +51,14 @@ HopListener::HopListener(const LinkProfile& profile)
   }
   const auto bins = static_cast<std::size_t>(hi_bin_ - lo_bin_);
   background_.assign(bins, std::numeric_limits<float>::max());
-  ring_.resize(static_cast<std::size_t>(2 * hops_per_chord_ + 1));
+  ring_.resize(static_cast<std::size_t>(kMaxFrameChords * hops_per_chord_ + 1));
   for (Window& w : ring_) {
     w.power.assign(bins, 0.0f);
     w.excess.assign(bins, 0.0f);
   }
   scratch_.reserve(static_cast<std::size_t>(hops_.tones_per_band));
   floor_.reserve(static_cast<std::size_t>(hops_.tones_per_band));
-  found_.reserve(96);  // three hypotheses a window, 32 windows (a 16 000-sample block) a feed
+  found_.reserve(192);  // three hypotheses of two shapes a window, 32 windows (a 16 000-sample block) a feed
 }
 
 std::span<const HopCandidate> HopListener::feed(std::span<const float> samples) {
@@ -96,7 +96,8 @@ void HopListener::analyze_window(CandidateSink& sink) {
       // The band's best excess (a whine is background, not excess) over the mean of the
       // other bins' raw power (the excess is zero wherever a bin just fell to a new low, so
       // its mean is no floor to measure noise against).
-      const std::size_t from = static_cast<std::size_t>(hops_.band_first_bin[c][b] - lo_bin_ - 2);
+      const std::size_t from = static_cast<std::size_t>(
+          hops_.band_first_bin[static_cast<std::size_t>(c)][static_cast<std::size_t>(b)] - lo_bin_ - 2);
       const int n = hops_.tones_per_band + 4;
       float best = 0, sum = 0;
       std::size_t at = from;
@@ -113,12 +114,19 @@ void HopListener::analyze_window(CandidateSink& sink) {
   }
   ++windows_;
   analysed_until_ms_ = 1000.0 * static_cast<double>(window_.samples_fed()) / sample_rate_hz_;
-  if (windows_ <= 2 * hops_per_chord_) return;
-
   if (analysed_until_ms_ < hold_until_ms_) return;
-  const Window& first = ring_[(newest_ + ring_.size() - static_cast<std::size_t>(hops_per_chord_)) % ring_.size()];
-  if (!gate(first, now)) return;
-  const Window& before_first = ring_[(newest_ + 1) % ring_.size()];  // one chord before the first
+  for (int chords = 2; chords <= kMaxFrameChords; ++chords) {
+    if (windows_ > chords * hops_per_chord_) offer_shape(chords, sink);
+  }
+}
+
+const HopListener::Window& HopListener::chord_window(int chords, int c) const {
+  const auto back = static_cast<std::size_t>((chords - 1 - c) * hops_per_chord_);
+  return ring_[(newest_ + ring_.size() - back) % ring_.size()];
+}
+
+void HopListener::offer_shape(int chords, CandidateSink& sink) {
+  if (!gate(chords)) return;
   std::array<int, 3> tried{};
   int count = 0;
   std::optional<HopCandidate> first_candidate;
@@ -128,41 +136,43 @@ void HopListener::analyze_window(CandidateSink& sink) {
       if (std::abs(tried[static_cast<std::size_t>(i)] - ppm) < kSameHypothesisPpm) return false;
     }
     tried[static_cast<std::size_t>(count++)] = ppm;
-    const HopCandidate c = make_candidate(before_first, first, now, ppm);
+    const HopCandidate c = make_candidate(chords, ppm);
     if (!first_candidate) first_candidate = c;
     return sink.take(c);
   };
   if (tracked_ppm_ && offer(*tracked_ppm_)) return;
   if (offer(0)) return;
-  if (offer(blind_offset_ppm(first, now))) return;
+  if (offer(blind_offset_ppm(chords))) return;
   sink.none_taken(*first_candidate);
 }
 
 // Most of each chord's eight bands stand out of their own means: a frame, or something loud
-// and tonal enough in both band sets to be worth decoding. A noise band scores 6.2 dB on
-// average (1.5 dB spread), a frame's at -10 dB SNR about 12. Both chords must: one chord's
-// bands loud and the other's silent is a frame's edge, or the next frame's first chord.
-bool HopListener::gate(const Window& first, const Window& second) const {
-  const float threshold = gate_ratio_;
+// and tonal enough in every band set to be worth decoding. A noise band scores 6.2 dB on
+// average (1.5 dB spread), a frame's at -10 dB SNR about 12. Every chord must: one chord's
+// bands loud and the next one's silent is a frame's edge, or the next frame's first chord.
+bool HopListener::gate(int chords) const {
   // Counted, not summed: two loud tones (a seed chord, a whistle) must not carry a chord
   // whose other bands hold nothing.
-  int first_bands = 0, second_bands = 0;
-  for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
-    first_bands += first.band_score[static_cast<std::size_t>(tone_index(0, b))] >= threshold ? 1 : 0;
-    second_bands += second.band_score[static_cast<std::size_t>(tone_index(1, b))] >= threshold ? 1 : 0;
+  for (int c = 0; c < chords; ++c) {
+    const Window& w = chord_window(chords, c);
+    int loud = 0;
+    for (int b = 0; b < HopLink::kBandsPerChord; ++b)
+      loud += w.band_score[static_cast<std::size_t>(tone_index(band_set(c), b))] >= gate_ratio_ ? 1 : 0;
+    if (loud < hops_.gate_bands) return false;
   }
-  return first_bands >= hops_.gate_bands && second_bands >= hops_.gate_bands;
+  return true;
 }
 
 // Every band's peak, to a fraction of a bin (a pure tone at p + d puts power in bins p and
 // p + 1 in the ratio of sinc^2(d) to sinc^2(1 - d), so d = |X(p+1)| / (|X(p)| + |X(p+1)|));
 // the offset is the one that brings most peaks nearest to whole bins (tones sit on bins).
-int HopListener::blind_offset_ppm(const Window& first, const Window& second) const {
-  std::array<float, kFrameTones> position{}, weight{};
-  for (int c = 0; c < 2; ++c) {
-    const Window& w = c == 0 ? first : second;
+int HopListener::blind_offset_ppm(int chords) const {
+  std::array<float, kMaxFrameTones> position{}, weight{};
+  for (int c = 0; c < chords; ++c) {
+    const Window& w = chord_window(chords, c);
+    const auto set = static_cast<std::size_t>(band_set(c));
     for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
-      const int lo = hops_.band_first_bin[c][b] - lo_bin_ - kMarginBins + 1;
+      const int lo = hops_.band_first_bin[set][static_cast<std::size_t>(b)] - lo_bin_ - kMarginBins + 1;
       const int n = hops_.tones_per_band + 2 * kMarginBins - 2;
       const auto* e = w.excess.data() + lo;
       const int p = static_cast<int>(std::max_element(e, e + n) - e);
@@ -171,8 +181,9 @@ int HopListener::blind_offset_ppm(const Window& first, const Window& second) con
       const float d = ap > am ? ap / (a0 + ap + 1e-30f) : -am / (a0 + am + 1e-30f);
       const std::size_t t = static_cast<std::size_t>(tone_index(c, b));
       position[t] = static_cast<float>(lo_bin_ + lo + p) + d;
-      weight[t] = std::clamp(std::log2(std::max(w.band_score[t], 1.0f)) - 2.0f, 0.0f,
-                             10.0f);  // strong peaks count, noise does not
+      const float score = w.band_score[static_cast<std::size_t>(tone_index(band_set(c), b))];
+      weight[t] =
+          std::clamp(std::log2(std::max(score, 1.0f)) - 2.0f, 0.0f, 10.0f);  // strong peaks count, noise does not
     }
   }
   int best_ppm = 0;
@@ -180,7 +191,7 @@ int HopListener::blind_offset_ppm(const Window& first, const Window& second) con
   for (int ppm = -hops_.max_offset_ppm; ppm <= hops_.max_offset_ppm; ppm += kOffsetStepPpm) {
     const float scale = 1.0f / (1.0f + static_cast<float>(ppm) * 1e-6f);
     float cost = 0;
-    for (std::size_t t = 0; t < kFrameTones; ++t) {
+    for (std::size_t t = 0; t < static_cast<std::size_t>(chords * HopLink::kBandsPerChord); ++t) {
       const float at = position[t] * scale;
       const float r = at - std::round(at);
       cost += weight[t] * std::min(r * r, 0.06f);
@@ -193,14 +204,15 @@ int HopListener::blind_offset_ppm(const Window& first, const Window& second) con
   return best_ppm;
 }
 
-HopCandidate HopListener::make_candidate(const Window& before_first, const Window& first, const Window& second,
-                                         int offset_ppm) {
+HopCandidate HopListener::make_candidate(int chords, int offset_ppm) {
   HopCandidate c;
+  c.chords = chords;
   c.offset_ppm = offset_ppm;
   const double scale = 1.0 + offset_ppm * 1e-6;
-  for (int chord = 0; chord < 2; ++chord) {
-    const Window& w = chord == 0 ? first : second;
-    const Window& before = chord == 0 ? before_first : first;
+  for (int chord = 0; chord < chords; ++chord) {
+    const Window& w = chord_window(chords, chord);
+    const Window& before = chord_window(chords, chord - 1);
+    const auto set = static_cast<std::size_t>(band_set(chord));
     for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
       const std::size_t t = static_cast<std::size_t>(tone_index(chord, b));
       scratch_.clear();
@@ -209,7 +221,7 @@ HopCandidate HopListener::make_candidate(const Window& before_first, const Windo
       int best_bin = 0;
       for (int v = 0; v < hops_.tones_per_band; ++v) {
         // A tone moved between two bins splits its power between them: take both then.
-        const double at = (hops_.band_first_bin[chord][b] + v) * scale;
+        const double at = (hops_.band_first_bin[set][static_cast<std::size_t>(b)] + v) * scale;
         const int bin = static_cast<int>(std::lround(at));
         const double frac = at - bin;
         const auto i = static_cast<std::size_t>(bin - lo_bin_);
@@ -238,7 +250,8 @@ HopCandidate HopListener::make_candidate(const Window& before_first, const Windo
       ToneReading& r = c.tones[t];
       r.symbol = static_cast<std::uint8_t>(best);
       r.certainty = runner > 0 ? top / runner : 1e9f;
-      r.heard = top > presence_ratio_ * median && w.power[bi] > onset_ratio_ * before.power[bi];
+      r.risen = w.power[bi] > onset_ratio_ * before.power[bi];
+      r.heard = top > presence_ratio_ * median && r.risen;
       // The peak to a fraction of a bin, for offset tracking once the frame is known.
       const float a0 = std::sqrt(std::max(w.excess[bi], 0.0f));
       const float am = std::sqrt(std::max(w.excess[bi - 1], 0.0f)), ap = std::sqrt(std::max(w.excess[bi + 1], 0.0f));
@@ -247,23 +260,25 @@ HopCandidate HopListener::make_candidate(const Window& before_first, const Windo
   }
   const double ms_per_sample = 1000.0 / sample_rate_hz_;
   c.heard_ms = analysed_until_ms_;
-  // The first chord's window started one chord and one window before now; the chord itself
-  // began an edge (and up to a hop) before that window.
+  // The first chord's window started chords - 1 chords and one window before now; the chord
+  // itself began an edge (and up to a hop) before that window.
   c.start_ms =
-      c.heard_ms - (hops_.chord_samples() + hops_.window_samples + hops_.edge_samples + hop_ / 2.0) * ms_per_sample;
+      c.heard_ms -
+      ((chords - 1) * hops_.chord_samples() + hops_.window_samples + hops_.edge_samples + hop_ / 2.0) * ms_per_sample;
   return c;
 }
 
-void HopListener::confirm(const HopCandidate& candidate, std::span<const std::uint8_t, kFrameTones> symbols) {
+void HopListener::confirm(const HopCandidate& candidate, std::span<const std::uint8_t> symbols) {
   // Each tone sent on bin f was heard at f (1 + offset): the median over the tones the
   // decoder did not have to correct.
-  std::array<float, kFrameTones> offsets{};
+  std::array<float, kMaxFrameTones> offsets{};
   std::size_t n = 0;
-  for (int chord = 0; chord < 2; ++chord) {
+  for (int chord = 0; chord < candidate.chords; ++chord) {
+    const auto set = static_cast<std::size_t>(band_set(chord));
     for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
       const std::size_t t = static_cast<std::size_t>(tone_index(chord, b));
-      if (candidate.tones[t].symbol != symbols[t] || !candidate.tones[t].heard) continue;
-      const float sent_bin = static_cast<float>(hops_.band_first_bin[chord][b] + symbols[t]);
+      if (t >= symbols.size() || candidate.tones[t].symbol != symbols[t] || !candidate.tones[t].heard) continue;
+      const float sent_bin = static_cast<float>(hops_.band_first_bin[set][static_cast<std::size_t>(b)] + symbols[t]);
       offsets[n++] = (candidate.peak_bins[t] / sent_bin - 1.0f) * 1e6f;
     }
   }

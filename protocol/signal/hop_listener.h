@@ -3,27 +3,27 @@
 //   samples -> rectangular window (W samples, every hop H) -> BinPower (the bins of the 16 bands)
 //           -> per bin: a background that may rise only slowly (steady tones: whines) and the
 //              excess over it; per band: its best bin against its mean
-//           -> the window now (second chord's bands) and the window one chord earlier (first
-//              chord's bands): a candidate when the sixteen bands together stand out
-//           -> per frequency-offset hypothesis, sixteen tone readings (symbol, certainty,
-//              heard) for the reliability layer's decoder
+//           -> for each frame shape (two chords, or three for an authenticated frame): the
+//              window now (the last chord's bands) and the windows one and two chords earlier
+//              (the earlier chords' bands): a candidate when every chord's bands stand out
+//           -> per frequency-offset hypothesis, eight tone readings per chord (symbol,
+//              certainty, heard) for the reliability layer's decoder
 //
 // A chord lasts W + 2 * edge + H samples, so exactly one grid window lies wholly inside each
-// chord, and the one inside the second chord comes exactly one chord after the first's.
-// The two chords use disjoint band sets, so neither chord's reverberant tail is read as a
-// symbol of the other. A tone counts as heard when its bin's excess stands `presence_db` over
-// the band's median power and rose `onset_db` since the window a chord earlier (a reverberant tail, or
-// any steady sound, decays or holds; a chord's tone starts). A steady whine is taken out
-// before any of this: each bin's background follows a drop at once and a rise only at
-// `background_rise_db_per_s`, and the readings use the excess over it.
-// Clocks and Doppler shift every tone by the same factor (1 + offset): the readings are
-// taken at each hypothesis's shifted bins — the offset tracked from the frames decoded
-// before (confirm()), no offset, and an estimate from this candidate's own fractional peak
-// positions — in that order, each built only when the one before did not decode (a sink
-// says so), since most frames decode at the first. While the sink holds the listener
-// (after an accept, the frame's later windows), no candidates are built at all.
-// Times are milliseconds since the first sample fed; the stream is taken to be preceded by
-// silence. Once constructed, feeding allocates nothing.
+// chord, and the one inside the next chord comes exactly one chord later. Chord c of a frame
+// uses band set c % 2 (the even bands, then the odd ones, then the even ones again), so no
+// chord's reverberant tail lies in the bands the next chord is read from. A two-chord frame
+// never reads as the start of a three-chord one and back: the receive path judges both
+// shapes under one frame gate (link/hop_frame_path.h). A tone counts as heard when its bin's excess stands
+// `presence_db` over the band's median power and rose `onset_db` since the window a chord earlier (a reverberant tail,
+// or any steady sound, decays or holds; a chord's tone starts). A steady whine is taken out before any of this: each
+// bin's background follows a drop at once and a rise only at `background_rise_db_per_s`, and the readings use the
+// excess over it. Clocks and Doppler shift every tone by the same factor (1 + offset): the readings are taken at each
+// hypothesis's shifted bins — the offset tracked from the frames decoded before (confirm()), no offset, and an estimate
+// from this candidate's own fractional peak positions — in that order, each built only when the one before did not
+// decode (a sink says so), since most frames decode at the first. While the sink holds the listener (after an accept,
+// the frame's later windows), no candidates are built at all. Times are milliseconds since the first sample fed; the
+// stream is taken to be preceded by silence. Once constructed, feeding allocates nothing.
 #pragma once
 
 #include <array>
@@ -38,20 +38,24 @@
 
 namespace dtmf::signal {
 
-inline constexpr int kFrameTones = 2 * HopLink::kBandsPerChord;  // 16
+inline constexpr int kMaxFrameChords = 3;
+inline constexpr int kMaxFrameTones = kMaxFrameChords * HopLink::kBandsPerChord;  // 24
 
 struct ToneReading {
   std::uint8_t symbol = 0;  // the strongest tone of its band
   float certainty = 1;      // its power over the runner-up's (>= 1)
   bool heard = true;        // false: no tone stood out there, or it did not rise with the chord
+  bool risen = true;        // it rose with the chord (a tail, or a steady sound, does not)
 };
 
 struct HopCandidate {
-  double start_ms = 0;                           // when the first chord began (within a hop)
-  double heard_ms = 0;                           // end of the window inside the second chord
-  int offset_ppm = 0;                            // the frequency offset these readings assume
-  std::array<ToneReading, kFrameTones> tones{};  // first chord's bands, then the second's
-  std::array<float, kFrameTones> peak_bins{};    // each band's peak, in fractional bins (offset tracking)
+  int chords = 2;                                   // the frame shape: 2 chords, or 3 (authenticated)
+  double start_ms = 0;                              // when the first chord began (within a hop)
+  double heard_ms = 0;                              // end of the window inside the last chord
+  int offset_ppm = 0;                               // the frequency offset these readings assume
+  std::array<ToneReading, kMaxFrameTones> tones{};  // first chord's bands, then the next chord's
+  std::array<float, kMaxFrameTones> peak_bins{};    // each band's peak, in fractional bins (offset tracking)
+  std::size_t tone_count() const { return static_cast<std::size_t>(chords * HopLink::kBandsPerChord); }
 };
 
 // Where a window's candidates go, hypothesis after hypothesis.
@@ -75,9 +79,9 @@ class HopListener {
   void feed(std::span<const float> samples, CandidateSink& sink);
   // No candidates for windows ending before `until_ms` (the accepted frame's own windows).
   void hold_until(double until_ms) { hold_until_ms_ = until_ms; }
-  // A frame was decoded from `candidate` with these code symbols: the offset its tones show
-  // is the first hypothesis for the frames that follow.
-  void confirm(const HopCandidate& candidate, std::span<const std::uint8_t, kFrameTones> symbols);
+  // A frame was decoded from `candidate` with these code symbols (tone_count() of them): the
+  // offset its tones show is the first hypothesis for the frames that follow.
+  void confirm(const HopCandidate& candidate, std::span<const std::uint8_t> symbols);
   std::optional<int> tracked_offset_ppm() const { return tracked_ppm_; }
   // End of the latest analysed window.
   double now_ms() const { return analysed_until_ms_; }
@@ -85,16 +89,22 @@ class HopListener {
 
  private:
   struct Window {
-    std::vector<float> power;                     // raw |X|^2 of bins [lo_bin_, hi_bin_)
-    std::vector<float> excess;                    // power over the background
-    std::array<float, kFrameTones> band_score{};  // the band's best excess over its mean power
+    std::vector<float> power;   // raw |X|^2 of bins [lo_bin_, hi_bin_)
+    std::vector<float> excess;  // power over the background
+    // The band's best excess over its mean power, band set s, band b at [s * 8 + b].
+    std::array<float, 2 * HopLink::kBandsPerChord> band_score{};
   };
   void analyze_window(CandidateSink& sink);
-  bool gate(const Window& first, const Window& second) const;
-  HopCandidate make_candidate(const Window& before_first, const Window& first, const Window& second, int offset_ppm);
-  int blind_offset_ppm(const Window& first, const Window& second) const;
-  // chord c of a frame, band b -> index into the 16 tones
+  // The candidates of the frame shape of `chords` ending in the newest window.
+  void offer_shape(int chords, CandidateSink& sink);
+  // The window inside chord c of a frame of `chords` ending now; c = -1: one chord before it.
+  const Window& chord_window(int chords, int c) const;
+  bool gate(int chords) const;
+  HopCandidate make_candidate(int chords, int offset_ppm);
+  int blind_offset_ppm(int chords) const;
+  // chord c of a frame, band b -> index into its tones; the band set chord c sounds on
   static int tone_index(int chord, int band) { return chord * HopLink::kBandsPerChord + band; }
+  static int band_set(int chord) { return chord % 2; }
 
   const HopLink& hops_;
   int sample_rate_hz_;
@@ -109,7 +119,7 @@ class HopListener {
   BinPower bins_;
   SlidingWindow window_;
   std::vector<float> background_;
-  std::vector<Window> ring_;  // the last 2 * hops_per_chord + 1 windows
+  std::vector<Window> ring_;  // the last kMaxFrameChords * hops_per_chord + 1 windows
   std::size_t newest_ = 0;
   long long windows_ = 0;
   double analysed_until_ms_ = 0;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 namespace dtmf::signal {
 
@@ -9,70 +11,101 @@ namespace {
 constexpr int kMarginBins = 2;
 }  // namespace
 
-HopReplyListener::HopReplyListener(const LinkProfile& profile, Read read)
+HopReplyListener::HopReplyListener(const LinkProfile& profile, int min_heard)
     : hops_(profile.hops),
-      read_(std::move(read)),
+      min_heard_(min_heard),
       sample_rate_hz_(profile.sample_rate_hz),
       presence_ratio_(static_cast<float>(std::pow(10.0, profile.hops.reply_presence_db / 10.0))),
       onset_ratio_(static_cast<float>(std::pow(10.0, profile.hops.reply_onset_db / 10.0))),
-      lo_bin_(*std::min_element(profile.hops.reply_band_first_bin.begin(), profile.hops.reply_band_first_bin.end()) -
-              kMarginBins),
-      windows_back_(profile.hops.reply_samples() / profile.hops.reply_hop_samples + 1),
+      rise_per_hop_(
+          static_cast<float>(std::pow(10.0, profile.hops.reply_background_rise_db_per_s *
+                                                profile.hops.reply_hop_samples / profile.sample_rate_hz / 10.0))),
+      lo_bin_(profile.hops.reply_tone_bin.front().front() - kMarginBins),
+      hops_per_chord_(profile.hops.reply_chord_samples() / profile.hops.reply_hop_samples),
       bins_(profile.hops.reply_window_samples, lo_bin_,
-            *std::max_element(profile.hops.reply_band_first_bin.begin(), profile.hops.reply_band_first_bin.end()) +
-                profile.hops.reply_tones_per_band + kMarginBins - lo_bin_),
+            profile.hops.reply_tone_bin.back().back() + kMarginBins + 1 - lo_bin_, Weighting::Hann),
       window_(static_cast<std::size_t>(profile.hops.reply_window_samples),
               static_cast<std::size_t>(profile.hops.reply_hop_samples)) {
-  ring_.assign(static_cast<std::size_t>(windows_back_ + 1),
-               std::vector<float>(static_cast<std::size_t>(bins_.bins()), 0.0f));
-  heard_.reserve(4);
+  if (profile.hops.reply_chord_samples() % profile.hops.reply_hop_samples != 0) {
+    throw std::invalid_argument("profile '" + profile.name + "': a reply chord must be a whole number of reply hops");
+  }
+  const auto bins = static_cast<std::size_t>(bins_.bins());
+  background_.assign(bins, std::numeric_limits<float>::max());
+  power_ring_.assign(static_cast<std::size_t>(2 * hops_per_chord_ + 1), std::vector<float>(bins, 0.0f));
+  excess_ring_ = power_ring_;
+  heard_.reserve(64);  // a reading per window: 20 in a block of 4096 samples
 }
 
-std::span<const HeardReply> HopReplyListener::feed(std::span<const float> samples) {
+std::span<const HeardReading> HopReplyListener::feed(std::span<const float> samples) {
   heard_.clear();
   window_.feed(samples, [this] { analyze_window(); });
   return heard_;
 }
 
-void HopReplyListener::analyze_window() {
-  newest_ = (newest_ + 1) % ring_.size();
-  std::vector<float>& now = ring_[newest_];
-  bins_.analyze(window_.window(), now);
-  ++windows_;
-  const std::vector<float>& before = ring_[(newest_ + 1) % ring_.size()];
-  std::array<int, 4> tone{-1, -1, -1, -1};  // each band's tone, -1 when it does not count
-  for (std::size_t b = 0; b < 4; ++b) {
-    const int first = hops_.reply_band_first_bin[b] - lo_bin_;
-    const int n = hops_.reply_tones_per_band;
-    int best = 0;
-    for (int v = 0; v < n; ++v) {
-      scratch_[static_cast<std::size_t>(v)] = now[static_cast<std::size_t>(first + v)];
-      if (scratch_[static_cast<std::size_t>(v)] > scratch_[static_cast<std::size_t>(best)]) best = v;
+// Band `band`'s tone in a window: the strongest of its bins that rose since `before` (tone
+// `exclude` aside), or -1 when none rose or the strongest that did stands too little over the
+// band's floor.
+int HopReplyListener::read_band(const std::vector<float>& excess, const std::vector<float>& power,
+                                const std::vector<float>& before, int band, int exclude) {
+  const auto& tone_bins = hops_.reply_tone_bin[static_cast<std::size_t>(band)];
+  int best = -1;
+  float best_excess = 0;
+  for (int v = 0; v < hops_.reply_tones_per_band; ++v) {
+    const auto at = static_cast<std::size_t>(tone_bins[static_cast<std::size_t>(v)] - lo_bin_);
+    if (v != exclude && power[at] > onset_ratio_ * before[at] && (best < 0 || excess[at] > best_excess)) {
+      best = v;
+      best_excess = excess[at];
     }
-    const auto at = static_cast<std::size_t>(first + best);
-    const float top = now[at];
-    // The band's median, its guard bins included so that a band of one tone has a floor.
-    scratch_[static_cast<std::size_t>(n)] = now[static_cast<std::size_t>(first - 1)];
-    scratch_[static_cast<std::size_t>(n + 1)] = now[static_cast<std::size_t>(first + n)];
-    auto* end = scratch_.data() + n + 2;
-    std::nth_element(scratch_.data(), scratch_.data() + (n + 2) / 2, end);
-    const float median = scratch_[static_cast<std::size_t>((n + 2) / 2)];
-    // (The stream is taken to be preceded by silence: the ring starts as zeros.)
-    if (top > presence_ratio_ * median && top > onset_ratio_ * before[at]) tone[b] = best;
   }
-  const int reading = read_(tone);
-  if (reading < 0) passed_ = -1;  // a window without a reply re-arms
-  if (reading >= 0 && reading == last_ && reading != passed_) {
-    passed_ = reading;
-    const double ms_per_sample = 1000.0 / sample_rate_hz_;
-    HeardReply h;
-    h.reply = reading;
-    h.heard_ms = static_cast<double>(window_.samples_fed()) * ms_per_sample;
-    h.start_ms =
-        h.heard_ms - (hops_.reply_window_samples + hops_.reply_hop_samples + hops_.reply_edge_samples) * ms_per_sample;
-    heard_.push_back(h);
+  if (best < 0) return -1;
+  // The band's floor: the median of the raw power of its bins, from its first tone to its
+  // last (the tones and the bins between them).
+  const auto from = static_cast<std::size_t>(tone_bins.front() - lo_bin_);
+  const auto to = static_cast<std::size_t>(tone_bins.back() + 1 - lo_bin_);
+  const std::size_t n = to - from;
+  std::copy(power.begin() + static_cast<long>(from), power.begin() + static_cast<long>(to), scratch_.begin());
+  std::nth_element(scratch_.data(), scratch_.data() + n / 2, scratch_.data() + n);
+  const float median = scratch_[n / 2];
+  return best_excess > presence_ratio_ * median ? best : -1;
+}
+
+void HopReplyListener::analyze_window() {
+  newest_ = (newest_ + 1) % power_ring_.size();
+  std::vector<float>& power = power_ring_[newest_];
+  std::vector<float>& excess = excess_ring_[newest_];
+  bins_.analyze(window_.window(), power);
+  for (std::size_t i = 0; i < power.size(); ++i) {
+    background_[i] = std::min(power[i], background_[i] * rise_per_hop_);
+    excess[i] = power[i] - background_[i];
   }
-  last_ = reading;
+  ++windows_;
+  if (windows_ <= 2 * hops_per_chord_) return;  // the stream is taken to be preceded by silence
+  const std::size_t first =
+      (newest_ + power_ring_.size() - static_cast<std::size_t>(hops_per_chord_)) % power_ring_.size();
+  const std::size_t before = (newest_ + 1) % power_ring_.size();  // two chords ago: before the reply
+  HeardReading r;
+  for (int chord = 0; chord < HopLink::kReplyChords; ++chord) {
+    const std::size_t w = chord == 0 ? first : newest_;
+    // The second chord's tones must rise over the first chord's window, and a band's tone of
+    // the first chord is no tone of the second: no reply repeats it (reply_code.h), and in a
+    // room it rings on into the second chord, its reverberation often louder than when it
+    // was read.
+    const std::size_t reference = chord == 0 ? before : first;
+    for (int b = 0; b < HopLink::kReplyBands; ++b) {
+      const int exclude = chord == 0 ? -1 : r.tones[static_cast<std::size_t>(b)];
+      const int tone = read_band(excess_ring_[w], power_ring_[w], power_ring_[reference], b, exclude);
+      r.tones[static_cast<std::size_t>(chord * HopLink::kReplyBands + b)] = tone;
+      r.heard += tone >= 0 ? 1 : 0;
+    }
+  }
+  if (r.heard < min_heard_) return;
+  r.window = windows_;
+  const double ms_per_sample = 1000.0 / sample_rate_hz_;
+  r.heard_ms = static_cast<double>(window_.samples_fed()) * ms_per_sample;
+  r.start_ms = r.heard_ms - (hops_.reply_chord_samples() + hops_.reply_window_samples + hops_.reply_edge_samples +
+                             hops_.reply_hop_samples / 2.0) *
+                                ms_per_sample;
+  heard_.push_back(r);
 }
 
 }  // namespace dtmf::signal

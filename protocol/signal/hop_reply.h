@@ -1,59 +1,70 @@
-// Signal layer: the fast profile's replies as audio, and the sender's listener for them.
+// Signal layer: the sender's listener for the fast profile's replies — audio in, readings of
+// the reply's ten tones out.
 //
-// A reply is four tones, one in each of four bands of 8 tones 62.5 Hz apart (2.0-3.9 kHz,
-// below the chords, so the robot may answer while a chord still sounds); which tones is the
-// reliability layer's code (reliability/reply_code.h). The listener reads each band's best
-// bin every 4 ms hop; a band counts when its bin stands `reply_presence_db` over the band's
-// median and rose `reply_onset_db` since the window a reply earlier (not the tail of an
-// earlier reply). `read` (the code) turns the four bands into a reply, or none; a reply read
-// in two windows in a row is heard. It passes once, and again only after a window without it.
-// Times are milliseconds since the first sample fed. Feeding allocates nothing.
+// A reply is two chords, each one tone in each of six bands of 4 tones 125 Hz apart
+// (0.56-3.44 kHz, below the chords, so the robot may answer while a chord sounds), read in
+// 32 ms windows (in a room a shorter tone smears into the bins beside it); which
+// tones is the reliability layer's reply code (reliability/reply_code.h). Every hop the
+// latest window is read through a Hann window: the sender's own frames, 20 dB louder at its
+// microphone than the answer, sit at 4 kHz and up, and a Hann window's sidelobes fall far
+// enough that nothing of them reaches the reply bands (a rectangular window's fall 6 dB an
+// octave). A bin's steady background (a fan's whine) is learnt and taken off as in the frame
+// listener. The window now reads the second chord and the window one reply chord earlier the
+// first; a band's tone is the strongest of its bins that rose `reply_onset_db` since the
+// chord before (for the first chord, the window before the reply; for the second, the first
+// chord's: a tail holds or falls, and no reply repeats a band's tone), heard when its excess
+// stands `reply_presence_db` over the band's median. A window whose two chords hear at least
+// `min_heard` tones gives a reading. Times are milliseconds since the first sample
+// fed. Feeding allocates nothing.
 #pragma once
 
 #include <array>
-#include <cstdint>
-#include <functional>
 #include <span>
 #include <vector>
 
 #include "profile/link_profile.h"
+#include "reliability/reply_code.h"
 #include "signal/bin_power.h"
 #include "signal/sliding_window.h"
 
 namespace dtmf::signal {
 
-struct HeardReply {
-  int reply = 0;  // what `read` returned
-  double start_ms = 0;
-  double heard_ms = 0;
+struct HeardReading {
+  reliability::ReplyReading tones{};  // -1 where not heard
+  int heard = 0;                      // tones heard
+  double start_ms = 0;                // when the reply began (within a hop)
+  double heard_ms = 0;                // end of the window inside its second chord
+  long long window = 0;               // the window's number: readings of consecutive windows are one reply
 };
 
 class HopReplyListener {
  public:
-  // `read`: the four bands' tones (-1 where a band was not heard) -> a reply id, or -1.
-  using Read = std::function<int(const std::array<int, 4>& tones)>;
-  HopReplyListener(const LinkProfile& profile, Read read);
-  std::span<const HeardReply> feed(std::span<const float> samples);
+  HopReplyListener(const LinkProfile& profile, int min_heard);
+  std::span<const HeardReading> feed(std::span<const float> samples);
+  double hop_ms() const { return 1000.0 * hops_.reply_hop_samples / sample_rate_hz_; }
 
  private:
   void analyze_window();
+  int read_band(const std::vector<float>& excess, const std::vector<float>& power, const std::vector<float>& before,
+                int band, int exclude);
 
   const HopLink& hops_;
-  Read read_;
+  int min_heard_;
   int sample_rate_hz_;
   float presence_ratio_;
   float onset_ratio_;
+  float rise_per_hop_;
   int lo_bin_;
-  int windows_back_;  // hops in one reply: the onset compares with that many windows earlier
+  int hops_per_chord_;
   BinPower bins_;
   SlidingWindow window_;
-  std::vector<std::vector<float>> ring_;  // powers of the last windows_back_ + 1 windows
+  std::vector<float> background_;
+  std::vector<std::vector<float>> power_ring_;   // raw power of the last 2 * hops_per_chord_ + 1 windows
+  std::vector<std::vector<float>> excess_ring_;  // ... and its excess over the background
   std::size_t newest_ = 0;
   long long windows_ = 0;
-  int last_ = -1;    // the reply the previous window read, -1 none
-  int passed_ = -1;  // the reply passed and not yet re-armed
   std::array<float, 16> scratch_{};
-  std::vector<HeardReply> heard_;
+  std::vector<HeardReading> heard_;
 };
 
 }  // namespace dtmf::signal

@@ -1,0 +1,35 @@
+// One transmission's wait for its answer: which answers heard answer the frame on air.
+//
+// A named ACK must name the frame and a tagged ACK spell its tag (Link::answers). A tagged
+// ACK that does not is a guess at the tag, whoever made it (an echo, the sender's own
+// frames, a forger), and a transmission takes at most kTagGuessesPerAttempt of them: after
+// that, no tagged ACK answers it, so a forger's chance per transmission stays bounded
+// (docs/security.md). Pure logic: the caller starts a new wait for each transmission.
+#pragma once
+
+#include "link/link.h"
+#include "reliability/reply_code.h"
+
+namespace dtmf::link {
+
+class AnswerWait {
+ public:
+  AnswerWait(const Link& link, const TransmitFrame& frame) : link_(link), frame_(frame) {}
+
+  // Whether `answer` answers the frame (a NACK answers whatever frame is on air).
+  bool answered_by(const Answer& answer) {
+    const bool tagged = answer.tag_reading.has_value();
+    if (tagged && guesses_ >= reliability::kTagGuessesPerAttempt) return false;  // the budget is spent
+    if (link_.answers(answer, frame_)) return true;
+    if (tagged) ++guesses_;
+    return false;
+  }
+  int guesses() const { return guesses_; }
+
+ private:
+  const Link& link_;
+  const TransmitFrame& frame_;
+  int guesses_ = 0;
+};
+
+}  // namespace dtmf::link

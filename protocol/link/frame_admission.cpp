@@ -1,0 +1,141 @@
+#include "link/frame_admission.h"
+
+#include "command/command_payload.h"
+#include "reliability/command_frame.h"
+#include "reliability/sealed_frame.h"
+#include "security/frame_mac.h"
+#include "security/freshness.h"
+#include "signal/hop_synthesizer.h"
+
+namespace dtmf::link {
+
+namespace {
+
+void refuse(Reception& r, RefusalReason reason, std::string why) {
+  r.event = ReceptionEvent::Refused;
+  r.refusal = reason;
+  r.detail = std::move(why);
+}
+
+}  // namespace
+
+security::FrameMacInput sealed_mac_input(const reliability::FrameBits& bits, std::uint64_t counter) {
+  const auto f = reliability::unpack_sealed(bits);
+  if (!f) return {};
+  return {f->address, static_cast<std::uint8_t>(f->form), counter, f->payload};
+}
+
+FrameAdmission::FrameAdmission(const LinkProfile& profile, const LinkOptions& options)
+    : profile_(profile), options_(options) {}
+
+std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
+  Reception r;
+  r.start_ms = heard.start_ms;
+  r.heard_ms = heard.heard_ms;
+  r.bits = heard.bits;
+  r.intact = heard.intact;
+  const bool sealed = heard.chords == profile_.hops.sealed_chords_per_frame;
+  r.bit_count = sealed ? reliability::kSealedFrameBits : reliability::kCommandFrameBits;
+  r.check_bit_count = sealed ? reliability::kSealedCheckBits : reliability::kCommandCrcBits;
+  const std::vector<double> tones =
+      sealed ? signal::frame_tones_hz(profile_, reliability::encode_sealed_symbols(heard.bits))
+             : signal::frame_tones_hz(profile_, reliability::encode_symbols(heard.bits.low64()));
+  r.tones_hz = tones;
+  if (!r.intact) return r;  // Broken: NACK
+  const std::uint8_t address =
+      sealed ? reliability::unpack_sealed(heard.bits)->address : reliability::unpack(heard.bits.low64())->address;
+  if (address != options_.address) return std::nullopt;  // another robot's frame: not ours to answer
+  if (sealed)
+    admit_sealed(r);
+  else
+    admit_plain(r);
+  return r;
+}
+
+void FrameAdmission::admit_plain(Reception& r) {
+  const reliability::CommandFrame frame = *reliability::unpack(r.bits.low64());
+  r.sequence = frame.sequence;
+  if (options_.key && !options_.accept_unauthenticated) {
+    refuse(r, RefusalReason::Authentication,
+           "an unauthenticated frame, and this robot has a key (dtmf-agent --accept-unauthenticated lets them in)");
+    return;
+  }
+  const auto decoded = command::decode_payload(frame.payload);
+  if (!decoded.command) {
+    refuse(r, RefusalReason::Payload, decoded.error);  // passed the checks by chance, or a kind this robot lacks
+    return;
+  }
+  if (!sequence_.first_time(frame)) {
+    r.event = ReceptionEvent::Repeat;
+    r.detail = "repeat, not executed again";
+    return;
+  }
+  take_payload(r, frame.payload);
+}
+
+bool FrameAdmission::authentic(const reliability::FrameBits& bits) const {
+  const auto frame = reliability::unpack_sealed(bits);
+  if (!frame || !options_.key) return false;
+  const std::uint64_t counter =
+      frame->form == reliability::SealedForm::Sync
+          ? frame->counter
+          : security::complete_counter(options_.counters->last_accepted(), static_cast<std::uint32_t>(frame->counter));
+  const security::FrameMacInput input{frame->address, static_cast<std::uint8_t>(frame->form), counter, frame->payload};
+  return security::frame_mac(*options_.key, input) == frame->mac;
+}
+
+void FrameAdmission::admit_sealed(Reception& r) {
+  const reliability::SealedFrame frame = *reliability::unpack_sealed(r.bits);
+  if (!options_.key) {
+    refuse(r, RefusalReason::Authentication, "an authenticated frame, and this robot has no key (dtmf-agent --key)");
+    return;
+  }
+  security::CounterStore& counters = *options_.counters;
+  const std::uint64_t last = counters.last_accepted();
+  const bool sync = frame.form == reliability::SealedForm::Sync;
+  const std::uint64_t counter =
+      sync ? frame.counter : security::complete_counter(last, static_cast<std::uint32_t>(frame.counter));
+  r.counter = counter;
+  const security::FrameMacInput input{frame.address, static_cast<std::uint8_t>(frame.form), counter, frame.payload};
+  if (security::frame_mac(*options_.key, input) != frame.mac) {
+    refuse(r, RefusalReason::Authentication,
+           "its MAC fails for counter " + std::to_string(counter) +
+               ": forged, captured before the last frame accepted, or made under another key");
+    return;
+  }
+  switch (security::freshness_of(last, counter)) {
+    case security::Freshness::Stale:
+      refuse(r, RefusalReason::Authentication,
+             "counter " + std::to_string(counter) + " is older than the last accepted, " + std::to_string(last) +
+                 ": a frame captured and played again");
+      return;
+    case security::Freshness::Repeat:
+      r.authenticated = true;
+      r.event = ReceptionEvent::Repeat;
+      r.detail = "repeat of counter " + std::to_string(counter) + ", not executed again";
+      return;
+    case security::Freshness::New:
+      break;
+  }
+  counters.accept(counter);  // kept before the frame acts or is answered
+  r.authenticated = true;
+  if (sync) {
+    r.event = ReceptionEvent::Synchronised;
+    r.detail = "counter synchronised at " + std::to_string(counter);
+    return;
+  }
+  const auto decoded = command::decode_payload(frame.payload);
+  if (!decoded.command) {
+    refuse(r, RefusalReason::Payload, decoded.error);
+    return;
+  }
+  take_payload(r, frame.payload);
+}
+
+void FrameAdmission::take_payload(Reception& r, std::uint32_t payload) {
+  r.command = command::decode_payload(payload).command;
+  r.event = ReceptionEvent::Command;
+  r.detail = command::describe(*r.command);
+}
+
+}  // namespace dtmf::link

@@ -1,0 +1,47 @@
+// The fast profile's robot, past the receive path: what a frame heard means — a command to
+// execute, the last frame again, a counter synchronisation, or a refusal, and why.
+//
+//   a 50-bit frame (unauthenticated): for this robot's address? with a key, refused unless
+//       unauthenticated frames are let in; the payload a command? the sequence filter:
+//       a retransmission after a lost ACK is answered, not executed again
+//   an 80-bit frame (authenticated): for this robot's address? without a key, refused;
+//       the counter completed from its low bits (a synchronisation carries all of it), the
+//       MAC checked over address, form, counter and payload; a counter not newer than the
+//       last accepted is the last frame again (answered, not executed) or refused; a new one
+//       is kept (security/counter_store.h) before the frame acts
+// A frame for another robot is nobody's business here: no reception at all. Pure logic, but
+// for the counter store it is given.
+#pragma once
+
+#include <optional>
+
+#include "link/hop_frame_path.h"
+#include "link/link.h"
+#include "reliability/sequence_filter.h"
+#include "security/frame_mac.h"
+
+namespace dtmf::link {
+
+class FrameAdmission {
+ public:
+  FrameAdmission(const LinkProfile& profile, const LinkOptions& options);
+  // The reception of `heard`, or nothing for a frame addressed to another robot.
+  std::optional<Reception> admit(const HeardHopFrame& heard);
+  // Whether the 80-bit frame `bits` (its CRC holds) is authentic: its MAC holds for the
+  // counter its low bits complete to. Changes nothing; false without a key.
+  bool authentic(const reliability::FrameBits& bits) const;
+
+ private:
+  void admit_plain(Reception& r);
+  void admit_sealed(Reception& r);
+  void take_payload(Reception& r, std::uint32_t payload);
+
+  const LinkProfile& profile_;
+  LinkOptions options_;
+  reliability::SequenceFilter sequence_;
+};
+
+// The MAC input of an 80-bit frame whose counter the robot completed as `counter`.
+security::FrameMacInput sealed_mac_input(const reliability::FrameBits& bits, std::uint64_t counter);
+
+}  // namespace dtmf::link

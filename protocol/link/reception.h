@@ -1,0 +1,72 @@
+// What the robot made of a frame it heard (Reception), and what the sender heard back
+// (Answer), whatever the profile's format. Links produce them (link.h); the agent answers,
+// logs and executes receptions, the transmitter matches answers to the frame on air.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "command/command.h"
+#include "reliability/frame_bits.h"
+#include "reliability/reply_code.h"
+
+namespace dtmf::link {
+
+// What a frame did at the robot.
+enum class ReceptionEvent {
+  Broken,        // failed the check (CRC): answered NACK
+  Reset,         // seed words: the RESET word
+  ModeSelected,  // seed words: a mode word
+  Command,       // a command to execute now (completed by this word, or carried by this frame)
+  Ignored,       // seed words: a word the state machine ignored
+  Repeat,        // the frame executed last, again (a retransmission after a lost ACK): answered, not executed
+  Synchronised,  // a counter synchronisation (authenticated frames): answered, no command
+  Refused,       // intact, but not executed: answered NACK (see RefusalReason)
+};
+enum class RefusalReason {
+  None,
+  Authentication,  // no MAC where the robot has a key, a MAC that fails, a counter not newer, no key to check
+  Payload,         // a payload no sender makes (a kind this robot does not know)
+};
+// "broken", "reset", "mode_selected", "command", "ignored", "repeat", "sync", "refused": the
+// receptions table's `event` ("" for broken, as the table has always held).
+std::string_view event_name(ReceptionEvent event);
+// "", "authentication", "payload": the receptions table's `reason`.
+std::string_view reason_name(RefusalReason reason);
+
+struct Reception {
+  double start_ms = 0;          // when the frame began sounding (within an analysis hop)
+  double heard_ms = 0;          // when the verdict was reached: the robot's decision time
+  reliability::FrameBits bits;  // the frame as accepted, or as first read when broken
+  int bit_count = 0;
+  int check_bit_count = 0;  // the low bits that are the check
+  bool intact = false;      // passed the check (CRC)
+  ReceptionEvent event = ReceptionEvent::Broken;
+  RefusalReason refusal = RefusalReason::None;
+  bool authenticated = false;               // its MAC held under this robot's key
+  std::optional<std::uint8_t> sequence;     // numbered unauthenticated frames
+  std::optional<std::uint64_t> counter;     // authenticated frames: the counter completed
+  std::optional<command::Word> word;        // seed words: the intact frame's word
+  std::optional<command::Command> command;  // the command to execute now
+  std::string state_after;                  // seed words: the command state machine afterwards
+  std::string detail;                       // for people: what it did, or why it was refused
+  std::vector<double> tones_hz;             // the tones that carry `bits`, in order
+
+  // Answered with ACK: intact and not refused.
+  bool acknowledged() const { return intact && event != ReceptionEvent::Refused; }
+};
+
+// An ACK or a NACK the sender heard.
+struct Answer {
+  bool ack = false;
+  std::optional<std::uint8_t> sequence;  // named by the ACK, in formats that name frames
+  // The ACK to an authenticated frame: its tones as heard (-1 where unheard), which the
+  // link checks against the tag the frame on air waits for (Link::answers).
+  std::optional<reliability::ReplyReading> tag_reading;
+  double heard_ms = 0;
+};
+
+}  // namespace dtmf::link
