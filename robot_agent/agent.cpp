@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "command/word_codec.h"
-#include "reliability/crc4.h"
 
 namespace dtmf::agent {
 
@@ -20,15 +19,15 @@ Agent::Agent(AgentOptions options, ReplyPlayer& replies, std::vector<CmdVelOutpu
       provider_(options_.model, options_.continuous_limit_s) {
   if (options_.profiles.empty()) throw std::invalid_argument("the agent needs a profile to listen with");
   sample_rate_hz_ = options_.profiles.front()->sample_rate_hz;
-  block_samples_ = link::link_for(*options_.profiles.front()).receiver_block_samples();
-  for (const LinkProfile* p : options_.profiles) {
-    if (p->sample_rate_hz != sample_rate_hz_) {
-      throw std::invalid_argument("profiles " + options_.profiles.front()->name + " and " + p->name +
+  links_ = link::make_links(options_.link, options_.profiles);
+  block_samples_ = links_.front()->receiver_block_samples();
+  for (const auto& l : links_) {
+    if (l->profile().sample_rate_hz != sample_rate_hz_) {
+      throw std::invalid_argument("profiles " + options_.profiles.front()->name + " and " + l->name() +
                                   " use different sample rates and cannot share a microphone");
     }
-    const link::Link& l = link::link_for(*p);
-    block_samples_ = std::min(block_samples_, l.receiver_block_samples());
-    receivers_.emplace_back(&l, l.receiver());
+    block_samples_ = std::min(block_samples_, l->receiver_block_samples());
+    receivers_.emplace_back(l.get(), l->receiver());
   }
 }
 
@@ -85,19 +84,31 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
   row.started_at = timeline_.wall(r.start_ms);
   row.heard_at = timeline_.wall(r.heard_ms);
   row.crc_ok = r.intact;
-  row.reply = r.intact ? "ack" : "nack";
-  row.frame = static_cast<std::int64_t>(r.bits);
+  row.reply = r.acknowledged() ? "ack" : "nack";
+  row.frame = r.bits.decimal();
   row.frame_width = r.bit_count;
-  row.event = r.event;
+  row.event = link::event_name(r.event);
+  row.reason = link::reason_name(r.refusal);
+  row.authenticated = r.authenticated;
   if (r.word) row.word = *r.word;
   if (!r.state_after.empty()) row.command_state = r.state_after;
-  HeardFrame heard{&profile, r.start_ms, r.heard_ms, r.bits, r.intact, r.word, std::nullopt};
+  HeardFrame heard{&profile,  r.start_ms,      r.heard_ms, r.bits, r.intact,    r.event,
+                   r.refusal, r.authenticated, r.counter,  r.word, std::nullopt};
 
-  const std::string bits = reliability::bit_string(r.bits, r.bit_count);
-  const std::string seq = r.sequence ? " seq " + std::to_string(*r.sequence) : "";
+  const std::string bits = r.bits.bit_string(r.bit_count);
+  const std::string number = r.counter    ? " counter " + std::to_string(*r.counter)
+                             : r.sequence ? " seq " + std::to_string(*r.sequence)
+                                          : "";
   if (!r.intact) {
     spdlog::warn("t={:.3f}s {} frame {} failed the check{}: NACK", r.heard_ms / 1000.0, profile.name, bits,
                  r.detail.empty() ? "" : " (" + r.detail + ")");
+    store_.write(row);
+    told(heard);
+    return;
+  }
+  if (r.event == link::ReceptionEvent::Refused) {
+    spdlog::warn("t={:.3f}s {} frame {}{} refused ({}): {}: NACK", r.heard_ms / 1000.0, profile.name, bits, number,
+                 link::reason_name(r.refusal), r.detail);
     store_.write(row);
     told(heard);
     return;
@@ -106,8 +117,9 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
     execute(*r.command, r.heard_ms, row);
     heard.command = r.command;
   }
-  spdlog::info("t={:.3f}s {} frame {}{}{}: ACK, {}", r.heard_ms / 1000.0, profile.name, bits, seq,
-               r.word ? " word " + std::to_string(*r.word) : "", r.detail);
+  spdlog::info("t={:.3f}s {} frame {}{}{}{}: ACK ({}), {}", r.heard_ms / 1000.0, profile.name, bits, number,
+               r.word ? " word " + std::to_string(*r.word) : "", r.authenticated ? " authenticated" : "",
+               link::event_name(r.event), r.detail);
   store_.write(row);
   told(heard);
 }

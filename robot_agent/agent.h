@@ -69,8 +69,12 @@ struct HeardFrame {
   const LinkProfile* profile = nullptr;
   double start_ms = 0;
   double heard_ms = 0;
-  std::uint64_t bits = 0;
+  reliability::FrameBits bits;
   bool intact = false;
+  link::ReceptionEvent event = link::ReceptionEvent::Broken;
+  link::RefusalReason refusal = link::RefusalReason::None;
+  bool authenticated = false;
+  std::optional<std::uint64_t> counter;     // authenticated frames
   std::optional<command::Word> word;        // seed frames
   std::optional<command::Command> command;  // the command it completed (seed) or carried (fast, new frames)
 };
@@ -78,6 +82,8 @@ struct HeardFrame {
 struct AgentOptions {
   // The profiles to listen with; all must share one sample rate.
   std::vector<const LinkProfile*> profiles{&seed_profile()};
+  // The key, the counters and this robot's address (dtmf-agent --key, --state-dir, --address).
+  link::LinkOptions link;
   RobotModel model = burger();
   double publish_rate_hz = 20;
   double continuous_limit_s = 30;
@@ -122,7 +128,8 @@ class Agent {
   Timeline& timeline_;
   int sample_rate_hz_;
   int block_samples_;
-  // One receive path per profile listened with.
+  // One link and its receive path per profile listened with.
+  std::vector<std::unique_ptr<link::Link>> links_;
   std::vector<std::pair<const link::Link*, std::unique_ptr<link::FrameReceiver>>> receivers_;
   VelocityProvider provider_;
   long long samples_ = 0;

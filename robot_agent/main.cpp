@@ -24,6 +24,7 @@
 #include "cmd_vel/dds_cmd_vel.h"
 #include "cmd_vel/log_cmd_vel.h"
 #include "cmd_vel/sim_turtlebot.h"
+#include "key_flags.h"
 #include "physical/audio_spec.h"
 #include "physical/portaudio_device.h"
 #include "physical/realtime_priority.h"
@@ -53,6 +54,9 @@ struct Flags {
   std::string spill_file;
   std::string host;
   dtmf::program::AudioProgramOptions program;
+  dtmf::program::KeyFlags keys;
+  int address = 0;
+  bool accept_unauthenticated = false;
   bool realtime = false;
   bool stop_robot = false;
   std::optional<int> stop_robot_when_closed;  // the stop guard's pipe (stop_guard.h)
@@ -90,7 +94,21 @@ int run(const Flags& f) {
   const agent::RobotModel& model = agent::robot_model_by_name(f.robot);
   const bool offline = physical::is_file_spec(f.audio);
 
-  // Everything that can be missing is checked before the robot could move.
+  // Everything that can be missing is checked before the robot could move: the key first.
+  link::LinkOptions link_options = program::link_options(f.keys, static_cast<std::uint8_t>(f.address));
+  link_options.accept_unauthenticated = f.accept_unauthenticated;
+  if (!link_options.key) {
+    spdlog::info(
+        "no key: frames are executed unauthenticated, and anyone within earshot can drive this robot "
+        "(dtmf-agent --key FILE)");
+  } else if (f.accept_unauthenticated) {
+    spdlog::warn(
+        "--accept-unauthenticated: frames without a MAC are executed too, so anyone within earshot can "
+        "drive this robot with the seed profile or an unkeyed fast frame");
+  } else {
+    spdlog::info("only frames authenticated with key {} are executed; others are refused and logged",
+                 link_options.key->id_hex());
+  }
   const store::DatabaseUrl db = store::parse_database_flag(f.db);
   if (!store::database_disabled(db)) {
     auto connection = store::connect(db);
@@ -147,6 +165,7 @@ int run(const Flags& f) {
   agent::Timeline timeline(!offline);
   agent::AgentOptions options;
   options.profiles = profiles;
+  options.link = link_options;
   options.model = model;
   options.publish_rate_hz = f.publish_rate_hz;
   options.continuous_limit_s = f.continuous_limit_s;
@@ -261,6 +280,14 @@ int main(int argc, char** argv) {
       ->envname("DTMF_DB_URL");
   app.add_option("--spill-file", f.spill_file, "where log rows wait while the database is away");
   app.add_option("--host", f.host, "name of this robot in the log (default: hostname)");
+  dtmf::program::add_key_flags(app, f.keys, "DTMF_AGENT", "/var/lib/dtmf-agent");
+  app.add_option("--address", f.address, "this robot's address (0..7): it takes the frames sent to it")
+      ->envname("DTMF_AGENT_ADDRESS")
+      ->check(CLI::Range(0, 7))
+      ->capture_default_str();
+  app.add_flag("--accept-unauthenticated", f.accept_unauthenticated,
+               "with --key: execute frames without a MAC too (the seed profile's; a warning at start)")
+      ->envname("DTMF_AGENT_ACCEPT_UNAUTHENTICATED");
   dtmf::program::add_audio_program_options(app, f.program);
   f.program.without_devices =
       "or run on recordings: --audio wav:FILE --ack-out wav:FILE (scripts/air start gives a "

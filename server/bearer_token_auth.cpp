@@ -59,12 +59,23 @@ bool is_loopback_address(const std::string& address) {
   return address == "localhost" || address == "::1" || address == "[::1]" || address.starts_with("127.");
 }
 
+bool open_to_anyone(const ServerSecurity& security, const std::string& address) {
+  return !is_loopback_address(address) && (security.tls_cert_pem.empty() || security.auth_token.empty());
+}
+
 std::shared_ptr<grpc::ServerCredentials> server_credentials(const ServerSecurity& security,
                                                             const std::string& address) {
   if (security.tls_cert_pem.empty() != security.tls_key_pem.empty()) {
     throw std::invalid_argument("TLS needs both --tls-cert and --tls-key");
   }
   const bool tls = !security.tls_cert_pem.empty();
+  if (open_to_anyone(security, address) && !security.allow_anyone_on_the_network && security.auth_token.empty()) {
+    throw std::invalid_argument(
+        "serving " + address + " without " + (tls ? "a bearer token" : "TLS and a bearer token") +
+        " would let anyone who reaches this port drive the robot: add --tls-cert, --tls-key and --auth-token-file, "
+        "serve this machine only (--address 127.0.0.1, the default), or accept the risk with "
+        "--allow-anyone-on-the-network");
+  }
   if (!tls && security.auth_token.empty()) return grpc::InsecureServerCredentials();
   std::shared_ptr<grpc::ServerCredentials> credentials;
   if (tls) {

@@ -20,14 +20,21 @@ std::string outcome_name(Outcome outcome) {
   return "failed";
 }
 
-Job::Job(const link::Link& link, command::Command command, std::vector<link::TransmitFrame> frames, Policy policy,
-         std::chrono::milliseconds decision_timeout, std::optional<std::string> run_id)
+Job::Job(link::Link& link, command::Command command, Policy policy, std::chrono::milliseconds decision_timeout,
+         std::optional<std::string> run_id)
     : link_(link),
       command_(std::move(command)),
-      frames_(std::move(frames)),
+      command_frames_(link.frame_count(command_)),
       policy_(policy),
       decision_timeout_(decision_timeout),
       run_id_(std::move(run_id)) {}
+
+void Job::plan() {
+  for (link::TransmitFrame& f : link_.plan(command_))
+    frames_.push_back(std::make_shared<const link::TransmitFrame>(std::move(f)));
+}
+
+int Job::frame_count() const { return static_cast<int>(frames_.empty() ? command_frames_ : frames_.size()); }
 
 // What the robot will execute: the command as its parameter fields carry it.
 std::string Job::description() const { return command::describe(link_.as_received(command_)); }

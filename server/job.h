@@ -6,6 +6,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -46,6 +47,10 @@ struct ProgressEvent {
   int queue_position = 0;
   store::WallTime time = store::WallClock::now();  // Transmitting, Retransmitting: when the chord started
   // For observers that keep a record (store_recorder.h):
+  // The frame the event is about (none before the command's frames are planned, when it goes
+  // on air), and how many frames the command has (its counter synchronisation included).
+  std::shared_ptr<const link::TransmitFrame> frame;
+  int frame_count = 0;
   Outcome outcome = Outcome::Pending;             // Confirmed, Continued, Failed: how the command ended
   std::optional<store::WallTime> chord_ended_at;  // Ack, Nack, NoAnswer: when this attempt's chord ended
   std::optional<store::WallTime> answered_at;     // Ack, Nack: when the answer was heard
@@ -53,14 +58,20 @@ struct ProgressEvent {
 
 class Job {
  public:
-  Job(const link::Link& link, command::Command command, std::vector<link::TransmitFrame> frames, Policy policy,
-      std::chrono::milliseconds decision_timeout, std::optional<std::string> run_id);
+  // Throws command::ParameterError for a command the link cannot carry.
+  Job(link::Link& link, command::Command command, Policy policy, std::chrono::milliseconds decision_timeout,
+      std::optional<std::string> run_id);
 
   const std::string& id() const { return id_; }
   const command::Command& command() const { return command_; }
-  const link::Link& link() const { return link_; }
+  link::Link& link() const { return link_; }
   const LinkProfile& profile() const { return link_.profile(); }
-  const std::vector<link::TransmitFrame>& frames() const { return frames_; }
+  // The frames, once planned (the transmitter's thread plans them as the command goes on air,
+  // so that numbers and counters follow the order of the air, Stop's overtaking included).
+  const std::vector<std::shared_ptr<const link::TransmitFrame>>& frames() const { return frames_; }
+  void plan();
+  // Frames planned, or before that the command's own (no synchronisation counted).
+  int frame_count() const;
   Policy policy() const { return policy_; }
   const std::optional<std::string>& run_id() const { return run_id_; }
   std::chrono::milliseconds decision_timeout() const { return decision_timeout_; }
@@ -83,9 +94,10 @@ class Job {
 
  private:
   std::string id_ = store::new_id();
-  const link::Link& link_;
+  link::Link& link_;
   command::Command command_;
-  std::vector<link::TransmitFrame> frames_;
+  std::size_t command_frames_;
+  std::vector<std::shared_ptr<const link::TransmitFrame>> frames_;
   Policy policy_;
   std::chrono::milliseconds decision_timeout_;
   std::optional<std::string> run_id_;

@@ -21,6 +21,7 @@
 #include "audio_program.h"
 #include "bearer_token_auth.h"
 #include "grpc/health/v1/health.pb.h"
+#include "key_flags.h"
 #include "physical/audio_spec.h"
 #include "physical/portaudio_device.h"
 #include "physical/realtime_priority.h"
@@ -61,7 +62,7 @@ std::string read_file(const std::string& path, const char* what) {
 }
 
 struct Flags {
-  std::string address = "0.0.0.0";
+  std::string address = "127.0.0.1";
   int port = 50051;
   std::string audio_out = "default";
   std::string audio_in = "default";
@@ -72,6 +73,9 @@ struct Flags {
   double decision_timeout_s = 60;
   std::size_t max_queue = 32;
   std::string tls_cert, tls_key, auth_token_file;
+  bool allow_anyone = false;
+  dtmf::program::KeyFlags keys;
+  int robot_address = 0;
   dtmf::program::AudioProgramOptions program;
 };
 
@@ -81,6 +85,7 @@ dtmf::server::ServerSecurity read_security(const Flags& f) {
   if (!f.tls_cert.empty()) security.tls_cert_pem = read_file(f.tls_cert, "TLS certificate");
   if (!f.tls_key.empty()) security.tls_key_pem = read_file(f.tls_key, "TLS key");
   if (!f.auth_token_file.empty()) security.auth_token = read_file(f.auth_token_file, "auth token");
+  security.allow_anyone_on_the_network = f.allow_anyone;
   return security;
 }
 
@@ -88,7 +93,16 @@ int run(const Flags& f) {
   using namespace dtmf;
   const server::ServerSecurity security = read_security(f);
   const std::shared_ptr<grpc::ServerCredentials> credentials = server::server_credentials(security, f.address);
+  if (server::open_to_anyone(security, f.address)) {
+    spdlog::warn(
+        "serving {} without TLS and a bearer token (--allow-anyone-on-the-network): anyone who can reach "
+        "port {} can drive the robot",
+        f.address, f.port);
+  }
   const LinkProfile& profile = profile_by_name(f.profile);
+  // The key before any device: a key file others may read stops the server here.
+  auto links = link::make_links(program::link_options(f.keys, static_cast<std::uint8_t>(f.robot_address)));
+  if (f.keys.key_file.empty()) spdlog::info("no key: frames go unauthenticated (dtmf-server --key FILE)");
   const store::DatabaseUrl db = store::parse_database_flag(f.db);
   if (!store::database_disabled(db)) {
     auto connection = store::connect(db);
@@ -117,7 +131,7 @@ int run(const Flags& f) {
   char hostname[256] = {};
   ::gethostname(hostname, sizeof hostname - 1);
   server::StoreRecorder recorder(store, hostname);
-  server::Transmitter transmitter(profile, std::move(speaker), std::move(microphone), recorder,
+  server::Transmitter transmitter(std::move(links), profile, std::move(speaker), std::move(microphone), recorder,
                                   {.max_queue = f.max_queue, .realtime_audio = true});
 
   server::ServiceOptions options;
@@ -168,7 +182,10 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(spdlog::stderr_color_mt("dtmf-server"));
   Flags f;
   CLI::App app{"dtmf-server: the gRPC control API that drives a TurtleBot3 by sound"};
-  app.add_option("--address", f.address, "address to listen on")->envname("DTMF_SERVER_ADDRESS")->capture_default_str();
+  app.add_option("--address", f.address,
+                 "address to listen on; off this machine only with TLS and a token, or --allow-anyone-on-the-network")
+      ->envname("DTMF_SERVER_ADDRESS")
+      ->capture_default_str();
   app.add_option("--port", f.port, "port to listen on (0: any free one)")
       ->check(CLI::Range(0, 65535))
       ->envname("DTMF_SERVER_PORT")
@@ -205,6 +222,15 @@ int main(int argc, char** argv) {
   app.add_option("--auth-token-file", f.auth_token_file,
                  "every call must carry 'authorization: Bearer <token in this file>'")
       ->envname("DTMF_SERVER_AUTH_TOKEN_FILE");
+  app.add_flag("--allow-anyone-on-the-network", f.allow_anyone,
+               "serve an address off this machine without TLS and a token: anyone who reaches the port can drive "
+               "the robot (a warning at start)")
+      ->envname("DTMF_SERVER_ALLOW_ANYONE_ON_THE_NETWORK");
+  dtmf::program::add_key_flags(app, f.keys, "DTMF_SERVER", "/var/lib/dtmf-server");
+  app.add_option("--robot-address", f.robot_address, "the robot's address (0..7, dtmf-agent --address)")
+      ->envname("DTMF_SERVER_ROBOT_ADDRESS")
+      ->check(CLI::Range(0, 7))
+      ->capture_default_str();
   dtmf::program::add_audio_program_options(app, f.program);
   f.program.without_devices =
       "or run without a sound card: --audio-out wav:FILE --audio-in none (scripts/air start "

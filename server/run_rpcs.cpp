@@ -49,6 +49,8 @@ void fill_report(v1::GetReportResponse& response, const store::RunReport& report
   response.set_crc_accepted(report.crc_accepted);
   response.set_crc_rejected(report.crc_rejected);
   response.set_negative_confirmations_sent(report.negative_confirmations_sent);
+  response.set_refused(report.refused);
+  response.set_refused_authentication(report.refused_authentication);
   using R = v1::GetReportResponse;
   const auto measure = [&](const std::optional<double>& value, void (R::*setter)(double)) {
     if (value) (response.*setter)(*value);

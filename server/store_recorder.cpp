@@ -20,21 +20,22 @@ store::CommandRow command_row(const Job& job, const std::string& host, store::Wa
       },
       job.command());
   row.profile = job.profile().name;
-  row.frame_count = static_cast<int>(job.frames().size());
+  row.frame_count = job.frame_count();
   row.requested_at = requested_at;
   row.host = host;
   return row;
 }
 
 store::FrameAttemptRow attempt_row(const Job& job, const ProgressEvent& event) {
-  const link::TransmitFrame& frame = job.frames()[static_cast<std::size_t>(event.frame_index)];
+  const link::TransmitFrame& frame = *event.frame;
   store::FrameAttemptRow row;
   row.run_id = job.run_id();
   row.command_id = job.id();
   row.position = event.frame_index;
   row.attempt = event.attempt;
   if (frame.word) row.word = *frame.word;
-  row.frame = frame.bits;
+  row.frame = frame.bits.decimal();
+  row.authenticated = frame.authenticated;
   row.frame_width = frame.bit_count;
   row.tones_hz = frame.tones_hz;
   row.chord_started_at = event.time;
@@ -56,8 +57,9 @@ std::vector<TransmissionRecord::Row> TransmissionRecord::on_event(const Job& job
     case Kind::Transmitting:
     case Kind::Retransmitting: {
       store::CommandRow& command = command_of(job, event.time);
-      if (command.outcome == "queued") {
+      if (command.outcome == "queued" || command.frame_count != event.frame_count) {
         command.outcome = "transmitting";
+        command.frame_count = event.frame_count;  // a counter synchronisation may have joined it
         rows.push_back(command);
       }
       rows.push_back(attempts_[job.id()] = attempt_row(job, event));

@@ -3,7 +3,6 @@
 #include <spdlog/spdlog.h>
 
 #include "command/test_sequence.h"
-#include "reliability/crc4.h"
 
 namespace dtmf::server {
 
@@ -41,14 +40,17 @@ void fill(v1::Progress& out, Job& job, const ProgressEvent& event) {
   out.set_event(frame_event(event.kind));
   out.set_command(job.description());
   out.set_frame_index(static_cast<std::uint32_t>(event.frame_index));
-  out.set_frame_count(static_cast<std::uint32_t>(job.frames().size()));
+  out.set_frame_count(static_cast<std::uint32_t>(event.frame_count > 0 ? event.frame_count : job.frame_count()));
   out.set_attempt(static_cast<std::uint32_t>(event.attempt));
   out.set_profile(job.profile().name);
-  const link::TransmitFrame& frame = job.frames()[static_cast<std::size_t>(event.frame_index)];
-  if (frame.word) out.set_word(*frame.word);
-  if (frame.sequence) out.set_sequence(*frame.sequence);
-  out.set_frame_bits(reliability::bit_string(frame.bits, frame.bit_count));
-  for (double hz : frame.tones_hz) out.add_tones_hz(hz);
+  if (const auto& frame = event.frame) {  // none while the command waits in the queue
+    if (frame->word) out.set_word(*frame->word);
+    if (frame->sequence) out.set_sequence(*frame->sequence);
+    out.set_frame_bits(frame->bits.bit_string(frame->bit_count));
+    for (double hz : frame->tones_hz) out.add_tones_hz(hz);
+    out.set_authenticated(frame->authenticated);
+    out.set_synchronisation(frame->synchronisation);
+  }
   if (event.response_time_ms) out.set_response_time_ms(*event.response_time_ms);
   out.set_detail(event.detail);
   out.set_queue_position(static_cast<std::uint32_t>(event.queue_position));
@@ -185,11 +187,13 @@ grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const 
   const auto commands = command::seed_test_sequence();
   // Frames per command are the link's business (a fast frame carries a whole command).
   std::uint32_t total = 0;
-  for (const auto& c : commands) total += static_cast<std::uint32_t>(link::link_for(*profile).frame_count(c));
+  for (const auto& c : commands) total += static_cast<std::uint32_t>(transmitter_.link_of(*profile).frame_count(c));
   std::uint32_t before = 0, done = 0;  // frames of the commands already through, and in all
   grpc::Status status = grpc::Status::OK;
   for (std::size_t k = 0; k < commands.size() && status.ok(); ++k) {
     status = run_command(context, commands[k], request->options(), false, [&](const v1::Progress& p) {
+      // A counter synchronisation the link put before a command is one frame more than planned.
+      if (p.synchronisation() && p.event() == v1::FRAME_EVENT_TRANSMITTING) ++total;
       if (p.event() == v1::FRAME_EVENT_ACK) done = before + p.frame_index() + 1;
       if (p.event() == v1::FRAME_EVENT_CONFIRMED || p.event() == v1::FRAME_EVENT_CONTINUED)
         done = before + p.frame_count();

@@ -3,8 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <random>
 
+#include "link/answer_wait.h"
 #include "physical/realtime_priority.h"
 
 namespace dtmf::server {
@@ -13,20 +13,20 @@ namespace {
 using Kind = ProgressEvent::Kind;
 }  // namespace
 
-Transmitter::Transmitter(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> speaker,
+Transmitter::Transmitter(std::vector<std::unique_ptr<link::Link>> links, const LinkProfile& profile,
+                         std::unique_ptr<physical::AudioSink> speaker,
                          std::unique_ptr<physical::AudioSource> microphone, ProgressObserver& observer,
                          TransmitterOptions options)
     : profile_(profile),
+      owned_links_(std::move(links)),
       speaker_(std::move(speaker)),
       microphone_(std::move(microphone)),
       observer_(observer),
       options_(std::move(options)) {
-  for (const link::Link* l : link::all_links()) {
-    if (l->profile().sample_rate_hz == profile_.sample_rate_hz) links_.push_back(l);
+  for (const auto& l : owned_links_) {
+    if (l->profile().sample_rate_hz == profile_.sample_rate_hz) links_.push_back(l.get());
   }
-  // A robot that heard frame n of a former run of this server must not take this run's
-  // first frame for a retransmission of it: start the numbering anywhere.
-  next_sequence_ = static_cast<std::uint8_t>(std::random_device{}());
+  link_for(profile_);  // the default profile must be among them
   worker_ = std::thread([this] { run(); });
   listener_ = std::thread([this] { listen(); });
 }
@@ -37,26 +37,31 @@ double Transmitter::now_ms() const {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - epoch_).count();
 }
 
+link::Link& Transmitter::link_for(const LinkProfile& profile) const {
+  for (const auto& l : owned_links_) {
+    if (&l->profile() == &profile && std::find(links_.begin(), links_.end(), l.get()) != links_.end()) return *l;
+  }
+  throw std::invalid_argument("profile " + profile.name + " needs " + std::to_string(profile.sample_rate_hz) +
+                              " Hz audio and this server's devices run at " + std::to_string(profile_.sample_rate_hz) +
+                              " Hz, or the server was not given it");
+}
+
+const link::Link& Transmitter::link_of(const LinkProfile& profile) const { return link_for(profile); }
+
 const LinkProfile& Transmitter::usable_profile(std::string_view name) const {
   const LinkProfile& p = profile_by_name(name);
-  if (std::find_if(links_.begin(), links_.end(), [&](const link::Link* l) { return &l->profile() == &p; }) ==
-      links_.end()) {
-    throw std::invalid_argument("profile " + p.name + " needs " + std::to_string(p.sample_rate_hz) +
-                                " Hz audio and this server's devices run at " +
-                                std::to_string(profile_.sample_rate_hz) + " Hz");
-  }
+  link_for(p);
   return p;
 }
 
 std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy policy,
                                          std::chrono::milliseconds decision_timeout, bool to_front,
                                          const LinkProfile* profile) {
-  const LinkProfile& chosen = profile ? usable_profile(profile->name) : profile_;
+  link::Link& link = link_for(profile ? usable_profile(profile->name) : profile_);
   std::shared_ptr<Job> job;
   {
     std::lock_guard lock(mutex_);
-    const link::Link& link = link::link_for(chosen);
-    job = std::make_shared<Job>(link, command, link.plan(command, next_sequence_), policy, decision_timeout, run_id_);
+    job = std::make_shared<Job>(link, command, policy, decision_timeout, run_id_);
     if (stopping_) throw TransmitterUnavailable("the server is shutting down");
     if (!unavailable_.empty()) throw TransmitterUnavailable(unavailable_);
     if (queue_.size() >= options_.max_queue) {
@@ -65,6 +70,7 @@ std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy
     }
     // Queued is emitted before the worker can see the job, so that it comes first.
     ProgressEvent queued{Kind::Queued};
+    queued.frame_count = job->frame_count();
     queued.queue_position = (to_front ? 0 : static_cast<int>(queue_.size())) + (on_air_ ? 1 : 0);
     emit(*job, queued);
     if (to_front)
@@ -141,12 +147,14 @@ void Transmitter::listen() {
 std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const link::Link& link, const link::TransmitFrame& frame,
                                                                double since_ms, double until_ms) {
   std::unique_lock lock(mutex_);
+  link::AnswerWait wait(link, frame);
   while (true) {
     while (!replies_.empty()) {
       const HeardReply reply = replies_.front();
       replies_.pop_front();
       if (reply.steady_ms < since_ms || reply.answer.link != &link) continue;  // not an answer to this frame
-      if (!link.answers(reply.answer.answer, frame)) {
+      if (!wait.answered_by(reply.answer.answer)) {
+        if (reply.answer.answer.tag_reading) continue;  // a guess at the tag (link/answer_wait.h)
         spdlog::debug("an ACK naming frame {} while frame {} waits: late, ignored",
                       reply.answer.answer.sequence.value_or(0), frame.sequence.value_or(0));
         continue;
@@ -180,6 +188,17 @@ void Transmitter::run() {
       job = queue_.front();
       queue_.pop_front();
       on_air_ = job;
+    }
+    try {
+      job->plan();  // numbered now, in the order of the air
+    } catch (const std::exception& e) {
+      // The parameters were checked when it was queued; what fails here is the counter's
+      // store (a disk that went away): the command cannot go out authenticated.
+      spdlog::error("{}: cannot plan its frames: {}", job->description(), e.what());
+      end(*job, Outcome::Unavailable, std::string("cannot number its frames: ") + e.what());
+      std::lock_guard lock(mutex_);
+      on_air_.reset();
+      continue;
     }
     send(*job);
     {

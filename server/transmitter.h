@@ -49,11 +49,12 @@ struct TransmitterOptions {
 
 class Transmitter {
  public:
-  // `profile`: the default for commands that name none. Every profile in all_profiles()
-  // with its sample rate can be chosen per command.
-  Transmitter(const LinkProfile& profile, std::unique_ptr<physical::AudioSink> speaker,
-              std::unique_ptr<physical::AudioSource> microphone, ProgressObserver& observer,
-              TransmitterOptions options);
+  // `links`: what it can send and hear (link::make_links, with the key if it has one);
+  // `profile`: the default for commands that name none. Every link with the default's sample
+  // rate can be chosen per command.
+  Transmitter(std::vector<std::unique_ptr<link::Link>> links, const LinkProfile& profile,
+              std::unique_ptr<physical::AudioSink> speaker, std::unique_ptr<physical::AudioSource> microphone,
+              ProgressObserver& observer, TransmitterOptions options);
   ~Transmitter();
 
   // Queues a command. Throws QueueFull, TransmitterUnavailable, command::ParameterError.
@@ -70,6 +71,8 @@ class Transmitter {
   const LinkProfile& profile() const { return profile_; }
   // The profile called `name` if this transmitter can send it; else std::invalid_argument.
   const LinkProfile& usable_profile(std::string_view name) const;
+  // The link this transmitter sends `profile` with.
+  const link::Link& link_of(const LinkProfile& profile) const;
 
  private:
   struct HeardReply {
@@ -90,8 +93,10 @@ class Transmitter {
   // The first answer to `frame` of `link` heard after `since_ms`, or nothing by `until_ms`.
   std::optional<HeardReply> wait_reply(const link::Link& link, const link::TransmitFrame& frame, double since_ms,
                                        double until_ms);
+  link::Link& link_for(const LinkProfile& profile) const;
 
   const LinkProfile& profile_;
+  std::vector<std::unique_ptr<link::Link>> owned_links_;
   std::vector<const link::Link*> links_;  // what this transmitter can send and hear
   std::unique_ptr<physical::AudioSink> speaker_;
   std::unique_ptr<physical::AudioSource> microphone_;
@@ -108,7 +113,6 @@ class Transmitter {
   std::string unavailable_;  // why the audio path failed, once it did
   bool stopping_ = false;
   double channel_free_ms_ = 0;
-  std::uint8_t next_sequence_ = 0;  // the number of the next new frame, where frames are numbered
 
   std::thread worker_;
   std::thread listener_;

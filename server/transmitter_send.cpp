@@ -28,6 +28,11 @@ void Transmitter::end(Job& job, Outcome outcome, const std::string& detail) {
                      : outcome == Outcome::Continued ? Kind::Continued
                                                      : Kind::Failed};
   last.outcome = outcome;
+  last.frame_count = job.frame_count();
+  if (!job.frames().empty()) {
+    last.frame_index = job.frame_count() - 1;
+    last.frame = job.frames().back();
+  }
   last.detail = detail;
   emit(job, last);
   job.finish(outcome, detail);
@@ -38,8 +43,9 @@ void Transmitter::send(Job& job) {
   const LinkProfile& profile = job.profile();
   const reliability::RetryPolicy policy{profile.timing.auto_retransmissions, profile.timing.ack_timeout_ms};
   bool continued = false;
-  for (int index = 0; index < static_cast<int>(job.frames().size()); ++index) {
-    const link::TransmitFrame& frame = job.frames()[static_cast<std::size_t>(index)];
+  for (int index = 0; index < job.frame_count(); ++index) {
+    const auto& frame_ptr = job.frames()[static_cast<std::size_t>(index)];
+    const link::TransmitFrame& frame = *frame_ptr;
     reliability::RetryController retry(policy);
     retry.start();
     double chord_start = 0;
@@ -64,10 +70,21 @@ void Transmitter::send(Job& job) {
           chord_start = now_ms();
           retry.on_transmit_started(chord_start);
           ProgressEvent sending{retry.attempt() == 1 ? Kind::Transmitting : Kind::Retransmitting};
+          sending.frame = frame_ptr;
+          sending.frame_count = job.frame_count();
           sending.frame_index = index;
           sending.attempt = retry.attempt();
           sending.time = wall(chord_start);
           emit(job, sending);
+          if (frame.counter) {
+            // The MAC's input but the key and payload, before the frame sounds (stderr is
+            // unbuffered): a record that shows no counter goes on air for two frames, even
+            // across a kill -9 (tests/e2e/authenticated_e2e_test.cpp).
+            const link::LinkOptions& o = job.link().options();
+            spdlog::info("{} (command {}, frame {}): on air: {} frame, key {}, robot {}, counter {}, attempt {}",
+                         job.description(), job.id(), index, frame.synchronisation ? "synchronisation" : "command",
+                         o.key ? o.key->id_hex() : "-", o.address, *frame.counter, retry.attempt());
+          }
           try {
             play(frame, chord_start);
           } catch (const std::exception& e) {
@@ -86,6 +103,8 @@ void Transmitter::send(Job& job) {
         case RetryState::AwaitingAnswer: {
           const auto reply = wait_reply(job.link(), frame, chord_start, *retry.deadline_ms());
           ProgressEvent answer{Kind::NoAnswer};
+          answer.frame = frame_ptr;
+          answer.frame_count = job.frame_count();
           answer.frame_index = index;
           answer.attempt = retry.attempt();
           answer.chord_ended_at = chord_end;
@@ -93,6 +112,7 @@ void Transmitter::send(Job& job) {
             const auto kind = reply->answer.answer.ack ? reliability::Answer::Ack : reliability::Answer::Nack;
             retry.on_answer(kind, reply->steady_ms);
             answer.kind = kind == reliability::Answer::Ack ? Kind::Ack : Kind::Nack;
+            if (kind == reliability::Answer::Ack) job.link().confirmed(frame);
             answer.response_time_ms = retry.response_time_ms();
             answer.answered_at = wall(reply->steady_ms);
           } else {
@@ -109,6 +129,8 @@ void Transmitter::send(Job& job) {
             decision = reliability::Decision::GiveUp;
           else {
             ProgressEvent ask{Kind::AwaitingDecision};
+            ask.frame = frame_ptr;
+            ask.frame_count = job.frame_count();
             ask.frame_index = index;
             ask.attempt = retry.attempt();
             ask.detail = "frame " + std::to_string(index + 1) + " unconfirmed after " +
@@ -131,7 +153,7 @@ void Transmitter::send(Job& job) {
     }
     if (retry.state() == RetryState::Failed) {
       end(job, Outcome::Failed,
-          "frame " + std::to_string(index + 1) + " of " + std::to_string(job.frames().size()) +
+          "frame " + std::to_string(index + 1) + " of " + std::to_string(job.frame_count()) +
               " was not confirmed by the robot");
       return;
     }

@@ -11,6 +11,8 @@
 #include "link/link.h"
 #include "offline_commands.h"
 #include "physical/wav_file.h"
+#include "reliability/reply_code.h"
+#include "security/link_key.h"
 
 namespace dtmf::cli {
 
@@ -21,21 +23,33 @@ struct DecodeOptions {
   bool replies = false;
   std::string profile = "seed";
   std::string file;
+  std::string key_file;
 };
+
+// A robot's view of the recording: with --key, checking MACs, the counters starting afresh
+// (in memory: decoding changes no robot's state).
+std::unique_ptr<link::Link> decode_link(const DecodeOptions& o) {
+  link::LinkOptions options;
+  if (!o.key_file.empty()) options.key = security::LinkKey::load(o.key_file);
+  return link::make_link(profile_by_name(o.profile), options);
+}
 
 // The recording through the profile's receive path; prints every verdict, then (unless
 // --json) the count.
 int run_decode(const DecodeOptions& o) {
-  const link::Link& link = link::link_by_name(o.profile);
+  const auto made = decode_link(o);
+  const link::Link& link = *made;
   const LinkProfile& profile = link.profile();
   physical::WavFileSource source(o.file, profile.sample_rate_hz, profile.min_recording_rate_hz());
   const auto receiver = link.receiver();
   std::vector<float> block(static_cast<std::size_t>(link.receiver_block_samples()) * 8);
-  int frames = 0, intact = 0;
+  int frames = 0, intact = 0, authenticated = 0, refused = 0;
   while (const std::size_t got = source.read(block)) {
     for (const link::Reception& r : receiver->feed(std::span<const float>(block.data(), got))) {
       ++frames;
       intact += r.intact ? 1 : 0;
+      authenticated += r.authenticated ? 1 : 0;
+      refused += r.refusal == link::RefusalReason::Authentication ? 1 : 0;
       if (o.json)
         std::cout << reception_json(r).dump() << '\n';
       else
@@ -45,13 +59,19 @@ int run_decode(const DecodeOptions& o) {
   if (!o.json) {
     std::printf("%s: %d frame%s heard, %d intact, %d failed the check (profile %s)\n", source.describe().c_str(),
                 frames, frames == 1 ? "" : "s", intact, frames - intact, profile.name.c_str());
+    if (link.keyed()) {
+      std::printf("key %s: %d MAC%s held, %d frame%s refused for authentication\n",
+                  made->options().key->id_hex().c_str(), authenticated, authenticated == 1 ? "" : "s", refused,
+                  refused == 1 ? "" : "s");
+    }
   }
   return 0;
 }
 
 // The recording through the profile's reply ear (what the sender hears after each frame).
 int run_decode_replies(const DecodeOptions& o) {
-  const link::Link& link = link::link_by_name(o.profile);
+  const auto made = decode_link(o);
+  const link::Link& link = *made;
   const LinkProfile& profile = link.profile();
   physical::WavFileSource source(o.file, profile.sample_rate_hz, profile.min_recording_rate_hz());
   const auto ear = link.answer_listener();
@@ -60,13 +80,19 @@ int run_decode_replies(const DecodeOptions& o) {
   while (const std::size_t got = source.read(block)) {
     for (const link::Answer& a : ear->feed(std::span<const float>(block.data(), got))) {
       (a.ack ? acks : nacks) += 1;
+      // A tagged ACK's tag, when all its tones were heard (the sender checks 11 of 12 against
+      // the tag it waits for; offline there is no frame to wait for).
+      long long tag = -1;
+      if (const auto full = a.tag_reading ? reliability::read_tag(*a.tag_reading) : std::nullopt) tag = *full;
       if (o.json) {
         nlohmann::json j{{"t_ms", a.heard_ms}, {"reply", a.ack ? "ack" : "nack"}};
         if (a.sequence) j["sequence"] = *a.sequence;
+        if (tag >= 0) j["tag"] = tag;
         std::cout << j.dump() << '\n';
       } else {
-        std::printf("t=%.3f s %s%s\n", a.heard_ms / 1000.0, a.ack ? "ACK" : "NACK",
-                    a.sequence ? (" seq " + std::to_string(*a.sequence)).c_str() : "");
+        std::printf("t=%.3f s %s%s%s\n", a.heard_ms / 1000.0, a.ack ? "ACK" : "NACK",
+                    a.sequence ? (" seq " + std::to_string(*a.sequence)).c_str() : "",
+                    tag >= 0 ? (" tag " + std::to_string(tag)).c_str() : "");
       }
     }
   }
@@ -87,6 +113,8 @@ void add_decode_command(CLI::App& app, Action& run, const GlobalOptions& global)
   decode->add_flag(
       "--replies", o->replies,
       "the recording holds the robot's answers: print each ACK / NACK heard (the sender's ear), not frames");
+  decode->add_option("--key", o->key_file, "check each frame's MAC with this key (dtmfctl keygen)")
+      ->envname("DTMFCTL_KEY_FILE");
   decode->add_option("file", o->file, "recording (WAV, FLAC, AIFF; any rate of at least twice the top tone)")
       ->required();
   decode->callback([o, &global, &run] {

@@ -8,6 +8,7 @@
 
 #include "command/test_sequence.h"
 #include "frame_output.h"
+#include "key_flags.h"
 #include "link/link.h"
 #include "offline_commands.h"
 #include "physical/wav_file.h"
@@ -25,6 +26,7 @@ struct EncodeOptions {
   std::optional<double> rotation;
   std::optional<double> duration;
   std::string kind;  // drive, turn, stop, reset, sequence
+  program::KeyFlags keys;
 };
 
 command::Command build_command(const EncodeOptions& o) {
@@ -41,7 +43,14 @@ command::Command build_command(const EncodeOptions& o) {
 }
 
 int run_encode(const EncodeOptions& o) {
-  const link::Link& link = link::link_by_name(o.profile);
+  link::LinkOptions options = program::link_options(o.keys);
+  options.first_sequence = 0;  // unauthenticated frames are numbered from 0, where the format numbers them
+  const auto made = link::make_link(profile_by_name(o.profile), options);
+  link::Link& link = *made;
+  if (link.keyed() && !link.can_authenticate()) {
+    throw std::invalid_argument("--key: the " + link.name() +
+                                " profile's frames cannot carry a MAC; use --profile fast");
+  }
   std::vector<link::TransmitFrame> frames;
   std::vector<std::string> commands_of;  // what each frame's command does, as the robot will execute it
   std::string what;
@@ -58,15 +67,17 @@ int run_encode(const EncodeOptions& o) {
   } else {
     const std::vector<command::Command> commands =
         o.kind == "sequence" ? command::seed_test_sequence() : std::vector<command::Command>{build_command(o)};
-    std::uint8_t sequence = 0;  // frames are numbered from 0, where the format numbers them
     for (const command::Command& c : commands) {
-      for (link::TransmitFrame& f : link.plan(c, sequence)) {
+      for (link::TransmitFrame& f : link.plan(c)) {
+        // A recording is heard in order: each frame counts as confirmed, as the robot that
+        // hears the file would confirm it, so only the first is preceded by a synchronisation.
+        link.confirmed(f);
+        commands_of.push_back(f.synchronisation ? "" : command::describe(link.as_received(c)));
         frames.push_back(std::move(f));
-        commands_of.push_back(command::describe(link.as_received(c)));
       }
     }
     what = o.kind == "sequence" ? "the seed's test sequence, " + std::to_string(commands.size()) + " commands"
-                                : commands_of.front();
+                                : commands_of.back();
   }
   for (std::size_t i = 0; i < frames.size(); ++i) {
     if (o.json) {
@@ -104,6 +115,7 @@ void add_encode_command(CLI::App& app, Action& run, const GlobalOptions& global)
       "also write the chords to this WAV file (profile timing; fast: each frame then 100 ms for its answer)");
   encode->add_option("--profile", o->profile, "link profile: " + profile_names())->capture_default_str();
   encode->add_option("--word", o->word, "encode one raw 12-bit word instead of a command")->check(CLI::Range(0, 4095));
+  program::add_key_flags(*encode, o->keys, "DTMFCTL", program::default_user_state_dir());
 
   CLI::App* drive =
       encode->add_subcommand("drive", "drive forward: DRIVE_FOR_DURATION, or DRIVE_FORWARD without --duration");

@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
       "  dtmfctl encode --wav drive.wav drive --speed 50 --duration 3\n"
       "  dtmfctl simulate drive.wav heard.wav --distance 4 --noise white --noise-dbfs -40\n"
       "  dtmfctl decode --json heard.wav\n"
+      "  dtmfctl keygen link.key                         (then dtmf-server --key link.key, dtmf-agent --key link.key)\n"
+      "  dtmfctl encode --key link.key --profile fast --wav f.wav drive --speed 40   (authenticated frames)\n"
       "  dtmfctl decode --replies --profile fast answers.wav   (the ACKs and NACKs a sender would hear)\n"
       "  dtmfctl drive --speed 50 --duration 2          (through dtmf-server: --server, DTMF_SERVER)\n"
       "  dtmfctl sequence --label general\n"
@@ -43,6 +45,7 @@ int main(int argc, char** argv) {
   dtmf::cli::add_encode_command(app, run, global);
   dtmf::cli::add_decode_command(app, run, global);
   dtmf::cli::add_simulate_command(app, run);
+  dtmf::cli::add_keygen_command(app, run);
 #if DTMF_CLI_LIVE
   dtmf::cli::add_live_commands(app, run, global);
   dtmf::cli::add_run_commands(app, run, global);

@@ -3,6 +3,7 @@
 //   encode    command or word -> frames (word, frame bits, CRC, tones), optionally a WAV
 //   decode    WAV -> the robot's receive path -> frames found, CRC verdicts, commands
 //   simulate  WAV -> the simulated acoustic channel (distance, noise, room, clock) -> WAV
+//   keygen    a new link key file (mode 0600)
 //
 // Each add_* function registers its subcommand on `app` and sets `run` to the action that
 // executes it after parsing; the action reads `global` (--json, the server) when it runs.
@@ -20,6 +21,7 @@ using Action = std::function<int()>;
 void add_encode_command(CLI::App& app, Action& run, const GlobalOptions& global);
 void add_decode_command(CLI::App& app, Action& run, const GlobalOptions& global);
 void add_simulate_command(CLI::App& app, Action& run);
+void add_keygen_command(CLI::App& app, Action& run);
 
 // Live subcommands (through dtmf-server): drive, turn, stop, reset, sequence (live_commands.cpp);
 // runs, report, health (report_view.cpp).

@@ -51,10 +51,15 @@ std::string describe(const v1::Progress& p) {
     std::snprintf(t, sizeof t, " %.0f", hz);
     tones += t;
   }
-  // A seed frame carries a word; a fast frame a whole command, named by its sequence number.
+  // A seed frame carries a word; a fast frame a whole command, named by its sequence number,
+  // or with a key authenticated by a MAC (a synchronisation of the counter goes first now and then).
   char label[24];
   if (p.has_word())
     std::snprintf(label, sizeof label, "word %4u", p.word());
+  else if (p.synchronisation())
+    std::snprintf(label, sizeof label, "sync");
+  else if (p.authenticated())
+    std::snprintf(label, sizeof label, "MAC");
   else
     std::snprintf(label, sizeof label, "seq %2u", p.sequence());
   std::snprintf(text, sizeof text, "frame %u/%u %s %s tones%s Hz  %s", p.frame_index() + 1, p.frame_count(), label,
@@ -91,6 +96,8 @@ void ProgressView::show(const v1::Progress& p, const std::optional<SequencePosit
                          {"time_unix_ms", p.time_unix_ms()}};
     if (p.has_word()) event["word"] = p.word();
     if (p.has_sequence()) event["sequence"] = p.sequence();
+    if (p.event() != v1::FRAME_EVENT_QUEUED) event["authenticated"] = p.authenticated();
+    if (p.synchronisation()) event["synchronisation"] = true;
     if (p.event() == v1::FRAME_EVENT_ACK || p.event() == v1::FRAME_EVENT_NACK)
       event["response_time_ms"] = p.response_time_ms();
     if (!p.detail().empty()) event["detail"] = p.detail();

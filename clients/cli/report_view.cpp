@@ -68,7 +68,9 @@ nlohmann::ordered_json report_json(const v1::GetReportResponse& r) {
           {"response_time_max_ms", optional(r.has_response_time_max_ms(), r.response_time_max_ms())},
           {"latency_avg_ms", optional(r.has_latency_avg_ms(), r.latency_avg_ms())},
           {"latency_min_ms", optional(r.has_latency_min_ms(), r.latency_min_ms())},
-          {"latency_max_ms", optional(r.has_latency_max_ms(), r.latency_max_ms())}};
+          {"latency_max_ms", optional(r.has_latency_max_ms(), r.latency_max_ms())},
+          {"refused", r.refused()},
+          {"refused_authentication", r.refused_authentication()}};
 }
 
 // The layout of the seed's Appendix A: counts and rates side by side, then the times.
@@ -92,6 +94,7 @@ void print_table(const v1::GetReportResponse& r) {
       "Negative confirmation sent", n(r.negative_confirmations_sent()));
   row("Duplicates", n(r.duplicates()), "Error catch rate",
       percent(r.has_error_catch_rate_pct(), r.error_catch_rate_pct()));
+  row("Refused", n(r.refused()), "Refused for authentication", n(r.refused_authentication()));
   std::printf("\n");
   row("Average response time", ms(r.has_response_time_avg_ms(), r.response_time_avg_ms()), "Average latency",
       ms(r.has_latency_avg_ms(), r.latency_avg_ms()));

@@ -1,0 +1,56 @@
+// What dtmf-server, dtmf-agent and dtmfctl share about keys: the flags (--key, --state-dir)
+// and the link options they make — the key read from its file (security/link_key.h), the
+// freshness counters kept in the state directory (security/counter_file.h). The key's bytes
+// never leave the LinkKey: flags name files, logs name the key id.
+// Header-only: each program includes it once.
+#pragma once
+
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdlib>
+#include <string>
+
+#include "link/link.h"
+#include "security/counter_file.h"
+#include "security/link_key.h"
+
+namespace dtmf::program {
+
+struct KeyFlags {
+  std::string key_file;   // empty: no key
+  std::string state_dir;  // where the counters live
+};
+
+// A user's own state directory: $XDG_STATE_HOME/dtmf-teleop, else ~/.local/state/dtmf-teleop.
+inline std::string default_user_state_dir() {
+  if (const char* state = std::getenv("XDG_STATE_HOME"); state && *state) return std::string(state) + "/dtmf-teleop";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.local/state/dtmf-teleop";
+  return ".dtmf-teleop-state";
+}
+
+// --key FILE and --state-dir DIR, with their environment variables (PREFIX_KEY_FILE,
+// PREFIX_STATE_DIR) and the state directory's default.
+inline void add_key_flags(CLI::App& app, KeyFlags& flags, const std::string& env_prefix,
+                          const std::string& default_state_dir) {
+  flags.state_dir = default_state_dir;
+  app.add_option("--key", flags.key_file,
+                 "the link key this side shares with the other (dtmfctl keygen FILE): authenticated frames and answers")
+      ->envname(env_prefix + "_KEY_FILE");
+  app.add_option("--state-dir", flags.state_dir, "where the freshness counters of the key are kept (with --key)")
+      ->envname(env_prefix + "_STATE_DIR")
+      ->capture_default_str();
+}
+
+// The link options the flags give: nothing but the address without a key.
+inline link::LinkOptions link_options(const KeyFlags& flags, std::uint8_t address = 0) {
+  link::LinkOptions options;
+  options.address = address;
+  if (flags.key_file.empty()) return options;
+  options.key = security::LinkKey::load(flags.key_file);
+  options.counters = std::make_shared<security::FileCounterStore>(flags.state_dir, *options.key);
+  spdlog::info("key {} from {}; counters in {}", options.key->id_hex(), flags.key_file, flags.state_dir);
+  return options;
+}
+
+}  // namespace dtmf::program
