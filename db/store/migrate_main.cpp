@@ -1,6 +1,6 @@
 // dtmf-migrate: brings a database's schema up to date (the programs also do it at start-up).
 //
-//   dtmf-migrate --db postgresql://postgres@127.0.0.1:55432/postgres
+//   dtmf-migrate --db postgresql://postgres@127.0.0.1:25432/postgres
 //   dtmf-migrate --status            (libpq environment: PGHOST, PGDATABASE, ...)
 // Exit codes: 0 done, 1 the database refused or could not be reached, 2 bad usage.
 #include <CLI/CLI.hpp>

@@ -56,11 +56,12 @@ struct FrameAttemptRow {
   std::string id = new_id();
   std::optional<std::string> run_id;
   std::string command_id;
-  int position = 0;         // frame within its command, from 0
-  int attempt = 1;          // 1 = first transmission
-  std::optional<int> word;  // Word16 frames
-  std::int64_t frame = 0;   // the frame's bits, CRC included
-  int frame_width = 16;     // bits: 16 (seed) or 48 (fast)
+  int position = 0;            // frame within its command, from 0
+  int attempt = 1;             // 1 = first transmission
+  std::optional<int> word;     // Word16 frames
+  std::string frame = "0";     // the frame's bits, CRC included, as a decimal number (up to 128 bits)
+  int frame_width = 16;        // bits: 16 (seed), 50 (fast) or 80 (fast, authenticated)
+  bool authenticated = false;  // it carried a MAC
   std::vector<double> tones_hz;
   WallTime chord_started_at{};
   std::optional<WallTime> chord_ended_at;
@@ -74,12 +75,14 @@ struct ReceptionRow {
   std::string profile;
   std::optional<WallTime> started_at;
   WallTime heard_at{};
-  std::int64_t frame = 0;
+  std::string frame = "0";  // as in FrameAttemptRow
   int frame_width = 16;
   bool crc_ok = false;
   std::optional<std::string> reply;  // ack, nack
   std::optional<int> word;
   std::string event;
+  std::string reason;          // why a refused frame was refused: authentication, payload
+  bool authenticated = false;  // its MAC held
   std::string command_state;
   std::string command;
   std::optional<double> linear_mps;

@@ -69,6 +69,8 @@ void fill_figures(RunReport& report, const pqxx::row& r) {
   report.crc_rejected = count("crc_rejected");
   report.negative_confirmations_sent = count("negative_confirmations_sent");
   report.error_catch_rate_pct = measure("error_catch_rate_pct");
+  report.refused = count("refused");
+  report.refused_authentication = count("refused_authentication");
   report.response_time_avg_ms = measure("response_time_avg_ms");
   report.response_time_min_ms = measure("response_time_min_ms");
   report.response_time_max_ms = measure("response_time_max_ms");

@@ -48,6 +48,8 @@ struct RunReport {
   std::int64_t transmissions_sent = 0, frame_attempts = 0, transmissions_received = 0, successfully_matched = 0,
                dropped = 0, false_positives = 0, duplicates = 0, successful_transmissions = 0, sender_confirmed = 0,
                crc_accepted = 0, crc_rejected = 0, negative_confirmations_sent = 0;
+  // Intact frames the robot refused (migration 007), and those for authentication.
+  std::int64_t refused = 0, refused_authentication = 0;
   std::optional<double> false_positive_rate_pct, success_rate_pct, sender_confirmed_rate_pct, error_catch_rate_pct,
       response_time_avg_ms, response_time_min_ms, response_time_max_ms, latency_avg_ms, latency_min_ms, latency_max_ms;
   std::vector<FrameRecord> frames;  // with include_frames only

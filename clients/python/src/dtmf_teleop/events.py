@@ -60,6 +60,8 @@ class Progress:
     time_unix_ms: int = 0
     profile: str = ""              # "seed" or "fast"
     sequence: Optional[int] = None  # fast: the number the frame's ACK names
+    authenticated: bool = False     # the frame carries a MAC (fast, with a key on the server)
+    synchronisation: bool = False   # a counter synchronisation ahead of the command (authenticated)
 
     @classmethod
     def from_proto(cls, p: pb.Progress) -> "Progress":
@@ -68,7 +70,8 @@ class Progress:
                    word=p.word if p.HasField("word") else None,
                    frame_bits=p.frame_bits, tones_hz=tuple(p.tones_hz), response_time_ms=p.response_time_ms,
                    detail=p.detail, queue_position=p.queue_position, time_unix_ms=p.time_unix_ms,
-                   profile=p.profile, sequence=p.sequence if p.HasField("sequence") else None)
+                   profile=p.profile, sequence=p.sequence if p.HasField("sequence") else None,
+                   authenticated=p.authenticated, synchronisation=p.synchronisation)
 
 
 @dataclass(frozen=True)
