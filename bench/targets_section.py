@@ -1,4 +1,5 @@
-"""The targets section of docs/benchmarks.md: every target of issue 15, judged for each profile.
+"""The targets section of docs/benchmarks.md: every target of issues 15 and 22, judged for each
+profile (and for `fast+key`, the fast profile's authenticated frames, issue 22).
 
 Each row names a target, and each cell says whether the profile met it, with the figure it
 was judged on. Where a target is missed, the cell adds the reason, typed below (REASONS) from
@@ -9,8 +10,10 @@ all come from the benchmarks' JSON files (BUILD/bench/PROFILE/).
 
 from rooms_section import TARGETS as ROOM_TARGETS
 
-BOTH = ("seed", "fast")
+BOTH = ("seed", "fast", "fast+key")  # issue 22: authenticated frames meet the plain ones' targets
 FAST = ("fast",)
+KEYED = ("fast+key",)
+FAST_BOTH = ("fast", "fast+key")
 
 # Why a target is missed: (target key, profile) -> reason. Checked against the figures of
 # scripts/bench on 2026-11-24.
@@ -100,6 +103,39 @@ def _talkoff(p, ok):
     return accepted == 0, f"{accepted} in {hours:g} h of speech, music and noise"
 
 
+def _false_confirmations(p, ok):
+    docs = [p["talkoff_" + k] for k in ("speech", "music", "noise")]
+    if not all(ok(d) for d in docs):
+        return None, "not run"
+    confirmed = sum(d.get("false_confirmations", 0) for d in docs)
+    hours = sum(d["hours"] for d in docs)
+    return confirmed == 0, f"{confirmed} in {hours:g} h of speech, music and noise"
+
+
+def _answers_heard(p, ok):
+    d = p.get("answers", {"error": "not run"})
+    if not ok(d):
+        return None, "not run"
+    worst = min(d["cases"], key=lambda c: c["heard_rate"])
+    return worst["heard_rate"] >= 0.999, f"worst {100 * worst['heard_rate']:.2f} % of {worst['answers']} " \
+                                         f"({worst['case']})"
+
+
+def _answers_wrong(p, ok):
+    d = p.get("answers", {"error": "not run"})
+    if not ok(d):
+        return None, "not run"
+    wrong = sum(c["wrong"] for c in d["cases"])
+    return wrong == 0, f"{wrong} in {sum(c['answers'] for c in d['cases']):,} answers".replace(",", " ")
+
+
+def _frame_ms(p, ok):
+    d = p.get("answers", {"error": "not run"})
+    if not ok(d) or "frame_ms" not in d:
+        return None, "not run"
+    return d["frame_ms"] <= 160, f"{d['frame_ms']:.2f} ms"
+
+
 def _decoder(factor):
     def judge(p, ok):
         d = p["decoder"]
@@ -125,14 +161,20 @@ def targets(decoder_factor):
                              f"in {d['commands']} commands")),
         ("frame success at −10 dB SNR", "≥ 99.9 %", FAST, _snr(-10, 0.999)),
         ("frame success at −12 dB SNR (an aim)", "≥ 99.9 %", FAST, _snr(-12, 0.999)),
-        ("talk-off: frames accepted per hour", "0", FAST, _talkoff),
+        ("talk-off: frames accepted per hour", "0", FAST_BOTH, _talkoff),
         ("decoder speed, one core (noise / frames)", "≥ 5000 ×", FAST, _decoder(decoder_factor)),
+        ("one authenticated frame on air", "≤ 160 ms", KEYED, _frame_ms),
+        ("authenticated Drive through the seminar room both ways: RPC → confirmed, median", "≤ 200 ms", KEYED,
+         _e2e_room("latency_ms_median", lambda v: v <= 200, lambda d: f"{d['latency_ms_median']:.0f} ms")),
+        ("answer path: answers heard, every room, own frames +20 dB or not", "≥ 99.9 %", FAST_BOTH, _answers_heard),
+        ("answer path: an answer taken before the robot answered (an echo, noise)", "0", FAST_BOTH, _answers_wrong),
+        ("talk-off: false confirmations per hour", "0", FAST_BOTH, _false_confirmations),
     ]
     return rows
 
 
 def targets_section(w, data, profiles, ok, decoder_factor):
-    w("## Targets (issue 15)")
+    w("## Targets (issues 15 and 22)")
     w("")
     w("Every target, judged on the figures above; a profile the target does not bind shows its figure only. "
       "A miss gives its reason (typed into `bench/targets_section.py` from the analysis; docs/protocol.md §10).")

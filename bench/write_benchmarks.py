@@ -23,10 +23,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rooms_section import rooms_section  # noqa: E402
+from answers_section import answers_section  # noqa: E402
 from targets_section import targets_section  # noqa: E402
 
-BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "talkoff_speech", "talkoff_music", "talkoff_noise",
-           "roundtrip", "e2e", "e2e_room"]
+BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "answers", "talkoff_speech", "talkoff_music",
+           "talkoff_noise", "roundtrip", "roundtrip_room", "e2e", "e2e_room"]
 TALKOFF = [("speech", "speech (espeak-ng)"), ("music", "music-like (sox synth)"), ("noise", "noise (white, pink, brown)")]
 
 
@@ -389,20 +390,26 @@ def main() -> int:
     sweep_table(w, data, profiles, "distance_loud", "distance_m", "distance", " m")
 
     rooms_section(w, data, profiles, stem, png_dir, ok)
+    answers_section(w, data, profiles, ok)
 
     w("## Talk-off")
     w("")
-    w("| signal | profile | hours | RMS | accepted frames (/h) | check-failing frames (/h) | false ACK (/h) | false NACK (/h) |")
-    w("|---|---|---|---|---|---|---|---|")
+    w("A false confirmation is an ACK the sender would take for the frame it waits for (a new random frame every "
+      "ACK timeout; with a key, a tag the guess budget lets through, `protocol/link/answer_wait.h`).")
+    w("")
+    w("| signal | profile | hours | RMS | accepted frames (/h) | check-failing frames (/h) | false ACK (/h) | false NACK (/h) "
+      "| false confirmations (/h) |")
+    w("|---|---|---|---|---|---|---|---|---|")
     for kind, label in TALKOFF:
         for p in profiles:
             d = data[p]["talkoff_" + kind]
             if not ok(d):
-                w(f"| {label} | `{p}` | not run: {d['error']} | | | | | |")
+                w(f"| {label} | `{p}` | not run: {d['error']} | | | | | | |")
                 continue
             w(f"| {label} | `{p}` | {d['hours']:.2f} | {num(d['rms_dbfs'], 1)} dBFS | {d['accepted']} ({d['accepted_per_hour']:.2f}) "
               f"| {d['check_failed']} ({d['check_failed_per_hour']:.2f}) | {d['acks']} ({d['acks_per_hour']:.2f}) "
-              f"| {d['nacks']} ({d['nacks_per_hour']:.2f}) |")
+              f"| {d['nacks']} ({d['nacks_per_hour']:.2f}) "
+              f"| {d.get('false_confirmations', 0)} ({d.get('false_confirmations_per_hour', 0):.2f}) |")
     w("")
 
     w("## Decoder speed")
@@ -429,14 +436,16 @@ def main() -> int:
     w("")
     w("![link round trip](" + stem + "/roundtrip_latency.png)")
     w("")
-    w("| profile | commands confirmed | median | p95 | max | payload | audio time | throughput | frames answered first time | retransmissions |")
-    w("|---|---|---|---|---|---|---|---|---|---|")
-    for p in profiles:
-        d = data[p]["roundtrip"]
+    w("| profile | room | commands confirmed | median | p95 | max | payload | audio time | throughput "
+      "| frames answered first time | retransmissions |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|")
+    for p, bench in [(p, b) for p in profiles for b in ("roundtrip", "roundtrip_room")]:
+        d = data[p][bench]
+        room = "simulated, RT60 0.3 s" if bench == "roundtrip" else "seminar room (measured) both ways"
         if not ok(d):
-            w(f"| `{p}` | not run: {d['error']} | | | | | | | | |")
+            w(f"| `{p}` | {room} | not run: {d['error']} | | | | | | | | |")
             continue
-        w(f"| `{p}` | {d['confirmed']} of {d['commands']} | {d['latency_ms']['median']:.0f} ms | {d['latency_ms']['p95']:.0f} ms "
+        w(f"| `{p}` | {room} | {d['confirmed']} of {d['commands']} | {d['latency_ms']['median']:.0f} ms | {d['latency_ms']['p95']:.0f} ms "
           f"| {d['latency_ms']['max']:.0f} ms | {d['payload_bits']} bits | {d['run_s']:.1f} s | {d['throughput_bps']:.1f} bit/s "
           f"| {d['frames_first_time']} of {d['frames_sent']} | {d['retransmissions']} |")
     w("")

@@ -16,6 +16,7 @@
 #include <ctime>
 #include <random>
 
+#include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "link/frame_trials.h"
 #include "physical/noise.h"
@@ -44,8 +45,8 @@ std::vector<float> noise_only(const LinkProfile& profile, double audio_s) {
 }
 
 // Random frames back to back, as many as fit in `audio_s` (at least one), in quiet noise.
-std::pair<std::vector<float>, std::size_t> back_to_back_frames(const LinkProfile& profile, double audio_s) {
-  FrameTrials trials(link::link_for(profile));
+std::pair<std::vector<float>, std::size_t> back_to_back_frames(FrameTrials& trials, double audio_s) {
+  const LinkProfile& profile = trials.profile();
   const std::size_t count =
       std::max<std::size_t>(1, static_cast<std::size_t>(audio_s * profile.sample_rate_hz) / trials.slot_samples());
   std::vector<float> audio(count * trials.slot_samples(), 0.0f);
@@ -63,8 +64,9 @@ struct Measurement {
   std::size_t accepted;
 };
 
-Measurement decode(const LinkProfile& profile, const std::vector<float>& audio) {
-  FrameReceiver receiver(link::link_for(profile));
+Measurement decode(const link::Link& robot, const std::vector<float>& audio) {
+  const LinkProfile& profile = robot.profile();
+  FrameReceiver receiver(robot);
   std::vector<Accepted> accepted;
   accepted.reserve(audio.size() / 1000);
   const double start = thread_cpu_s();
@@ -82,30 +84,38 @@ int main(int argc, char** argv) {
   double audio_s = 60;
   bool list_profiles = false;
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
+  bool authenticated = false;
+  add_authenticated_flag(app, authenticated);
   app.add_option("--json", json_path, "write the results to this JSON file");
   app.add_option("--audio-s", audio_s, "seconds of audio per signal")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_flag("--list-profiles", list_profiles,
-               "print every profile's name, one a line (for scripts/bench), and exit");
+               "print every profile's name, one a line, and after each whose frames can carry a MAC the same "
+               "name with \"+key\" (its authenticated frames: scripts/bench runs both), and exit");
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
   return program::run(
       [&] {
         if (list_profiles) {
-          for (const LinkProfile* p : all_profiles()) std::printf("%s\n", p->name.c_str());
+          for (const LinkProfile* p : all_profiles()) {
+            std::printf("%s\n", p->name.c_str());
+            if (link::make_link(*p)->can_authenticate()) std::printf("%s+key\n", p->name.c_str());
+          }
           return 0;
         }
         const LinkProfile& profile = profile_by_name(profile_name);
-        const auto [frames_audio, frames] = back_to_back_frames(profile, audio_s);
+        FrameTrials trials(profile, bench_key(authenticated));
+        const auto [frames_audio, frames] = back_to_back_frames(trials, audio_s);
         nlohmann::json doc{{"benchmark", "decoder"},
                            {"profile", profile.name},
+                           {"authenticated", authenticated},
                            {"block_samples", kBlockSamples},
                            {"signals", nlohmann::json::array()}};
         int status = 0;
         for (const auto& [signal_name, audio, expected] :
              {std::tuple{"noise", noise_only(profile, audio_s), std::size_t{0}},
               std::tuple{"frames", frames_audio, frames}}) {
-          const Measurement m = decode(profile, audio);
+          const Measurement m = decode(trials.robot(), audio);
           const double speed = m.audio_s / m.cpu_s;
           std::printf(
               "decoder speed  %-6s %-7s %6.1f s of audio in %6.3f s CPU: %8.0f x real time, %zu of %zu frames "

@@ -25,6 +25,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "link/link.h"
 #include "live_system.h"
@@ -61,6 +62,8 @@ int main(int argc, char** argv) {
   std::string rir_file;
   double air_block_ms = 5;
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
+  bool authenticated = false;
+  add_authenticated_flag(app, authenticated);
   app.add_option("--json", json_path, "write the results to this JSON file");
   app.add_option("--commands", commands, "Drive commands to send")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--distance-m", distance_m, "robot's distance from the sender")->capture_default_str();
@@ -74,14 +77,16 @@ int main(int argc, char** argv) {
   return program::run(
       [&] {
         const LinkProfile& profile = profile_by_name(profile_name);
-        const link::Link& link = link::link_for(profile);
-        spdlog::set_level(spdlog::level::warn);  // the agent's and server's per-frame lines would drown the summary
+        const auto key = bench_key(authenticated);
+        const auto link = link::make_link(profile);  // for payload sizes only
+        spdlog::set_level(spdlog::level::warn);      // the agent's and server's per-frame lines would drown the summary
         test_support::LiveSystemOptions options;
         options.profile = &profile;
         options.distance_m = distance_m;
         options.air_block_ms = air_block_ms;
         options.rir_file = rir_file;
         options.default_policy = server::Policy::Fail;
+        options.sender_key = options.robot_key = key;
         test_support::LiveSystem system(options);
         spdlog::set_level(spdlog::level::warn);  // again: loggers made while starting take the global level
         auto client = system.client();
@@ -126,7 +131,7 @@ int main(int argc, char** argv) {
             ++confirmed;
             // The command as sent: its payload bits whatever its frames (checks excluded).
             payload_bits += static_cast<std::uint64_t>(
-                link.payload_bits(command::DriveForDuration{request.speed_percent(), request.duration_s()}));
+                link->payload_bits(command::DriveForDuration{request.speed_percent(), request.duration_s()}));
             latencies_ms.push_back(*latency_ms);
           }
           per_command.push_back({{"speed_percent", request.speed_percent()},
@@ -153,6 +158,7 @@ int main(int argc, char** argv) {
             100 * frame_success, static_cast<unsigned long long>(retransmissions));
         write_json(json_path, {{"benchmark", "e2e"},
                                {"profile", profile.name},
+                               {"authenticated", authenticated},
                                {"seed", seed},
                                {"distance_m", distance_m},
                                {"rir", rir_file},

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "link/sweep.h"
 #include "physical/acoustic_channel.h"
@@ -31,6 +32,8 @@ int main(int argc, char** argv) {
   options.threads = default_threads();
   options.topup_frames = 0;  // distance points get the same count each
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
+  bool authenticated = false;
+  add_authenticated_flag(app, authenticated);
   app.add_option("--json", json_path, "write the results to this JSON file");
   app.add_option("--from-m", from_m, "nearest distance")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--to-m", to_m, "farthest distance")->capture_default_str()->check(CLI::PositiveNumber);
@@ -53,6 +56,7 @@ int main(int argc, char** argv) {
   return program::run(
       [&] {
         const LinkProfile& profile = profile_by_name(profile_name);
+        options.key = bench_key(authenticated);
         if (noise_kind != "white" && noise_kind != "pink" && noise_kind != "none") {
           throw std::invalid_argument("--noise must be white, pink or none, not '" + noise_kind + "'");
         }
@@ -87,6 +91,7 @@ int main(int argc, char** argv) {
 
         nlohmann::json doc{{"benchmark", "distance"},
                            {"profile", profile.name},
+                           {"authenticated", authenticated},
                            {"seed", options.seed},
                            {"frames_per_point", options.frames},
                            {"block_samples", options.block_samples},

@@ -17,10 +17,11 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <sstream>
 
 #include "channel_flags.h"
+#include "common/authenticated_flag.h"
 #include "common/bench_report.h"
+#include "link/channel_case.h"
 #include "link/sweep.h"
 #include "physical/acoustic_channel.h"
 #include "physical/room_model.h"
@@ -32,11 +33,6 @@ using namespace dtmf::bench;
 
 namespace {
 
-struct Case {
-  std::string name;
-  std::string flags;
-};
-
 constexpr const char* kQuiet = " --noise pink --noise-dbfs -50";
 
 std::string number(double v) {
@@ -45,8 +41,8 @@ std::string number(double v) {
   return text;
 }
 
-std::vector<Case> default_cases(const LinkProfile& profile, const std::string& rirs) {
-  std::vector<Case> cases;
+std::vector<ChannelCase> default_cases(const LinkProfile& profile, const std::string& rirs) {
+  std::vector<ChannelCase> cases;
   for (const char* room : {"studio_live_room", "seminar_room_clap", "smoking_room"}) {
     for (double d : {1.0, 3.0}) {
       cases.push_back({std::string(room) + " " + number(d) + " m",
@@ -71,33 +67,6 @@ std::vector<Case> default_cases(const LinkProfile& profile, const std::string& r
   return cases;
 }
 
-// "NAME=FLAGS".
-Case parse_case(const std::string& text) {
-  const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) {
-    throw std::invalid_argument("--case '" + text +
-                                "': write NAME=FLAGS, e.g. 'seminar=--rir bench/rirs/seminar_room_clap.wav'");
-  }
-  return {text.substr(0, eq), text.substr(eq + 1)};
-}
-
-// The case's flags through the same parser as dtmfctl simulate.
-program::ChannelSetup setup_of(const Case& c) {
-  CLI::App app("case");
-  program::ChannelFlags flags;
-  program::add_channel_flags(app, flags);
-  std::vector<std::string> words;
-  std::istringstream in(c.flags);
-  for (std::string w; in >> w;) words.push_back(w);
-  std::reverse(words.begin(), words.end());  // CLI11 takes the arguments in reverse
-  try {
-    app.parse(words);
-  } catch (const CLI::ParseError& e) {
-    throw std::invalid_argument("case '" + c.name + "': " + e.what());
-  }
-  return program::channel_setup(flags);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -110,6 +79,8 @@ int main(int argc, char** argv) {
   options.chunk_frames = 100;
   options.lead_in_s = 8;
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
+  bool authenticated = false;
+  add_authenticated_flag(app, authenticated);
   app.add_option("--json", json_path, "write the results to this JSON file");
   app.add_option("--case", case_texts,
                  "NAME=FLAGS (dtmfctl simulate's channel flags); repeatable; default: the rooms table");
@@ -127,16 +98,17 @@ int main(int argc, char** argv) {
   return program::run(
       [&] {
         const LinkProfile& profile = profile_by_name(profile_name);
-        std::vector<Case> cases;
-        for (const auto& t : case_texts) cases.push_back(parse_case(t));
+        options.key = bench_key(authenticated);
+        std::vector<ChannelCase> cases;
+        for (const auto& t : case_texts) cases.push_back(parse_channel_case(t));
         if (cases.empty()) cases = default_cases(profile, rirs);
 
         // Each case's channel settings and its room, prepared once (a measured file read, a
         // shoebox tuned to its RT60) and shared by every stream.
         std::vector<program::ChannelSetup> setups;
         std::vector<std::shared_ptr<const physical::RoomModel>> rooms;
-        for (const Case& c : cases) {
-          setups.push_back(setup_of(c));
+        for (const ChannelCase& c : cases) {
+          setups.push_back(channel_setup_of(c));
           const auto& room = setups.back().config.room;
           rooms.push_back(room.enabled() ? std::make_shared<const physical::RoomModel>(room, profile.sample_rate_hz)
                                          : nullptr);
@@ -167,7 +139,7 @@ int main(int argc, char** argv) {
         std::printf("%-36s %7s %9s %7s %6s %6s\n", "case", "frames", "success", "wrong", "twice", "NACKed");
         nlohmann::json rows = nlohmann::json::array();
         for (const auto& p : points) {
-          const Case& c = cases[static_cast<std::size_t>(p.x)];
+          const ChannelCase& c = cases[static_cast<std::size_t>(p.x)];
           const TrialCounts& n = p.counts;
           std::printf(
               "%-36s %7llu %8.2f%% %7llu %6llu %6llu\n", c.name.c_str(), static_cast<unsigned long long>(n.frames),
@@ -182,6 +154,7 @@ int main(int argc, char** argv) {
         std::printf("%.1f s\n", took.count());
         write_json(json_path, {{"benchmark", "rooms"},
                                {"profile", profile.name},
+                               {"authenticated", authenticated},
                                {"seed", options.seed},
                                {"frames_per_case", options.frames},
                                {"lead_in_s", options.lead_in_s},

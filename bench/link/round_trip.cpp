@@ -2,7 +2,8 @@
 //
 // A stop-and-wait sender and a robot face each other `d` metres apart in a simulated room
 // (physical::AcousticChannel both ways: delay, spreading, air absorption, RT60 0.3 s, pink
-// noise at -50 dBFS; the sender's microphone also hears its own loudspeaker from 0.1 m). Both
+// noise at -50 dBFS; the sender's microphone also hears its own loudspeaker from 0.1 m), or
+// with --rir in a measured room both ways. Both
 // run block by block (--block-samples, 5 ms by default, like low-latency sound cards): the
 // robot answers every verdict with ACK / NACK at its next block, the sender sends a
 // command's frames one after another — each once its answer came and the channel is free
@@ -19,9 +20,12 @@
 #include <cstdio>
 #include <deque>
 
+#include "common/authenticated_flag.h"
 #include "common/bench_report.h"
+#include "link/answer_wait.h"
 #include "link/frame_trials.h"
 #include "physical/acoustic_channel.h"
+#include "physical/room_model.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
 
@@ -31,8 +35,10 @@ using namespace dtmf::bench;
 namespace {
 
 struct Options {
+  bool authenticated = false;
   int commands = 200;
   double distance_m = 1;
+  std::string rir;  // a measured room both ways instead of the simulated one
   std::size_t block_samples = 240;
   std::uint64_t seed = 1;
 };
@@ -73,23 +79,36 @@ double percentile(std::vector<double> v, double p) {
 nlohmann::json run(const LinkProfile& profile, const Options& o) {
   physical::ChannelConfig room;
   room.noise = physical::parse_noise("pink", -50);
-  room.reverb.rt60_s = 0.3;
-  room.seed = o.seed;
-  physical::AcousticChannel to_robot(profile.sample_rate_hz, room);
+  std::shared_ptr<const physical::RoomModel> measured;
+  if (o.rir.empty()) {
+    room.reverb.rt60_s = 0.3;
+  } else {
+    room.room.rir_file = o.rir;
+    measured = std::make_shared<const physical::RoomModel>(room.room, profile.sample_rate_hz);
+  }
+  const auto channel = [&](std::uint64_t seed) {
+    room.seed = seed;
+    return measured ? std::make_unique<physical::AcousticChannel>(profile.sample_rate_hz, room, measured)
+                    : std::make_unique<physical::AcousticChannel>(profile.sample_rate_hz, room);
+  };
+  const auto to_robot_channel = channel(o.seed), to_sender_channel = channel(o.seed + 1);
+  physical::AcousticChannel& to_robot = *to_robot_channel;
+  physical::AcousticChannel& to_sender = *to_sender_channel;
   to_robot.add_transmitter(o.distance_m);
-  room.seed = o.seed + 1;
-  physical::AcousticChannel to_sender(profile.sample_rate_hz, room);
   to_sender.add_transmitter(0.1);  // its own loudspeaker
   to_sender.add_transmitter(o.distance_m);
 
-  const link::Link& link = link::link_for(profile);
-  Responder robot(link);
+  link::LinkOptions keyed;  // each side its own counters, in memory
+  keyed.key = bench_key(o.authenticated);
+  const auto sender_link = link::make_link(profile, keyed);
+  const auto robot_link = link::make_link(profile, keyed);
+  link::Link& link = *sender_link;
+  Responder robot(*robot_link);
   const auto sender_ear = link.answer_listener();
   Speaker sender_speaker, robot_speaker;
   const double ms_per_sample = 1000.0 / profile.sample_rate_hz;
   const std::vector<command::Command> commands = {command::DriveForDuration{50, 2}, command::TurnForDuration{-30, 1.5},
                                                   command::DriveForward{80}, command::Stop{}};
-  std::uint8_t next_sequence = 0;
 
   std::vector<double> latencies_ms;
   long frames_sent = 0, frames_first_time = 0, retransmissions = 0, failed_commands = 0, payload_bits = 0;
@@ -99,10 +118,11 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   int attempt = 0;
   double handed_over_ms = 0, frame_started_ms = 0, channel_free_ms = 0;
   bool awaiting = false, want_send = false;
+  std::optional<link::AnswerWait> wait;  // this transmission's
 
   auto next_command = [&](double now_ms) {
     if (++command_index >= o.commands) return;
-    frames = link.plan(commands[static_cast<std::size_t>(command_index) % commands.size()], next_sequence);
+    frames = link.plan(commands[static_cast<std::size_t>(command_index) % commands.size()]);
     frame = 0;
     attempt = 0;
     handed_over_ms = now_ms;
@@ -119,6 +139,7 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
       ++frames_sent;
       ++attempt;
       if (attempt > 1) ++retransmissions;
+      wait.emplace(link, frames[frame]);
       frame_started_ms = now_ms;
       const double chord_ms = static_cast<double>(frames[frame].audio.size()) * ms_per_sample;
       channel_free_ms = now_ms + chord_ms + profile.timing.gap_ms;
@@ -140,13 +161,14 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
     to_sender.process(both, heard);
     for (const link::Answer& a : sender_ear->feed(heard)) {
       if (!awaiting) continue;
-      if (!link.answers(a, frames[frame])) continue;  // names another frame
+      if (!wait->answered_by(a)) continue;  // names another frame, or a wrong tag
       if (!a.ack) {
         want_send = attempt <= profile.timing.auto_retransmissions;
         awaiting = false;
         continue;
       }
       awaiting = false;
+      link.confirmed(frames[frame]);
       if (attempt == 1) ++frames_first_time;
       if (++frame < frames.size()) {
         attempt = 0;
@@ -177,8 +199,10 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
       static_cast<double>(payload_bits) / run_s, frames_first_time, frames_sent, retransmissions);
   return {{"benchmark", "roundtrip"},
           {"profile", profile.name},
+          {"authenticated", o.authenticated},
           {"commands", o.commands},
           {"distance_m", o.distance_m},
+          {"room", o.rir.empty() ? "simulated, RT60 0.3 s" : o.rir},
           {"block_samples", o.block_samples},
           {"confirmed", latencies_ms.size()},
           {"failed", failed_commands},
@@ -199,11 +223,14 @@ int main(int argc, char** argv) {
   std::string profile_name = "seed", json_path;
   Options o;
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
+  add_authenticated_flag(app, o.authenticated);
   app.add_option("--json", json_path, "write the results to this JSON file");
   app.add_option("--commands", o.commands, "commands to send, one after another")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--distance-m", o.distance_m, "sender to robot")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--rir", o.rir, "a measured room's impulse response (WAV), both ways, instead of the simulated room")
+      ->check(CLI::ExistingFile);
   app.add_option("--block-samples", o.block_samples, "audio block of both sides")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

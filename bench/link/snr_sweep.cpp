@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "common/gaussian.h"
 #include "link/sweep.h"
@@ -32,6 +33,8 @@ int main(int argc, char** argv) {
   SweepOptions options;
   options.threads = default_threads();
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
+  bool authenticated = false;
+  add_authenticated_flag(app, authenticated);
   app.add_option("--json", json_path, "write the results to this JSON file");
   app.add_option("--from-db", from_db, "lowest SNR")->capture_default_str();
   app.add_option("--to-db", to_db, "highest SNR")->capture_default_str();
@@ -54,11 +57,12 @@ int main(int argc, char** argv) {
   return program::run(
       [&] {
         const LinkProfile& profile = profile_by_name(profile_name);
+        options.key = bench_key(authenticated);
         if (snrs_db.empty()) {
           for (double s = from_db; s <= to_db + 1e-9; s += step_db) snrs_db.push_back(std::round(s * 1000) / 1000);
         }
         std::sort(snrs_db.begin(), snrs_db.end());
-        FrameTrials trials(link::link_for(profile));
+        FrameTrials trials(profile, options.key);
         const double signal_power = mean_sound_power(trials, 256, options.seed);
         std::printf(
             "dtmf-bench-snr: profile %s, seed %llu, %zu frames per point (up to %zu near the thresholds), "
@@ -91,6 +95,7 @@ int main(int argc, char** argv) {
 
         nlohmann::json doc{{"benchmark", "snr"},
                            {"profile", profile.name},
+                           {"authenticated", authenticated},
                            {"seed", options.seed},
                            {"frames_per_point", options.frames},
                            {"topup_frames", options.topup_frames},

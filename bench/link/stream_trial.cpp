@@ -27,7 +27,7 @@ TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const 
   std::vector<std::uint32_t> right(options.frames, 0);  // right-bit acceptances per slot
   std::vector<float> clean(slot), heard, pending;
   std::vector<Accepted> accepted;
-  FrameReceiver receiver(trials.link());
+  FrameReceiver receiver(trials.robot());
   TrialCounts counts;
   counts.frames = options.frames;
 
@@ -57,8 +57,9 @@ TrialCounts run_stream(FrameTrials& trials, const StreamOptions& options, const 
         if (std::getenv("DTMF_DEBUG_WRONG")) {
           std::fprintf(stderr,
                        "wrong: start %.1f ms slot %.0f (after the lead-in) bits %llx; sent there %llx, before %llx\n",
-                       start_ms, at, (unsigned long long)a.bits, k < sent.size() ? (unsigned long long)sent[k] : 0ull,
-                       k > 0 && k <= sent.size() ? (unsigned long long)sent[k - 1] : 0ull);
+                       start_ms, at, (unsigned long long)a.bits.low64(),
+                       k < sent.size() ? (unsigned long long)sent[k].low64() : 0ull,
+                       k > 0 && k <= sent.size() ? (unsigned long long)sent[k - 1].low64() : 0ull);
         }
       }
     }

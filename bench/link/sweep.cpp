@@ -46,7 +46,7 @@ std::vector<SweepPoint> run_sweep(const LinkProfile& profile, const std::vector<
     run_parallel(jobs.size(), options.threads, [&](std::size_t i) {
       const Job& job = jobs[i];
       const auto started = std::chrono::steady_clock::now();
-      FrameTrials trials(link::link_for(profile));
+      FrameTrials trials(profile, options.key);
       StreamOptions stream{job.frames, mix(options.seed, job.point, job.chunk, 1), options.block_samples};
       stream.lead_in_slots = static_cast<std::size_t>(
           std::ceil(options.lead_in_s * profile.sample_rate_hz / static_cast<double>(trials.slot_samples())));

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@ struct SweepOptions {
   std::uint64_t seed = 1;
   unsigned threads = 2;
   double lead_in_s = 0;  // channel only, before each stream's first frame (StreamOptions)
+  // Authenticated frames under this key (none: unauthenticated): FrameTrials.
+  std::shared_ptr<const security::LinkKey> key;
 };
 
 // The channel of one stream at point value `x`, its noise seeded with `seed`.

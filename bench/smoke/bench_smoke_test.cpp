@@ -91,6 +91,28 @@ TEST_P(BenchSmokeProfile, RoomsTableScoresAClockOffsetInTheSendersTime) {
   EXPECT_EQ(doc["cases"][0]["wrong_accepts"], 0) << doc.dump();
 }
 
+// The answer path: the robot's answers through the seminar room beside the sender's own
+// louder frames are heard, each for its frame; 100 m of air in loud noise drowns them.
+TEST(BenchSmoke, AnswersAreHeardThroughTheSeminarRoomAndNotWhenDrowned) {
+  const std::string seminar = std::string(RIRS_DIR) + "/seminar_room_clap.wav";
+  for (const char* keyed : {"", " --authenticated"}) {
+    const auto doc = run(std::string(ANSWERS_PATH) + " --profile fast" + keyed +
+                             " --answers 10 --chunk 10 --own-frames --case 'seminar=--rir " + seminar +
+                             " --noise pink --noise-dbfs -50' --case 'drowned=--distance 100 --noise white "
+                             "--noise-dbfs -40'",
+                         std::string("answers") + (*keyed ? "-keyed" : ""));
+    ASSERT_EQ(doc["cases"].size(), 2u) << doc.dump();
+    EXPECT_EQ(doc["cases"][0]["heard_rate"].get<double>(), 1.0) << doc.dump();
+    EXPECT_EQ(doc["cases"][0]["own_frames"], true);
+    EXPECT_LT(doc["cases"][1]["heard_rate"].get<double>(), 0.5) << doc.dump();
+    for (const auto& c : doc["cases"]) EXPECT_EQ(c["wrong"], 0) << c.dump();
+    EXPECT_EQ(doc["authenticated"], *keyed != 0);
+    if (*keyed) {
+      EXPECT_LE(doc["frame_ms"].get<double>(), 160.0);
+    }
+  }
+}
+
 TEST(BenchSmoke, TalkoffFindsNothingInSilence) {
   // 10 s of silence (raw float32 zeros) on stdin.
   const auto doc =

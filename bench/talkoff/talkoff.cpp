@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "link/frame_trials.h"
 #include "physical/wav_file.h"
@@ -37,6 +38,8 @@ int main(int argc, char** argv) {
   double max_seconds = 0;
   bool print_rate = false;
   app.add_option("--profile", profile_name, "link profile: " + profile_names())->capture_default_str();
+  bool authenticated = false;
+  add_authenticated_flag(app, authenticated);
   app.add_option("--json", json_path, "write the results to this JSON file");
   app.add_option("--wav", wav_path, "read this file instead of raw float32 on stdin");
   app.add_option("--signal", signal_name, "what the audio is (a label for the report)")->capture_default_str();
@@ -54,8 +57,14 @@ int main(int argc, char** argv) {
         if (!wav_path.empty()) wav = std::make_unique<physical::WavFileSource>(wav_path, profile.sample_rate_hz);
         const auto max_samples = static_cast<std::uint64_t>(max_seconds * profile.sample_rate_hz);
 
-        FrameReceiver robot(link::link_for(profile));
-        ReplyReceiver replies(link::link_for(profile));
+        FrameTrials trials(profile, bench_key(authenticated));
+        FrameReceiver robot(trials.robot());
+        const auto sender = link::make_link(profile, [&] {
+          link::LinkOptions o;
+          o.key = trials.robot().options().key;
+          return o;
+        }());
+        ReplyReceiver replies(*sender);
         std::vector<Accepted> accepted;
         std::uint64_t samples = 0;
         double sum_squares = 0, peak = 0;
@@ -76,25 +85,28 @@ int main(int argc, char** argv) {
           samples += got;
         }
         if (samples == 0) throw std::runtime_error("no audio read");
-        const std::uint64_t acks = replies.acks(), nacks = replies.nacks();
+        const std::uint64_t acks = replies.acks(), nacks = replies.nacks(), confirmations = replies.confirmations();
         const double hours = static_cast<double>(samples) / profile.sample_rate_hz / 3600.0;
         const double rms_dbfs = 10 * std::log10(sum_squares / static_cast<double>(samples) + 1e-30);
         const auto per_hour = [&](std::uint64_t n) { return static_cast<double>(n) / hours; };
         std::printf(
             "talk-off  %-6s %-8s %7.2f h (RMS %6.1f dBFS, peak %5.2f): accepted %llu (%.2f/h), "
-            "check-failing %llu (%.2f/h), ACK %llu (%.2f/h), NACK %llu (%.2f/h)\n",
+            "check-failing %llu (%.2f/h), refused %llu (%.2f/h), ACK %llu (%.2f/h), NACK %llu (%.2f/h), "
+            "false confirmations %llu (%.2f/h)\n",
             profile.name.c_str(), signal_name.c_str(), hours, rms_dbfs, peak,
             static_cast<unsigned long long>(accepted.size()), per_hour(accepted.size()),
             static_cast<unsigned long long>(robot.check_failed()), per_hour(robot.check_failed()),
+            static_cast<unsigned long long>(robot.refused()), per_hour(robot.refused()),
             static_cast<unsigned long long>(acks), per_hour(acks), static_cast<unsigned long long>(nacks),
-            per_hour(nacks));
+            per_hour(nacks), static_cast<unsigned long long>(confirmations), per_hour(confirmations));
 
         nlohmann::json listed = nlohmann::json::array();
         for (std::size_t i = 0; i < std::min(accepted.size(), kListedMax); ++i) {
-          listed.push_back({{"start_ms", accepted[i].start_ms}, {"bits", accepted[i].bits}});
+          listed.push_back({{"start_ms", accepted[i].start_ms}, {"bits", accepted[i].bits.decimal()}});
         }
         write_json(json_path, {{"benchmark", "talkoff"},
                                {"profile", profile.name},
+                               {"authenticated", authenticated},
                                {"signal", signal_name},
                                {"audio_s", static_cast<double>(samples) / profile.sample_rate_hz},
                                {"hours", hours},
@@ -108,6 +120,10 @@ int main(int argc, char** argv) {
                                {"acks_per_hour", per_hour(acks)},
                                {"nacks", nacks},
                                {"nacks_per_hour", per_hour(nacks)},
+                               {"refused", robot.refused()},
+                               {"refused_per_hour", per_hour(robot.refused())},
+                               {"false_confirmations", confirmations},
+                               {"false_confirmations_per_hour", per_hour(confirmations)},
                                {"accepted_frames", listed}});
         return 0;
       },

@@ -33,8 +33,9 @@ std::vector<float> answer(const LinkProfile& profile, bool intact,
                           std::optional<std::uint8_t> sequence = std::nullopt) {
   link::Reception r;
   r.intact = intact;
+  r.event = intact ? link::ReceptionEvent::Command : link::ReceptionEvent::Broken;
   r.sequence = sequence;
-  return link::link_for(profile).answer_audio(r);
+  return link::make_link(profile)->answer_audio(r);
 }
 
 class RecordingReplies : public ReplyPlayer {
@@ -173,8 +174,9 @@ TEST(Agent, TheReplyTimelinePutsEachChordWhereItsFrameWasHeard) {
 TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) {
   const LinkProfile& fast = fast_profile();
   const LinkProfile& seed = seed_profile();
-  std::uint8_t sequence = 5;
-  const auto frame = link::link_for(fast).plan(command::DriveForDuration{40, 1}, sequence).front();
+  link::LinkOptions numbered;
+  numbered.first_sequence = 5;
+  const auto frame = link::make_link(fast, numbered)->plan(command::DriveForDuration{40, 1}).front();
   std::vector<float> audio(static_cast<std::size_t>(fast.samples_for_ms(100)), 0.0f);
   const auto append = [&](const std::vector<float>& more, double silence_ms) {
     audio.insert(audio.end(), more.begin(), more.end());
@@ -217,9 +219,10 @@ TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) 
 TEST(Agent, AFastFrameFailingWhileASeedFrameSoundsIsNotAnswered) {
   const LinkProfile& fast = fast_profile();
   const LinkProfile& seed = seed_profile();
-  std::uint8_t sequence = 3;
-  const auto sent = link::link_for(fast).plan(command::Stop{}, sequence).front();
-  auto symbols = reliability::encode_symbols(sent.bits);
+  link::LinkOptions numbered;
+  numbered.first_sequence = 3;
+  const auto sent = link::make_link(fast, numbered)->plan(command::Stop{}).front();
+  auto symbols = reliability::encode_symbols(sent.bits.low64());
   for (int i : {0, 2, 5, 8, 11, 13, 15}) symbols[static_cast<std::size_t>(i)] ^= 0x11;  // 7 errors: beyond the code
   signal::HoppedSymbols hopped{};
   std::copy(symbols.begin(), symbols.end(), hopped.begin());

@@ -19,15 +19,19 @@ def ok(doc):
     return "error" not in doc
 
 
-def profile_data(rooms_worst=1.0, e2e_bps=300.0, snr_10=1.0, wrong=0, decoder=6000.0):
+def profile_data(rooms_worst=1.0, e2e_bps=300.0, snr_10=1.0, wrong=0, decoder=6000.0, e2e_ms=120.0, heard=1.0,
+                 frame_ms=102.5, false_confirmations=0):
     cases = [dict(case="seminar_room_clap 1 m", frames=1000, success_rate=rooms_worst, duplicated=0, wrong_accepts=wrong),
              dict(case="clock -2000 ppm", frames=1000, success_rate=1.0, duplicated=0, wrong_accepts=0)]
     points = [dict(snr_db=-10.0, frames=10000, success_rate=snr_10, wrong_accepts=0),
               dict(snr_db=-12.0, frames=1000, success_rate=0.5, wrong_accepts=0)]
-    talk = dict(accepted=0, hours=1.0)
+    talk = dict(accepted=0, hours=1.0, false_confirmations=false_confirmations)
+    answers = dict(frame_ms=frame_ms, cases=[dict(case="smoking_room 1 m", answers=1000, heard_rate=heard, wrong=0),
+                                             dict(case="studio_live_room 1 m", answers=1000, heard_rate=1.0, wrong=0)])
     return dict(rooms=dict(cases=cases), snr=dict(points=points), distance=dict(points=[]),
                 distance_loud=dict(points=[]),
-                e2e_room=dict(latency_ms_median=120.0, throughput_bps=e2e_bps, retransmissions=3, commands=100),
+                e2e_room=dict(latency_ms_median=e2e_ms, throughput_bps=e2e_bps, retransmissions=3, commands=100),
+                answers=answers,
                 talkoff_speech=talk, talkoff_music=talk, talkoff_noise=talk, decoder=dict(factor=decoder))
 
 
@@ -68,11 +72,27 @@ class TargetsSection(unittest.TestCase):
         self.assertEqual(rows["frame success at −10 dB SNR"]["fast"], "not run")
         self.assertEqual(rows["zero wrong accepts"]["fast"], "snr not run")
 
+    def test_the_keyed_column_is_judged_on_the_targets_of_authenticated_frames(self):
+        profiles = ("seed", "fast", "fast+key")
+        rows = table({"seed": profile_data(), "fast": profile_data(),
+                      "fast+key": profile_data(e2e_ms=250.0, heard=0.99, frame_ms=153.75, false_confirmations=1)},
+                     profiles)
+        self.assertEqual(rows["one authenticated frame on air"]["fast+key"], "met: 153.75 ms")
+        self.assertEqual(rows["one authenticated frame on air"]["fast"], "102.50 ms")  # binds the keyed column only
+        drive = rows["authenticated Drive through the seminar room both ways: RPC → confirmed, median"]
+        self.assertTrue(drive["fast+key"].startswith("**missed**: 250 ms"))
+        heard = rows["answer path: answers heard, every room, own frames +20 dB or not"]
+        self.assertEqual(heard["fast"], "met: worst 100.00 % of 1000 (smoking_room 1 m)")
+        self.assertTrue(heard["fast+key"].startswith("**missed**: worst 99.00 % of 1000 (smoking_room 1 m)"))
+        confirmations = rows["talk-off: false confirmations per hour"]
+        self.assertTrue(confirmations["fast+key"].startswith("**missed**: 3 in 3 h"))
+        self.assertEqual(rows["measured rooms (1 and 3 m)"]["fast+key"], "met: worst 100.00 % (seminar_room_clap 1 m)")
+
     def test_every_typed_reason_belongs_to_a_target(self):
         keys = {key for key, _, _, _ in targets_section.targets(lambda d, s: 0)}
         for key, profile in targets_section.REASONS:
             self.assertIn(key, keys)
-            self.assertIn(profile, ("seed", "fast"))
+            self.assertIn(profile, ("seed", "fast", "fast+key"))
 
 
 if __name__ == "__main__":

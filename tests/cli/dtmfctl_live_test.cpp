@@ -90,7 +90,8 @@ TEST_F(DtmfctlLive, JsonGivesOneObjectPerEvent) {
   for (const auto& line : json_lines(r.out)) {
     events.push_back(line["event"]);
     EXPECT_EQ(line["frame_count"], 3);
-    EXPECT_EQ(line["frame"].get<std::string>().size(), 16u);
+    // A queued command has no frames yet: they are numbered as they go on air.
+    EXPECT_EQ(line["frame"].get<std::string>().size(), line["event"] == "queued" ? 0u : 16u) << line;
   }
   EXPECT_EQ(events, (std::vector<std::string>{"queued", "transmitting", "ack", "transmitting", "ack", "transmitting",
                                               "ack", "confirmed"}));

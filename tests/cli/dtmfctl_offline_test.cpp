@@ -170,3 +170,57 @@ TEST_F(Dtmfctl, GlobalFlagsWorkBeforeOrAfterTheSubcommand) {
   EXPECT_EQ(run("health --bogus").exit_code, 2);
   EXPECT_EQ(run("report --csv --json --server 127.0.0.1:1").exit_code, 2);
 }
+
+// Keys offline: keygen writes a key only its owner may read; encode --key renders
+// authenticated frames numbered from its own counters (a second run continues past the
+// first, never reusing one); decode --key says of each frame whether its MAC holds, and
+// under another key refuses them all; a key file others may read is refused with the fix.
+TEST_F(Dtmfctl, KeysMakeAuthenticatedFramesThatOnlyTheSameKeyAccepts) {
+  const Result made = run("keygen " + path("a.key"));
+  ASSERT_EQ(made.exit_code, 0) << made.out;
+  ASSERT_EQ(run("keygen " + path("b.key")).exit_code, 0);
+  EXPECT_EQ(fs::status(path("a.key")).permissions() & fs::perms::all, fs::perms::owner_read | fs::perms::owner_write);
+  EXPECT_NE(run("keygen " + path("a.key")).exit_code, 0) << "never overwrites a key";
+
+  const std::string keyed = "--key " + path("a.key") + " --state-dir " + path("state") + " --profile fast --json ";
+  const Result first = run("encode " + keyed + "--wav " + path("f.wav") + " drive --speed 40");
+  ASSERT_EQ(first.exit_code, 0) << first.out;
+  const auto sent = json_lines(first.out);
+  ASSERT_EQ(sent.size(), 2u) << "a counter synchronisation, then the command";
+  EXPECT_TRUE(sent[0]["synchronisation"].get<bool>());
+  EXPECT_EQ(sent[1]["frame"].get<std::string>().size(), 80u);
+  EXPECT_EQ(sent[1]["tones_hz"].size(), 24u) << "three chords of eight tones";
+  const Result second = run("encode " + keyed + "stop");
+  ASSERT_EQ(second.exit_code, 0) << second.out;
+  const auto later = json_lines(second.out);
+  ASSERT_FALSE(later.empty());
+  EXPECT_GT(later.front()["counter"].get<std::uint64_t>(), sent[1]["counter"].get<std::uint64_t>());
+
+  const Result good = run("decode --key " + path("a.key") + " --profile fast --json " + path("f.wav"));
+  ASSERT_EQ(good.exit_code, 0) << good.out;
+  const auto heard = json_lines(good.out);
+  ASSERT_EQ(heard.size(), 2u) << good.out;
+  EXPECT_TRUE(heard[1]["authenticated"].get<bool>());
+  EXPECT_EQ(heard[1]["event"]["kind"], "command");
+  EXPECT_EQ(heard[1]["frame"], sent[1]["frame"]);
+
+  const Result other = run("decode --key " + path("b.key") + " --profile fast " + path("f.wav"));
+  EXPECT_NE(other.out.find("REFUSED (authentication)"), std::string::npos) << other.out;
+  EXPECT_NE(other.out.find("0 MACs held, 2 frames refused for authentication"), std::string::npos) << other.out;
+
+  fs::permissions(path("b.key"), fs::perms::group_read, fs::perm_options::add);
+  const Result open = run("encode --key " + path("b.key") + " --profile fast stop");
+  EXPECT_EQ(open.exit_code, 1);
+  EXPECT_NE(open.out.find("chmod 600"), std::string::npos) << open.out;
+  // The secret is in no output.
+  std::FILE* f = std::fopen(path("a.key").c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  char text[512] = {};
+  const std::size_t n = std::fread(text, 1, sizeof text - 1, f);
+  std::fclose(f);
+  const std::string file(text, n);
+  const auto at = file.find("\nkey ");
+  ASSERT_NE(at, std::string::npos);
+  const std::string secret = file.substr(at + 5, 64);
+  for (const Result* r : {&made, &first, &second, &good, &other}) EXPECT_EQ(r->out.find(secret), std::string::npos);
+}

@@ -1,6 +1,6 @@
 # Tests against a real PostgreSQL: the throwaway cluster of scripts/pg.
 #
-# The fixture test pg.start starts a private cluster in <build>/pg on port 55432 before
+# The fixture test pg.start starts a private cluster in <build>/pg on port 25432 before
 # any test that needs it (ctest adds it by itself, also for `ctest -R ...`), pg.destroy
 # stops it and removes <build>/pg after them. The database tests hold RESOURCE_LOCK pg,
 # so they never share the cluster at once: some stop the server to act out an outage
@@ -10,7 +10,10 @@
 # executable's tests with dtmf_pg_test(<target>).
 
 set(DTMF_PG_DIR ${PROJECT_BINARY_DIR}/pg)
-set(DTMF_PG_PORT 55432 CACHE STRING "port of the test cluster (another build tree testing at once needs another)")
+# Below Linux's ephemeral ports (32768-60999): the outage tests stop the server and start it
+# again, and on 55432 a client socket of a test running beside them once took the port in
+# between ("could not bind ... Address already in use"), failing every later database test.
+set(DTMF_PG_PORT 25432 CACHE STRING "port of the test cluster (another build tree testing at once needs another)")
 set(DTMF_PG_SCRIPT ${PROJECT_SOURCE_DIR}/scripts/pg)
 set(DTMF_PG_URL postgresql://postgres@127.0.0.1:${DTMF_PG_PORT}/postgres)
 set(DTMF_PG_ENV DTMF_DB_URL=${DTMF_PG_URL} DTMF_PG_DIR=${DTMF_PG_DIR}

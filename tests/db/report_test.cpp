@@ -7,6 +7,7 @@
 #include "command/test_sequence.h"
 #include "link/sender_path.h"
 #include "profile/link_profile.h"
+#include "run_reader.h"
 #include "store.h"
 #include "temp_database.h"
 
@@ -51,7 +52,7 @@ FrameAttemptRow attempt_row(const std::string& run_id, const Transmission& t, in
   a.position = t.position;
   a.attempt = attempt;
   a.word = t.frame.word;
-  a.frame = t.frame.frame;
+  a.frame = std::to_string(t.frame.frame);
   a.tones_hz.assign(t.frame.tones_hz.begin(), t.frame.tones_hz.end());
   a.chord_started_at = start;
   a.chord_ended_at = start + milliseconds(800);
@@ -64,7 +65,7 @@ ReceptionRow reception_row(int frame, bool crc_ok, WallTime heard) {
   r.host = "robot";
   r.profile = "seed";
   r.heard_at = heard;
-  r.frame = frame;
+  r.frame = std::to_string(frame);
   r.crc_ok = crc_ok;
   r.reply = crc_ok ? "ack" : "nack";
   return r;
@@ -196,7 +197,7 @@ TEST(RunReport, ACleanRunIsAllSuccessWithNoErrorCatchRate) {
       a.answer = "ack";
       a.answered_at = start + milliseconds(887);
       store.write(a);
-      store.write(reception_row(a.frame, true, start + milliseconds(199)));
+      store.write(reception_row(std::stoi(a.frame), true, start + milliseconds(199)));
     }
     ASSERT_TRUE(store.flush(std::chrono::seconds(30)));
   }
@@ -257,4 +258,50 @@ TEST(RunReport, ARetransmissionHeardAgainIsADuplicateAndAChordHeardTwiceAFalsePo
   EXPECT_DOUBLE_EQ(as_double(frames[0][1]), 150.0);
   EXPECT_EQ(frames[1][0].as<int>(), 2);
   EXPECT_DOUBLE_EQ(as_double(frames[1][1]), 150.0);
+}
+
+// Frames the robot refused (docs/security.md) match no attempt and are no false positive: the
+// report counts them on their own, those that failed authentication apart, and RunReader
+// (GetReport, dtmfctl report) reads the counts.
+TEST(RunReport, RefusedFramesAreCountedAndAreNoFalsePositives) {
+  TempDatabase db;
+  StoreOptions options;
+  options.database = db.url();
+  options.spill_path = ::testing::TempDir() + "/report-refused-" + std::to_string(::getpid()) + ".spill";
+  const WallTime t0 = WallClock::now() - std::chrono::hours(4);
+  TestRunRow run;
+  run.label = "forgery";
+  run.profile = "fast";
+  run.started_at = t0;
+  run.ended_at = t0 + milliseconds(4000);
+  {
+    Store store(options);
+    store.write(run);
+    const auto refused = [&](int frame, const std::string& reason, int at_ms) {
+      ReceptionRow r = reception_row(frame, true, t0 + milliseconds(at_ms));
+      r.profile = "fast";
+      r.frame_width = 80;
+      r.event = "refused";
+      r.reason = reason;
+      r.reply = "nack";
+      store.write(r);
+    };
+    refused(0x1234, "authentication", 500);   // a forged MAC
+    refused(0x5678, "authentication", 1500);  // a replay: a counter not newer
+    refused(0x9abc, "payload", 2500);         // a kind this robot does not know
+    ASSERT_TRUE(store.flush(std::chrono::seconds(30)));
+  }
+  {
+    pqxx::connection c(db.url());
+    pqxx::work tx(c);
+    const pqxx::row r = tx.exec("SELECT * FROM run_report('" + run.id + "'::uuid)")[0];
+    EXPECT_EQ(r["refused"].as<int>(), 3);
+    EXPECT_EQ(r["refused_authentication"].as<int>(), 2);
+    EXPECT_EQ(r["false_positives"].as<int>(), 0);
+    EXPECT_EQ(r["crc_accepted"].as<int>(), 0);
+  }
+  const auto report = RunReader(db.url()).report(run.id, false);
+  ASSERT_TRUE(report);
+  EXPECT_EQ(report->refused, 3);
+  EXPECT_EQ(report->refused_authentication, 2);
 }

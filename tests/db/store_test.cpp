@@ -39,7 +39,7 @@ ReceptionRow reception(const std::string& host, int frame) {
   r.host = host;
   r.profile = "seed";
   r.heard_at = WallClock::now();
-  r.frame = frame;
+  r.frame = std::to_string(frame);
   r.crc_ok = true;
   return r;
 }

@@ -1,6 +1,6 @@
-// The fast profile through every layer (ggwave-style): every command kind with every
-// sequence number through a reverberant room, a retransmission answered but not re-executed,
-// frames at -10 dB SNR, another robot's frames, and sounds that are no frames.
+// The fast profile's robot through every layer (ggwave-style), unauthenticated: every command
+// kind with every sequence number through a reverberant room, a retransmission answered but
+// not re-executed, frames at -10 dB SNR, another robot's frames, and sounds that are no frames.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,20 +18,26 @@ using namespace dtmf;
 
 namespace {
 const LinkProfile& p = fast_profile();
-const link::Link& fast = link::link_by_name("fast");
 
-std::vector<link::ReceivedHopFrame> receive(const std::vector<float>& audio, std::size_t block = 1024) {
-  link::HopFramePath path(p);
-  std::vector<link::ReceivedHopFrame> got;
+std::unique_ptr<link::Link> fast_link(std::uint8_t first_sequence = 0) {
+  link::LinkOptions options;
+  options.first_sequence = first_sequence;
+  return link::make_link(p, options);
+}
+
+// What a robot without a key makes of `audio`, fed in blocks.
+std::vector<link::Reception> receive(const std::vector<float>& audio, std::size_t block = 1024) {
+  const auto receiver = fast_link()->receiver();
+  std::vector<link::Reception> got;
   for (std::size_t at = 0; at < audio.size(); at += block) {
     const auto n = std::min<std::size_t>(block, audio.size() - at);
-    for (const auto& r : path.feed(std::span<const float>(audio.data() + at, n))) got.push_back(r);
+    for (const auto& r : receiver->feed(std::span<const float>(audio.data() + at, n))) got.push_back(r);
   }
   return got;
 }
 
 std::vector<float> frame_audio(const command::Command& c, std::uint8_t sequence) {
-  return fast.plan(c, sequence).front().audio;
+  return fast_link(sequence)->plan(c).front().audio;
 }
 
 const std::vector<command::Command> kEveryKind = {
@@ -62,9 +68,9 @@ TEST_P(HopFramePathRoom, EveryKindWithEverySequenceNumberComesBackOnceWithNoNack
   channel.process(sent, heard);
   std::vector<std::string> got;
   for (const auto& r : receive(heard)) {
-    ASSERT_TRUE(r.frame) << "a NACK at " << r.start_ms << " ms " << r.error << " after " << got.size();
+    ASSERT_TRUE(r.acknowledged()) << "a NACK at " << r.start_ms << " ms " << r.detail << " after " << got.size();
     ASSERT_TRUE(r.command) << "repeat at " << r.start_ms << " after " << got.size();
-    got.push_back(std::to_string(r.frame->sequence) + " " + command::describe(*r.command));
+    got.push_back(std::to_string(*r.sequence) + " " + command::describe(*r.command));
   }
   EXPECT_EQ(got, expected);
 }
@@ -81,22 +87,23 @@ TEST(HopFramePath, ARetransmittedFrameIsAnsweredButNotExecutedAgain) {
   const auto got = receive(audio);
   ASSERT_EQ(got.size(), 2u);
   EXPECT_TRUE(got[0].command);
-  EXPECT_FALSE(got[0].repeat);
-  ASSERT_TRUE(got[1].frame);
-  EXPECT_EQ(got[1].frame->sequence, 7);
-  EXPECT_TRUE(got[1].repeat);
+  EXPECT_EQ(got[0].event, link::ReceptionEvent::Command);
+  ASSERT_TRUE(got[1].acknowledged());
+  EXPECT_EQ(got[1].sequence, 7);
+  EXPECT_EQ(got[1].event, link::ReceptionEvent::Repeat);
   EXPECT_FALSE(got[1].command);
 }
 
 TEST(HopFramePath, AtMinusTenDbSnrFramesAreHeardWithNoWrongAccept) {
   constexpr int kFrames = 1000;
   std::mt19937 rng(11);
-  const std::size_t slot = static_cast<std::size_t>(p.samples_for_ms(fast.frame_start_ms(1)));
+  const auto fast = fast_link();
+  const std::size_t slot = static_cast<std::size_t>(p.samples_for_ms(fast->frame_start_ms(1)));
   std::vector<float> audio(static_cast<std::size_t>(kFrames) * slot, 0.0f);
-  std::vector<std::uint64_t> bits;
+  std::vector<reliability::FrameBits> bits;
   double power = 0;
   for (int i = 0; i < kFrames; ++i) {
-    const link::TransmitFrame f = fast.random_frame(rng());
+    const link::TransmitFrame f = fast->random_frame(rng());
     bits.push_back(f.bits);
     for (std::size_t k = 0; k < f.audio.size(); ++k) {
       audio[static_cast<std::size_t>(i) * slot + k] = f.audio[k];
@@ -112,7 +119,7 @@ TEST(HopFramePath, AtMinusTenDbSnrFramesAreHeardWithNoWrongAccept) {
   std::vector<int> accepted(kFrames, 0);
   int wrong = 0;
   for (const auto& r : receive(audio)) {
-    if (!r.frame) continue;
+    if (!r.intact) continue;
     // A frame starts its slot; a decode from a window a hop or two early says so, too early.
     const auto k = std::lround((r.start_ms - 5000.0 / 48.0) / slot_ms);
     if (k < 0 || k >= kFrames || bits[static_cast<std::size_t>(k)] != r.bits) {
@@ -138,13 +145,13 @@ TEST(HopFramePath, AHeldChordOrSilenceExecutesNothing) {
   for (int i = 0; i < 19; ++i) held.insert(held.end(), frame.begin(), frame.begin() + static_cast<long>(chord));
   held.insert(held.end(), 5000, 0.0f);
   for (const auto& r : receive(held)) {
-    ADD_FAILURE() << "a verdict at " << r.start_ms
-                  << " ms: " << (r.frame ? "accepted " + std::to_string(r.bits) : "NACK");
+    ADD_FAILURE() << "a verdict at " << r.start_ms << " ms: " << (r.intact ? "accepted " + r.bits.decimal() : "NACK");
   }
   EXPECT_TRUE(receive(std::vector<float>(96000, 0.0f)).empty());
 }
 
-// Address 0 is every robot; a frame for robot 5 is not ours: no ACK, no NACK, no command.
+// A robot takes only frames sent to its address: one for robot 5 is not robot 0's: no ACK, no
+// NACK, no command.
 TEST(HopFramePath, AnotherRobotsFrameIsLeftAlone) {
   const reliability::CommandFrame frame{5, 2, command::encode_payload(command::DriveForward{60})};
   const auto symbols = reliability::encode_symbols(reliability::pack(frame));
@@ -158,11 +165,10 @@ TEST(HopFramePath, AnotherRobotsFrameIsLeftAlone) {
 // The agent listens with both profiles: the seed's chords must leave the fast path silent,
 // not even a NACK (which would put a reply on the air and a row in the report).
 TEST(HopFramePath, TheSeedsChordsMakeNoVerdictAtAll) {
-  const link::Link& seed = link::link_by_name("seed");
+  const auto seed = link::make_link(seed_profile());
   std::vector<link::TransmitFrame> frames;
-  std::uint8_t unused = 0;
   for (const auto& c : command::seed_test_sequence()) {
-    for (auto& f : seed.plan(c, unused)) frames.push_back(std::move(f));
+    for (auto& f : seed->plan(c)) frames.push_back(std::move(f));
   }
   physical::ChannelConfig room;
   room.noise = physical::parse_noise("white", -70);
@@ -170,8 +176,8 @@ TEST(HopFramePath, TheSeedsChordsMakeNoVerdictAtAll) {
   physical::AcousticChannel channel(p.sample_rate_hz, room);
   channel.add_transmitter(1.0);
   std::vector<float> heard;
-  channel.process(seed.render(frames), heard);
+  channel.process(seed->render(frames), heard);
   const auto got = receive(heard);
   EXPECT_EQ(got.size(), 0u) << "verdicts on " << frames.size() << " seed chords";
-  for (const auto& r : got) std::printf("verdict at %.0f ms: %s\n", r.start_ms, r.frame ? "accepted" : "NACK");
+  for (const auto& r : got) std::printf("verdict at %.0f ms: %s\n", r.start_ms, r.intact ? "accepted" : "NACK");
 }

@@ -115,21 +115,22 @@ TEST(FrameCode, RandomTonesNeverDecode) {
 
 TEST(FrameGate, AcceptsAFrameOnceAndDropsItsNeighbours) {
   FrameGate gate(30, 25);
-  const DecodedFrame f{{0, 1, 42}, pack({0, 1, 42}), 0, 0};
-  EXPECT_FALSE(gate.on_candidate(0, 100, std::nullopt));  // a straddling window before it
-  const auto v = gate.on_candidate(0, 110, f);
+  const GateFrame f{2, pack({0, 1, 42})};
+  EXPECT_FALSE(gate.on_candidate(0, 100, false));  // a straddling window before it
+  const auto v = gate.on_candidate(0, 110, true, f);
   ASSERT_TRUE(v);
   EXPECT_TRUE(v->accepted);
-  EXPECT_FALSE(gate.on_candidate(0, 120, f));             // the same frame a hop later
-  EXPECT_FALSE(gate.on_candidate(0, 130, std::nullopt));  // a straddling window after it
+  EXPECT_EQ(v->frame.bits, f.bits);
+  EXPECT_FALSE(gate.on_candidate(0, 120, true, f));  // the same frame a hop later
+  EXPECT_FALSE(gate.on_candidate(0, 130, false));    // a straddling window after it
   EXPECT_FALSE(gate.on_time(200)) << "the failed window before the frame belonged to it";
-  EXPECT_TRUE(gate.on_candidate(0, 215, f)) << "a retransmission a frame later passes again";
+  EXPECT_TRUE(gate.on_candidate(0, 215, true, f)) << "a retransmission a frame later passes again";
 }
 
 TEST(FrameGate, AClusterOfFailedCandidatesEndsInOneNack) {
   FrameGate gate(30, 25);
-  EXPECT_FALSE(gate.on_candidate(50, 100, std::nullopt));
-  EXPECT_FALSE(gate.on_candidate(60, 110, std::nullopt));
+  EXPECT_FALSE(gate.on_candidate(50, 100, false));
+  EXPECT_FALSE(gate.on_candidate(60, 110, false));
   EXPECT_FALSE(gate.on_time(120));
   const auto nack = gate.on_time(140);
   ASSERT_TRUE(nack);
@@ -150,15 +151,15 @@ TEST(SequenceFilter, ARetransmissionIsNotExecutedTwiceButANewCommandIs) {
 
 TEST(FrameGate, AFailedClusterWaitsToSettleAndAnAcceptClosesItSilently) {
   FrameGate gate(70, 25, 80);
-  DecodedFrame f;
-  f.bits = 1;
-  // A room's tail paired with the next frame's first chord, then that frame's own pair.
-  EXPECT_FALSE(gate.on_candidate(0, 100, std::nullopt));
+  const GateFrame f{3, 1};
+  // A room's tail paired with the next frame's first chord (or the first two chords of an
+  // authenticated frame), then that frame's own chords.
+  EXPECT_FALSE(gate.on_candidate(0, 100, false));
   EXPECT_FALSE(gate.on_time(130)) << "quiet for 30 ms, but not yet settled";
-  EXPECT_TRUE(gate.on_candidate(50, 150, f));
+  EXPECT_TRUE(gate.on_candidate(50, 150, true, f));
   EXPECT_FALSE(gate.on_time(400)) << "the accept closed the cluster: no NACK";
   // A broken frame alone still gets its one NACK, once settled.
-  EXPECT_FALSE(gate.on_candidate(1000, 1100, std::nullopt));
+  EXPECT_FALSE(gate.on_candidate(1000, 1100, false));
   EXPECT_FALSE(gate.on_time(1150));
   const auto nack = gate.on_time(1180);
   ASSERT_TRUE(nack);
@@ -166,18 +167,54 @@ TEST(FrameGate, AFailedClusterWaitsToSettleAndAnAcceptClosesItSilently) {
   EXPECT_FALSE(gate.on_time(1300));
 }
 
-TEST(ReplyCode, EveryReplyIsReadFromAnyThreeOfItsFourBands) {
+TEST(ReplyCode, NamedRepliesDifferInSevenOfTwelveTonesAndAreReadWithAnyThreeLost) {
+  std::mt19937 rng(3);
   for (int r = 0; r <= 16; ++r) {
     const NamedReply reply{r < 16, static_cast<std::uint8_t>(r % 16)};
     const ReplyTones word = reply_codeword(reply);
-    std::array<int, 4> tones{word[0], word[1], word[2], word[3]};
-    EXPECT_EQ(read_reply(tones, 3), reply);
-    for (std::size_t lost = 0; lost < 4; ++lost) {
-      auto three = tones;
-      three[lost] = -1;
-      EXPECT_EQ(read_reply(three, 3), reply) << r << " without band " << lost;
-      three[(lost + 1) % 4] = -1;
-      EXPECT_FALSE(read_reply(three, 3)) << "two bands are not enough";
+    for (int other = 0; other <= 16; ++other) {
+      if (other == r) continue;
+      const ReplyTones w2 = reply_codeword({other < 16, static_cast<std::uint8_t>(other % 16)});
+      int differ = 0;
+      for (std::size_t t = 0; t < word.size(); ++t) differ += word[t] != w2[t];
+      EXPECT_GE(differ, 7) << r << " and " << other;
     }
+    ReplyReading reading{};
+    for (std::size_t t = 0; t < word.size(); ++t) reading[t] = word[t];
+    EXPECT_EQ(read_reply(reading, 9), reply);
+    for (int trial = 0; trial < 50; ++trial) {
+      auto damaged = reading;
+      std::array<int, kReplyTones> order{};
+      std::iota(order.begin(), order.end(), 0);
+      std::shuffle(order.begin(), order.end(), rng);
+      for (int k = 0; k < 3; ++k)  // lost, or read as another tone
+        damaged[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])] =
+            k % 2 ? -1 : (word[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])] + 1) % kReplyToneValues;
+      EXPECT_EQ(read_reply(damaged, 9), reply) << r << " with three tones gone";
+      damaged[static_cast<std::size_t>(order[3])] = -1;
+      EXPECT_FALSE(read_reply(damaged, 9).has_value() && *read_reply(damaged, 9) != reply)
+          << "four tones gone never name another reply";
+    }
+  }
+}
+
+// A tagged ACK spells its tag and is read back only when every tone was heard; its second
+// chord never repeats a band's tone from the first, and every value of the space is a tag.
+TEST(ReplyCode, ATaggedAckSpellsItsTagAndNeedsEveryTone) {
+  std::mt19937 rng(9);
+  std::vector<std::uint32_t> tags = {0u, 1u, kReplyTagSpace - 1, 729u, 728u};
+  for (int i = 0; i < 2000; ++i) tags.push_back(static_cast<std::uint32_t>(rng() % kReplyTagSpace));
+  for (std::uint32_t tag : tags) {
+    const ReplyTones tones = tag_tones(tag);
+    for (std::size_t b = 0; b < 6; ++b) EXPECT_NE(tones[b], tones[b + 6]) << tag;
+    ReplyReading reading{};
+    for (std::size_t t = 0; t < tones.size(); ++t) reading[t] = tones[t];
+    EXPECT_EQ(read_tag(reading), tag);
+    reading[4] = -1;
+    EXPECT_FALSE(read_tag(reading));
+  }
+  for (int r = 0; r <= 16; ++r) {
+    const ReplyTones word = reply_codeword({r < 16, static_cast<std::uint8_t>(r % 16)});
+    for (std::size_t b = 0; b < 6; ++b) EXPECT_NE(word[b], word[b + 6]) << "reply " << r;
   }
 }

@@ -44,7 +44,8 @@ struct TempDir {
 };
 std::chrono::system_clock::time_point at(double seconds_since_2026) {
   return std::chrono::system_clock::time_point(std::chrono::seconds(1767225600)) +
-         std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(seconds_since_2026));
+         std::chrono::duration_cast<std::chrono::system_clock::duration>(
+             std::chrono::duration<double>(seconds_since_2026));
 }
 }  // namespace
 

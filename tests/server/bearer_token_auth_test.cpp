@@ -37,7 +37,7 @@ ServerSecurity with(std::string cert, std::string key, std::string token) {
 }  // namespace
 
 TEST(BearerTokenAuth, ATokenInClearTextIsServedOnLoopbackOnly) {
-  EXPECT_NE(server_credentials({}, "0.0.0.0"), nullptr);                   // plaintext, open
+  EXPECT_NE(server_credentials({}, "127.0.0.1"), nullptr);                 // plaintext, this machine only
   EXPECT_NE(server_credentials(with("", "", "t"), "127.0.0.1"), nullptr);  // local credentials
   try {
     server_credentials(with("", "", "t"), "0.0.0.0");
@@ -50,4 +50,24 @@ TEST(BearerTokenAuth, ATokenInClearTextIsServedOnLoopbackOnly) {
   }
   EXPECT_THROW(server_credentials(with("x", "", ""), "0.0.0.0"), std::invalid_argument);
   EXPECT_THROW(server_credentials(with("", "x", ""), "0.0.0.0"), std::invalid_argument);
+}
+
+// Protected mode: off loopback, only TLS with a token is served unless the risk is named.
+TEST(BearerTokenAuth, AnotherAddressWithoutTlsAndATokenNeedsTheFlagThatNamesTheRisk) {
+  for (const ServerSecurity& open : {ServerSecurity{}, with("cert", "key", "")}) {
+    EXPECT_TRUE(open_to_anyone(open, "0.0.0.0"));
+    try {
+      server_credentials(open, "0.0.0.0");
+      FAIL() << "served 0.0.0.0 to anyone without being told to";
+    } catch (const std::invalid_argument& e) {
+      const std::string text = e.what();
+      for (const char* hint : {"anyone", "--allow-anyone-on-the-network", "--auth-token-file", "--address 127.0.0.1"})
+        EXPECT_NE(text.find(hint), std::string::npos) << hint << " in " << text;
+    }
+  }
+  ServerSecurity allowed;
+  allowed.allow_anyone_on_the_network = true;
+  EXPECT_NE(server_credentials(allowed, "0.0.0.0"), nullptr);
+  EXPECT_FALSE(open_to_anyone({}, "127.0.0.1"));
+  EXPECT_FALSE(open_to_anyone({}, "::1"));
 }

@@ -54,10 +54,12 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   timeline_ = std::make_unique<agent::Timeline>(true);
   agent::AgentOptions agent_options;
   agent_options.profiles = all_profiles();
+  agent_options.link.key = options_.robot_key;
   agent_options.on_frame_heard = [this](const agent::HeardFrame& frame) {
     if (!frame.intact) return;
     std::lock_guard lock(heard_.mutex);
     ++heard_.intact_frames;
+    if (frame.event == link::ReceptionEvent::Refused) ++heard_.refused_frames;
     if (frame.word) heard_.words.push_back(*frame.word);
     if (frame.command) heard_.commands.push_back(command::describe(*frame.command));
   };
@@ -77,9 +79,11 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   server_db.spill_path = ::testing::TempDir() + "/live-system-" + std::to_string(::getpid()) + ".spill";
   store_ = std::make_unique<store::Store>(server_db);
   recorder_of_sends_ = std::make_unique<server::StoreRecorder>(*store_, "test");
-  transmitter_ = std::make_unique<server::Transmitter>(profile, std::move(sender.speaker), std::move(sender.microphone),
-                                                       *recorder_of_sends_,
-                                                       server::TransmitterOptions{.max_queue = options_.max_queue});
+  link::LinkOptions sender_links;
+  sender_links.key = options_.sender_key;
+  transmitter_ = std::make_unique<server::Transmitter>(
+      link::make_links(sender_links), profile, std::move(sender.speaker), std::move(sender.microphone),
+      *recorder_of_sends_, server::TransmitterOptions{.max_queue = options_.max_queue});
   server::ServiceOptions service_options;
   service_options.database = options_.database;
   service_options.defaults.policy = options_.default_policy;
@@ -112,6 +116,11 @@ std::vector<int> LiveSystem::words_heard() {
 int LiveSystem::intact_frames_heard() {
   std::lock_guard lock(heard_.mutex);
   return heard_.intact_frames;
+}
+
+int LiveSystem::refused_frames_heard() {
+  std::lock_guard lock(heard_.mutex);
+  return heard_.refused_frames;
 }
 
 std::vector<std::string> LiveSystem::commands_executed() {

@@ -28,6 +28,10 @@ struct LiveSystemOptions {
   std::size_t max_queue = 32;
   store::DatabaseUrl database = std::string();  // none
   server::Policy default_policy = server::Policy::Fail;
+  // Keys of the sender and of the robot (none: unauthenticated); each side keeps its
+  // counters in memory, the robot's starting with none accepted.
+  std::shared_ptr<const security::LinkKey> sender_key;
+  std::shared_ptr<const security::LinkKey> robot_key;
 };
 
 // What the robot heard, in order: seed words of intact frames, and commands executed.
@@ -35,7 +39,8 @@ struct HeardWords {
   std::mutex mutex;
   std::vector<int> words;
   std::vector<std::string> commands;
-  int intact_frames = 0;  // of every profile, repeats included
+  int intact_frames = 0;   // of every profile, repeats included
+  int refused_frames = 0;  // intact, but refused (authentication, payload)
 };
 
 class LiveSystem {
@@ -49,6 +54,7 @@ class LiveSystem {
   std::vector<int> words_heard();
   std::vector<std::string> commands_executed();
   int intact_frames_heard();
+  int refused_frames_heard();
   agent::Velocity last_velocity();
   // The sound devices go away (a USB sound card unplugged): the room stops.
   void pull_the_plug() { air_.stop(); }

@@ -21,19 +21,32 @@ const store::FrameAttemptRow& attempt_in(const TransmissionRecord::Row& row) {
   return std::get<store::FrameAttemptRow>(row);
 }
 
-ProgressEvent event(Kind kind, int frame_index = 0, int attempt = 0) {
-  ProgressEvent e{kind};
-  e.frame_index = frame_index;
-  e.attempt = attempt;
-  return e;
+// The links the jobs are planned with, one per profile, for the whole test program.
+link::Link& link_of(const LinkProfile& profile) {
+  static const auto links = link::make_links({});
+  for (const auto& l : links) {
+    if (&l->profile() == &profile) return *l;
+  }
+  throw std::invalid_argument(profile.name);
 }
 
 std::unique_ptr<Job> drive_job(const LinkProfile& profile) {
-  const link::Link& link = link::link_for(profile);
-  const command::Command drive = command::DriveForDuration{50, 2};
-  std::uint8_t sequence = 7;
-  return std::make_unique<Job>(link, drive, link.plan(drive, sequence), Policy::Fail, std::chrono::seconds(1),
-                               std::optional<std::string>("run-1"));
+  auto job = std::make_unique<Job>(link_of(profile), command::DriveForDuration{50, 2}, Policy::Fail,
+                                   std::chrono::seconds(1), std::optional<std::string>("run-1"));
+  job->plan();
+  return job;
+}
+
+// An event about frame `frame_index` of `job`, as the transmitter makes it.
+ProgressEvent event(Kind kind, int frame_index = 0, int attempt = 0, const Job* job = nullptr) {
+  ProgressEvent e{kind};
+  e.frame_index = frame_index;
+  e.attempt = attempt;
+  if (job) {
+    e.frame = job->frames().at(static_cast<std::size_t>(frame_index));
+    e.frame_count = job->frame_count();
+  }
+  return e;
 }
 
 }  // namespace
@@ -58,7 +71,7 @@ TEST(StoreRecorder, ACommandWithARetransmissionIsOneCommandRowAndOneRowPerAttemp
   EXPECT_EQ(first.outcome, "queued");
   EXPECT_EQ(first.requested_at, queued.time);
 
-  ProgressEvent sending = event(Kind::Transmitting, 0, 1);
+  ProgressEvent sending = event(Kind::Transmitting, 0, 1, job.get());
   sending.time = queued.time + std::chrono::milliseconds(30);
   rows = record.on_event(*job, sending);
   ASSERT_EQ(rows.size(), 2u);
@@ -69,9 +82,9 @@ TEST(StoreRecorder, ACommandWithARetransmissionIsOneCommandRowAndOneRowPerAttemp
   EXPECT_EQ(attempt1.run_id, "run-1");
   EXPECT_EQ(attempt1.position, 0);
   EXPECT_EQ(attempt1.attempt, 1);
-  EXPECT_EQ(attempt1.frame, job->frames()[0].bits);
-  EXPECT_EQ(attempt1.frame_width, job->frames()[0].bit_count);
-  EXPECT_EQ(attempt1.tones_hz, job->frames()[0].tones_hz);
+  EXPECT_EQ(attempt1.frame, job->frames()[0]->bits.decimal());
+  EXPECT_EQ(attempt1.frame_width, job->frames()[0]->bit_count);
+  EXPECT_EQ(attempt1.tones_hz, job->frames()[0]->tones_hz);
   EXPECT_EQ(attempt1.chord_started_at, sending.time);
   EXPECT_FALSE(attempt1.answer);
 
@@ -84,7 +97,7 @@ TEST(StoreRecorder, ACommandWithARetransmissionIsOneCommandRowAndOneRowPerAttemp
   EXPECT_EQ(attempt_in(rows[0]).chord_ended_at, silence.chord_ended_at);
   EXPECT_FALSE(attempt_in(rows[0]).answered_at);
 
-  rows = record.on_event(*job, event(Kind::Retransmitting, 0, 2));
+  rows = record.on_event(*job, event(Kind::Retransmitting, 0, 2, job.get()));
   ASSERT_EQ(rows.size(), 1u);  // the command is already transmitting
   const store::FrameAttemptRow attempt2 = attempt_in(rows[0]);
   EXPECT_NE(attempt2.id, attempt1.id);

@@ -9,6 +9,7 @@
 #include <new>
 
 #include "command/test_sequence.h"
+#include "link/frame_admission.h"
 #include "link/hop_frame_path.h"
 #include "link/link.h"
 #include "link/sender_path.h"
@@ -99,19 +100,29 @@ TEST(ListenerAllocation, TheSendersListenerAllocatesNothingWhileHearingAnswers) 
   EXPECT_EQ(heard, 20u);
 }
 
-// The fast profile's robot path (listener, Reed-Solomon, gate, payload) and the sender's reply
-// listener: the seed sequence's 27 commands as fast frames, then 17 named replies.
+// The fast profile's robot path (listener, Reed-Solomon, gate, MAC check) and the sender's
+// reply listener: the seed sequence's 27 commands as fast frames, unauthenticated and then
+// authenticated (with the synchronisation before them), then 17 named replies.
 TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFramesAndReplies) {
   const LinkProfile& profile = fast_profile();
-  const link::Link& fast = link::link_for(profile);
+  link::LinkOptions keyed;
+  keyed.key = security::LinkKey::generate();
+  const auto plain = link::make_link(profile);
+  const auto sealed = link::make_link(profile, keyed);
+  link::LinkOptions robot_options = keyed;
+  robot_options.counters = std::make_shared<security::MemoryCounterStore>();
+  link::FrameAdmission robot(profile, robot_options);
   std::vector<float> audio;
-  std::uint8_t seq = 0;
   std::size_t sent = 0;
-  for (const auto& command : command::seed_test_sequence()) {
-    const auto f = fast.plan(command, seq).front().audio;
-    audio.insert(audio.end(), f.begin(), f.end());
-    audio.resize(audio.size() + 4800, 0.0f);  // the ACK's time
-    ++sent;
+  for (link::Link* l : {plain.get(), sealed.get()}) {
+    for (const auto& command : command::seed_test_sequence()) {
+      for (const auto& f : l->plan(command)) {
+        l->confirmed(f);
+        audio.insert(audio.end(), f.audio.begin(), f.audio.end());
+        audio.resize(audio.size() + 4800, 0.0f);  // the ACK's time
+        ++sent;
+      }
+    }
   }
   physical::NoiseSource noise(physical::parse_noise("pink", -40), profile.sample_rate_hz, 7);
   noise.add_to(audio);
@@ -123,11 +134,8 @@ TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFram
     replies.resize(replies.size() + 2400, 0.0f);
   }
   for (std::size_t block : {std::size_t{480}, std::size_t{2400}, std::size_t{4096}}) {
-    link::HopFramePath path(profile);
-    signal::HopReplyListener reply_listener(profile, [](const std::array<int, 4>& tones) {
-      const auto r = reliability::read_reply(tones, 3);
-      return r ? (r->ack ? r->sequence : 16) : -1;
-    });
+    link::HopFramePath path(profile, [&](const reliability::FrameBits& bits) { return robot.authentic(bits); });
+    signal::HopReplyListener reply_listener(profile, profile.hops.reply_tones_needed);
     std::size_t frames = 0, answers = 0;
     const long before = g_allocations.load();
     for (std::size_t at = 0; at < audio.size(); at += block) {
@@ -139,6 +147,6 @@ TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFram
     }
     EXPECT_EQ(g_allocations.load() - before, 0) << "block " << block;
     EXPECT_EQ(frames, sent) << "block " << block;
-    EXPECT_EQ(answers, 17u) << "block " << block;
+    EXPECT_GE(answers, 17u) << "block " << block;  // a reply's readings: one per window that hears it
   }
 }

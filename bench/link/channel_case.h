@@ -1,0 +1,23 @@
+// A benchmark case: a name and the channel flags of `dtmfctl simulate` (common/channel_flags.h),
+// e.g. "seminar 3 m=--rir bench/rirs/seminar_room_clap.wav --distance 3 --noise pink
+// --noise-dbfs -50", read through the same parser as dtmfctl's, so a case can be heard by ear
+// with `dtmfctl simulate` and the same flags.
+#pragma once
+
+#include <string>
+
+#include "channel_flags.h"
+
+namespace dtmf::bench {
+
+struct ChannelCase {
+  std::string name;
+  std::string flags;
+};
+
+// "NAME=FLAGS"; throws std::invalid_argument saying how to write one.
+ChannelCase parse_channel_case(const std::string& text);
+// The case's flags as dtmfctl simulate reads them; throws std::invalid_argument naming the case.
+program::ChannelSetup channel_setup_of(const ChannelCase& c);
+
+}  // namespace dtmf::bench
