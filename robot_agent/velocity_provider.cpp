@@ -1,7 +1,7 @@
 #include "velocity_provider.h"
+#include "command/overloaded.h"
 
 #include <cstdio>
-#include <type_traits>
 
 namespace dtmf::agent {
 
@@ -29,32 +29,25 @@ Velocity VelocityProvider::turn(double rotation_percent) const {
 }
 
 void VelocityProvider::apply(const command::Command& command, double now_s) {
-  std::visit(
-      [&](const auto& c) {
-        using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, command::Reset>) {
-          return;
-        } else if constexpr (std::is_same_v<T, command::Stop>) {
-          stop();
-        } else if constexpr (std::is_same_v<T, command::DriveForDuration>) {
-          velocity_ = drive(c.speed_percent);
-          state_ = MotionState::Duration;
-          end_s_ = now_s + c.duration_s;
-        } else if constexpr (std::is_same_v<T, command::TurnForDuration>) {
-          velocity_ = turn(c.rotation_percent);
-          state_ = MotionState::Duration;
-          end_s_ = now_s + c.duration_s;
-        } else if constexpr (std::is_same_v<T, command::DriveForward>) {
-          velocity_ = drive(c.speed_percent);
-          state_ = MotionState::Continuous;
-          end_s_ = now_s + continuous_limit_s_;
-        } else if constexpr (std::is_same_v<T, command::Turn>) {
-          velocity_ = turn(c.rotation_percent);
-          state_ = MotionState::Continuous;
-          end_s_ = now_s + continuous_limit_s_;
-        }
-      },
-      command);
+  const auto move = [&](Velocity v, MotionState state, double for_s) {
+    velocity_ = v;
+    state_ = state;
+    end_s_ = now_s + for_s;
+  };
+  std::visit(command::Overloaded{[](const command::Reset&) {}, [&](const command::Stop&) { stop(); },
+                                 [&](const command::DriveForDuration& c) {
+                                   move(drive(c.speed_percent), MotionState::Duration, c.duration_s);
+                                 },
+                                 [&](const command::TurnForDuration& c) {
+                                   move(turn(c.rotation_percent), MotionState::Duration, c.duration_s);
+                                 },
+                                 [&](const command::DriveForward& c) {
+                                   move(drive(c.speed_percent), MotionState::Continuous, continuous_limit_s_);
+                                 },
+                                 [&](const command::Turn& c) {
+                                   move(turn(c.rotation_percent), MotionState::Continuous, continuous_limit_s_);
+                                 }},
+             command);
 }
 
 void VelocityProvider::stop() {

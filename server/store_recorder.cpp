@@ -1,4 +1,5 @@
 #include "store_recorder.h"
+#include "command/overloaded.h"
 
 namespace dtmf::server {
 
@@ -12,13 +13,20 @@ store::CommandRow command_row(const Job& job, const std::string& host, store::Wa
   row.run_id = job.run_id();
   row.kind = command::kind_name(job.command());
   row.parameters = nlohmann::json::object();
-  std::visit(
-      [&](const auto& c) {
-        if constexpr (requires { c.speed_percent; }) row.parameters["speed_percent"] = c.speed_percent;
-        if constexpr (requires { c.rotation_percent; }) row.parameters["rotation_percent"] = c.rotation_percent;
-        if constexpr (requires { c.duration_s; }) row.parameters["duration_s"] = c.duration_s;
-      },
-      job.command());
+  auto& p = row.parameters;
+  // Every alternative named: a new command that is not stored is a compile error here.
+  std::visit(command::Overloaded{[](const command::Reset&) {}, [](const command::Stop&) {},
+                                 [&](const command::DriveForDuration& c) {
+                                   p["speed_percent"] = c.speed_percent;
+                                   p["duration_s"] = c.duration_s;
+                                 },
+                                 [&](const command::TurnForDuration& c) {
+                                   p["rotation_percent"] = c.rotation_percent;
+                                   p["duration_s"] = c.duration_s;
+                                 },
+                                 [&](const command::DriveForward& c) { p["speed_percent"] = c.speed_percent; },
+                                 [&](const command::Turn& c) { p["rotation_percent"] = c.rotation_percent; }},
+             job.command());
   row.profile = job.profile().name;
   row.frame_count = job.frame_count();
   row.requested_at = requested_at;

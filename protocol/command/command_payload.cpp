@@ -1,7 +1,7 @@
 #include "command/command_payload.h"
+#include "command/overloaded.h"
 
 #include <cstdio>
-#include <type_traits>
 
 namespace dtmf::command {
 
@@ -19,24 +19,21 @@ std::uint32_t pack(PayloadKind kind, Word a, Word b) {
 
 std::uint32_t encode_payload(const Command& command) {
   return std::visit(
-      [](const auto& c) -> std::uint32_t {
-        using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, Reset>) {
-          return pack(PayloadKind::Reset, 0, 0);
-        } else if constexpr (std::is_same_v<T, Stop>) {
-          return pack(PayloadKind::Stop, 0, 0);
-        } else if constexpr (std::is_same_v<T, DriveForDuration>) {
-          return pack(PayloadKind::DriveForDuration, encode_field(kSpeedField12, c.speed_percent),
-                      encode_field(kDurationField12, c.duration_s));
-        } else if constexpr (std::is_same_v<T, TurnForDuration>) {
-          return pack(PayloadKind::TurnForDuration, encode_field(kRotationField12, c.rotation_percent),
-                      encode_field(kDurationField12, c.duration_s));
-        } else if constexpr (std::is_same_v<T, DriveForward>) {
-          return pack(PayloadKind::DriveForward, encode_field(kSpeedField12, c.speed_percent), 0);
-        } else {
-          return pack(PayloadKind::Turn, encode_field(kRotationField12, c.rotation_percent), 0);
-        }
-      },
+      Overloaded{
+          [](const Reset&) { return pack(PayloadKind::Reset, 0, 0); },
+          [](const Stop&) { return pack(PayloadKind::Stop, 0, 0); },
+          [](const DriveForDuration& c) {
+            return pack(PayloadKind::DriveForDuration, encode_field(kSpeedField12, c.speed_percent),
+                        encode_field(kDurationField12, c.duration_s));
+          },
+          [](const TurnForDuration& c) {
+            return pack(PayloadKind::TurnForDuration, encode_field(kRotationField12, c.rotation_percent),
+                        encode_field(kDurationField12, c.duration_s));
+          },
+          [](const DriveForward& c) {
+            return pack(PayloadKind::DriveForward, encode_field(kSpeedField12, c.speed_percent), 0);
+          },
+          [](const Turn& c) { return pack(PayloadKind::Turn, encode_field(kRotationField12, c.rotation_percent), 0); }},
       command);
 }
 

@@ -1,8 +1,8 @@
 #include "command/word_codec.h"
+#include "command/overloaded.h"
 
 #include <cmath>
 #include <cstdio>
-#include <type_traits>
 
 namespace dtmf::command {
 
@@ -64,22 +64,13 @@ struct ParameterEncoder {
 };
 
 std::optional<Mode> mode_of(const Command& command) {
+  using M = std::optional<Mode>;
   return std::visit(
-      [](const auto& c) -> std::optional<Mode> {
-        using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, Reset>)
-          return std::nullopt;
-        else if constexpr (std::is_same_v<T, DriveForDuration>)
-          return Mode::DriveForDuration;
-        else if constexpr (std::is_same_v<T, TurnForDuration>)
-          return Mode::TurnForDuration;
-        else if constexpr (std::is_same_v<T, DriveForward>)
-          return Mode::DriveForward;
-        else if constexpr (std::is_same_v<T, Turn>)
-          return Mode::Turn;
-        else
-          return Mode::Stop;
-      },
+      Overloaded{[](const Reset&) -> M { return std::nullopt; },
+                 [](const DriveForDuration&) -> M { return Mode::DriveForDuration; },
+                 [](const TurnForDuration&) -> M { return Mode::TurnForDuration; },
+                 [](const DriveForward&) -> M { return Mode::DriveForward; },
+                 [](const Turn&) -> M { return Mode::Turn; }, [](const Stop&) -> M { return Mode::Stop; }},
       command);
 }
 
