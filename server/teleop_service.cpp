@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command/test_sequence.h"
+#include "command/word_codec.h"
 
 namespace dtmf::server {
 
@@ -103,11 +104,16 @@ template <class Write>
 grpc::Status TeleopService::run_command(grpc::ServerContext* context, const command::Command& command,
                                         const v1::CommandOptions& request_options, bool to_front, Write write) {
   std::shared_ptr<Job> job;
+  std::string profile = transmitter_.profile().name;
   try {
     const CommandSettings settings = settings_of(request_options);
+    if (settings.profile) profile = settings.profile->name;
     job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile);
   } catch (const RequestError& e) {
     return e.status();
+  } catch (const command::ParameterError& e) {
+    // The chosen profile's frames cannot carry the command (its fields, or its kind).
+    return {grpc::StatusCode::INVALID_ARGUMENT, "profile " + profile + ": " + e.what()};
   } catch (const QueueFull& e) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
   } catch (const TransmitterUnavailable& e) {
