@@ -47,8 +47,8 @@ class FastReceiver final : public FrameReceiver {
 // Readings of the reply's twelve tones -> answers. Unkeyed, named replies: ACK(sequence) or
 // NACK, counted once two windows in a row read the same (a window straddling a chord's start
 // reads a tone or two wrong). Keyed, a NACK so, and every reading of kTagTonesNeeded tones or
-// more as a tagged ACK whose tones the transmitter checks against the tag it waits for
-// (Link::answers): one window may be the only one a notch leaves clear. The same answer
+// more as a tagged ACK whose tones the sender checks against the tag it waits for, within its
+// guess budget (link/answer_wait.h): one window may be the only one a notch leaves clear. The same answer
 // again within a reply's length is that reply, passed once.
 class FastAnswerListener final : public AnswerListener {
  public:

@@ -1,5 +1,5 @@
 // Signal layer: the sender's listener for the fast profile's replies — audio in, readings of
-// the reply's ten tones out.
+// the reply's twelve tones out.
 //
 // A reply is two chords, each one tone in each of six bands of 4 tones 125 Hz apart
 // (0.56-3.44 kHz, below the chords, so the robot may answer while a chord sounds), read in
