@@ -25,6 +25,11 @@ namespace {
 // Offline recordings leave each frame the time its answer takes, as a sender would.
 constexpr double kAnswerWaitMs = 100;
 
+// The tag the ACK to an authenticated frame spells: both sides reduce it alike.
+std::uint32_t reply_tag(const security::LinkKey& key, const security::FrameMacInput& input, std::uint32_t mac) {
+  return security::answer_tag(key, input, mac) % reliability::kReplyTagSpace;
+}
+
 class FastReceiver final : public FrameReceiver {
  public:
   FastReceiver(const LinkProfile& profile, const LinkOptions& options)
@@ -138,7 +143,7 @@ TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation
   f.authenticated = true;
   f.synchronisation = synchronisation;
   f.counter = counter;
-  f.answer_tag = security::answer_tag(*options_.key, input, frame.mac) % reliability::kReplyTagSpace;
+  f.answer_tag = reply_tag(*options_.key, input, frame.mac);
   const auto symbols = reliability::encode_sealed_symbols(f.bits);
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
@@ -202,7 +207,7 @@ std::vector<float> FastLink::answer_audio(const Reception& r) const {
   if (r.acknowledged() && r.counter && options_.key) {
     const auto input = sealed_mac_input(r.bits, *r.counter);
     const std::uint32_t mac = reliability::unpack_sealed(r.bits)->mac;
-    tones = reliability::tag_tones(security::answer_tag(*options_.key, input, mac) % reliability::kReplyTagSpace);
+    tones = reliability::tag_tones(reply_tag(*options_.key, input, mac));
   } else if (r.acknowledged()) {
     tones = reliability::reply_codeword({true, r.sequence.value_or(0)});
   }

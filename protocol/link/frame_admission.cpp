@@ -19,10 +19,25 @@ void refuse(Reception& r, RefusalReason reason, std::string why) {
 
 }  // namespace
 
+namespace {
+
+security::FrameMacInput mac_input(const reliability::SealedFrame& f, std::uint64_t counter) {
+  return {f.address, static_cast<std::uint8_t>(f.form), counter, f.payload};
+}
+
+// The counter a frame stands for, after the last accepted: a synchronisation carries all of
+// it, a command its low bits (security/freshness.h).
+std::uint64_t completed_counter(const reliability::SealedFrame& f, std::uint64_t last_accepted) {
+  return f.form == reliability::SealedForm::Sync
+             ? f.counter
+             : security::complete_counter(last_accepted, static_cast<std::uint32_t>(f.counter));
+}
+
+}  // namespace
+
 security::FrameMacInput sealed_mac_input(const reliability::FrameBits& bits, std::uint64_t counter) {
   const auto f = reliability::unpack_sealed(bits);
-  if (!f) return {};
-  return {f->address, static_cast<std::uint8_t>(f->form), counter, f->payload};
+  return f ? mac_input(*f, counter) : security::FrameMacInput{};
 }
 
 FrameAdmission::FrameAdmission(const LinkProfile& profile, const LinkOptions& options)
@@ -70,18 +85,14 @@ void FrameAdmission::admit_plain(Reception& r) {
     r.detail = "repeat, not executed again";
     return;
   }
-  take_payload(r, frame.payload);
+  take_command(r, *decoded.command);
 }
 
 bool FrameAdmission::authentic(const reliability::FrameBits& bits) const {
   const auto frame = reliability::unpack_sealed(bits);
   if (!frame || !options_.key) return false;
-  const std::uint64_t counter =
-      frame->form == reliability::SealedForm::Sync
-          ? frame->counter
-          : security::complete_counter(options_.counters->last_accepted(), static_cast<std::uint32_t>(frame->counter));
-  const security::FrameMacInput input{frame->address, static_cast<std::uint8_t>(frame->form), counter, frame->payload};
-  return security::frame_mac(*options_.key, input) == frame->mac;
+  const std::uint64_t counter = completed_counter(*frame, options_.counters->last_accepted());
+  return security::frame_mac(*options_.key, mac_input(*frame, counter)) == frame->mac;
 }
 
 void FrameAdmission::admit_sealed(Reception& r) {
@@ -92,12 +103,9 @@ void FrameAdmission::admit_sealed(Reception& r) {
   }
   security::CounterStore& counters = *options_.counters;
   const std::uint64_t last = counters.last_accepted();
-  const bool sync = frame.form == reliability::SealedForm::Sync;
-  const std::uint64_t counter =
-      sync ? frame.counter : security::complete_counter(last, static_cast<std::uint32_t>(frame.counter));
+  const std::uint64_t counter = completed_counter(frame, last);
   r.counter = counter;
-  const security::FrameMacInput input{frame.address, static_cast<std::uint8_t>(frame.form), counter, frame.payload};
-  if (security::frame_mac(*options_.key, input) != frame.mac) {
+  if (security::frame_mac(*options_.key, mac_input(frame, counter)) != frame.mac) {
     refuse(r, RefusalReason::Authentication,
            "its MAC fails for counter " + std::to_string(counter) +
                ": forged, captured before the last frame accepted, or made under another key");
@@ -119,7 +127,7 @@ void FrameAdmission::admit_sealed(Reception& r) {
   }
   counters.accept(counter);  // kept before the frame acts or is answered
   r.authenticated = true;
-  if (sync) {
+  if (frame.form == reliability::SealedForm::Sync) {
     r.event = ReceptionEvent::Synchronised;
     r.detail = "counter synchronised at " + std::to_string(counter);
     return;
@@ -129,11 +137,11 @@ void FrameAdmission::admit_sealed(Reception& r) {
     refuse(r, RefusalReason::Payload, decoded.error);
     return;
   }
-  take_payload(r, frame.payload);
+  take_command(r, *decoded.command);
 }
 
-void FrameAdmission::take_payload(Reception& r, std::uint32_t payload) {
-  r.command = command::decode_payload(payload).command;
+void FrameAdmission::take_command(Reception& r, const command::Command& command) {
+  r.command = command;
   r.event = ReceptionEvent::Command;
   r.detail = command::describe(*r.command);
 }

@@ -34,7 +34,7 @@ class FrameAdmission {
  private:
   void admit_plain(Reception& r);
   void admit_sealed(Reception& r);
-  void take_payload(Reception& r, std::uint32_t payload);
+  void take_command(Reception& r, const command::Command& command);
 
   const LinkProfile& profile_;
   LinkOptions options_;
