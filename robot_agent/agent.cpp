@@ -44,13 +44,13 @@ void Agent::process(std::span<const float> samples, double queued_ms) {
   publish_until(audio_ms());
 }
 
-void Agent::execute(const command::Command& command, double heard_ms, store::ReceptionRow& row) {
+void Agent::execute(const command::Command& command, double start_ms, double heard_ms, store::ReceptionRow& row) {
   // Catch up the publish ticks before the command, so it takes effect from its own time.
   publish_until(heard_ms, false);
-  provider_.apply(command, heard_ms / 1000.0);
+  provider_.apply(command, heard_ms / 1000.0, start_ms / 1000.0);
   row.command = command::describe(command);
-  row.linear_mps = provider_.velocity().linear_mps;
-  row.angular_rps = provider_.velocity().angular_rps;
+  row.linear_mps = provider_.target().linear_mps;
+  row.angular_rps = provider_.target().angular_rps;
 }
 
 void Agent::told(const HeardFrame& frame) const {
@@ -114,7 +114,7 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
     return;
   }
   if (r.command) {
-    execute(*r.command, r.heard_ms, row);
+    execute(*r.command, r.start_ms, r.heard_ms, row);
     heard.command = r.command;
   }
   spdlog::info("t={:.3f}s {} frame {}{}{}{}: ACK ({}), {}", r.heard_ms / 1000.0, profile.name, bits, number,
@@ -141,9 +141,10 @@ void Agent::publish_until(double audio_ms, bool inclusive) {
 }
 
 void Agent::finish(const std::function<void()>& after_block) {
-  // A timed motion still running at the end of the recording runs out as if in silence.
+  // A timed or leased motion still running at the end of the recording runs out as if in
+  // silence.
   const std::vector<float> silence(static_cast<std::size_t>(block_samples_), 0.0f);
-  while (provider_.state() == MotionState::Duration) {
+  while (provider_.changing_by_itself()) {
     process(silence);
     if (after_block) after_block();
   }

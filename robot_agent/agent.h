@@ -84,7 +84,7 @@ struct AgentOptions {
   std::vector<const LinkProfile*> profiles{&seed_profile()};
   // The key, the counters and this robot's address (dtmf-agent --key, --state-dir, --address).
   link::LinkOptions link;
-  RobotModel model = burger();
+  command::RobotModel model = command::burger();
   double publish_rate_hz = 20;
   double continuous_limit_s = 30;
   std::string host;  // for the receptions rows
@@ -115,7 +115,7 @@ class Agent {
  private:
   void on_reception(const link::Link& link, const link::Reception& reception);
   // The command takes effect from `heard_ms`; the row gets the velocity it set.
-  void execute(const command::Command& command, double heard_ms, store::ReceptionRow& row);
+  void execute(const command::Command& command, double start_ms, double heard_ms, store::ReceptionRow& row);
   void told(const HeardFrame& frame) const;
   // Publishes every tick up to audio_ms (including a tick at exactly audio_ms if inclusive).
   void publish_until(double audio_ms, bool inclusive = true);

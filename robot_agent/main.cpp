@@ -91,7 +91,7 @@ int run(const Flags& f) {
   for (const std::string& name : f.profiles) profiles.push_back(&profile_by_name(name));
   if (profiles.empty()) profiles = all_profiles();
   const LinkProfile& profile = *profiles.front();  // all share its sample rate (Agent checks)
-  const agent::RobotModel& model = agent::robot_model_by_name(f.robot);
+  const command::RobotModel& model = command::robot_model_by_name(f.robot);
   const bool offline = physical::is_file_spec(f.audio);
 
   // Everything that can be missing is checked before the robot could move: the key first.

@@ -25,7 +25,12 @@ store::CommandRow command_row(const Job& job, const std::string& host, store::Wa
                                    p["duration_s"] = c.duration_s;
                                  },
                                  [&](const command::DriveForward& c) { p["speed_percent"] = c.speed_percent; },
-                                 [&](const command::Turn& c) { p["rotation_percent"] = c.rotation_percent; }},
+                                 [&](const command::Turn& c) { p["rotation_percent"] = c.rotation_percent; },
+                                 [&](const command::Velocity& c) {
+                                   p["linear_fraction"] = c.linear_fraction;
+                                   p["angular_fraction"] = c.angular_fraction;
+                                   p["lease_s"] = c.lease_s;
+                                 }},
              job.command());
   row.profile = job.profile().name;
   row.frame_count = job.frame_count();

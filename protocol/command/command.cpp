@@ -31,9 +31,9 @@ std::optional<Mode> mode_from_word(Word word) {
 
 namespace {
 
-std::string format(const char* fmt, double a, double b = 0) {
+std::string format(const char* fmt, double a, double b = 0, double c = 0) {
   char buf[96];
-  std::snprintf(buf, sizeof buf, fmt, a, b);
+  std::snprintf(buf, sizeof buf, fmt, a, b, c);
   return buf;
 }
 
@@ -48,6 +48,10 @@ struct Describer {
   }
   std::string operator()(const DriveForward& c) const { return format("drive_forward speed=%.2f%%", c.speed_percent); }
   std::string operator()(const Turn& c) const { return format("turn rotation=%.2f%%", c.rotation_percent); }
+  std::string operator()(const Velocity& c) const {
+    return format("velocity linear=%+.1f%% angular=%+.1f%% lease=%.2fs", 100 * c.linear_fraction,
+                  100 * c.angular_fraction, c.lease_s);
+  }
 };
 
 struct KindNamer {
@@ -57,6 +61,7 @@ struct KindNamer {
   std::string operator()(const TurnForDuration&) const { return mode_name(Mode::TurnForDuration); }
   std::string operator()(const DriveForward&) const { return mode_name(Mode::DriveForward); }
   std::string operator()(const Turn&) const { return mode_name(Mode::Turn); }
+  std::string operator()(const Velocity&) const { return "velocity"; }
 };
 
 }  // namespace

@@ -44,16 +44,25 @@ struct Turn {
   double rotation_percent = 0;  // -100..100, until the next command
 };
 struct Stop {};
+// Live driving (teleop): linear and angular speed together, as fractions of the robot's
+// limits (positive: forward, and left / counter-clockwise), held for lease_s unless a newer
+// Velocity renews it; then the robot stops by itself. Only profiles with whole-command
+// frames carry it (fast); the seed's words cannot.
+struct Velocity {
+  double linear_fraction = 0;   // -1..1 of the robot's top speed
+  double angular_fraction = 0;  // -1..1 of its top turn rate
+  double lease_s = 1.0;         // 0.3..2
+};
 
-using Command = std::variant<Reset, DriveForDuration, TurnForDuration, DriveForward, Turn, Stop>;
+using Command = std::variant<Reset, DriveForDuration, TurnForDuration, DriveForward, Turn, Stop, Velocity>;
 
 // "drive_for_duration" etc.; the names used in logs, JSON and docs.
 std::string mode_name(Mode mode);
 // The mode a word names, if it names one.
 std::optional<Mode> mode_from_word(Word word);
-// "drive_for_duration speed=50.0% duration=3.00s"
+// "drive_for_duration speed=50.0% duration=3.00s", "velocity linear=+25.0% angular=-10.0% lease=1.00s"
 std::string describe(const Command& command);
-// "reset", "drive_for_duration", ...
+// "reset", "drive_for_duration", ..., "velocity"
 std::string kind_name(const Command& command);
 
 }  // namespace dtmf::command

@@ -33,7 +33,13 @@ std::uint32_t encode_payload(const Command& command) {
           [](const DriveForward& c) {
             return pack(PayloadKind::DriveForward, encode_field(kSpeedField12, c.speed_percent), 0);
           },
-          [](const Turn& c) { return pack(PayloadKind::Turn, encode_field(kRotationField12, c.rotation_percent), 0); }},
+          [](const Turn& c) { return pack(PayloadKind::Turn, encode_field(kRotationField12, c.rotation_percent), 0); },
+          [](const Velocity& c) {
+            const Word angular = encode_field(kAngularFraction8, c.angular_fraction);
+            const Word lease = encode_field_at_most(kLeaseField4, c.lease_s);
+            return pack(PayloadKind::Velocity, encode_field(kLinearFraction12, c.linear_fraction),
+                        static_cast<Word>((angular << kLeaseField4.bits) | lease));
+          }},
       command);
 }
 
@@ -69,7 +75,13 @@ ParameterDecode decode_payload(std::uint32_t payload) {
       if (drive) return {DriveForward{*value}, {}};
       return {Turn{*value}, {}};
     }
-    case PayloadKind::Velocity:
+    case PayloadKind::Velocity: {
+      const auto linear = decode_field(kLinearFraction12, a);
+      const auto angular = decode_field(kAngularFraction8, static_cast<Word>(b >> kLeaseField4.bits));
+      const auto lease = decode_field(kLeaseField4, static_cast<Word>(b & ((1u << kLeaseField4.bits) - 1)));
+      if (!linear || !angular || !lease) return refuse("VELOCITY without a valid linear, angular or lease field");
+      return {Velocity{*linear, *angular, *lease}, {}};
+    }
     case PayloadKind::Extended:
       return refuse("a kind this robot does not know yet (reserved)");
   }

@@ -2,11 +2,17 @@
 // seed profile spells commands as words instead).
 //
 //   bits 26..24  kind: 0 RESET, 1 STOP, 2 DRIVE_FOR_DURATION, 3 TURN_FOR_DURATION,
-//                4 DRIVE_FORWARD, 5 TURN; 6 and 7 reserved (docs/protocol.md §10: a velocity
-//                command with a lease, and the header of a long, authenticated frame)
-//   bits 23..12  field A: speed_percent or rotation_percent, 12 bits (code 0 unused)
-//   bits 11..0   field B: duration_s, 12 bits, for the *_FOR_DURATION kinds; else 0
+//                4 DRIVE_FORWARD, 5 TURN, 6 VELOCITY; 7 reserved (docs/protocol.md §10: the
+//                header of a long frame)
+//   bits 23..12  field A: speed_percent or rotation_percent, 12 bits (code 0 unused);
+//                VELOCITY: linear_fraction -1..1, 12 bits (code 2048 is exactly zero)
+//   bits 11..0   field B: duration_s, 12 bits, for the *_FOR_DURATION kinds; else 0;
+//                VELOCITY: angular_fraction -1..1 in bits 11..4 (8 bits, code 128 is zero)
+//                and lease_s 0.3..2 in bits 3..0 (4 bits)
 //
+// VELOCITY's steps: 1/2047 of the top speed (0.0001 m/s on a Burger) and 1/127 of the top
+// turn rate (0.022 rad/s), finer than turtlebot3_teleop's 0.01 m/s and 0.1 rad/s; the lease
+// in 14 steps of about 0.12 s.
 // Every field has the 12-bit resolution of the seed's DRIVE_FORWARD word, duration included
 // (8 s in 4094 steps of about 2 ms). A payload decodes only when its kind is a command and
 // every field is either a valid code or, where the kind has no such field, zero — so a
@@ -21,6 +27,14 @@ namespace dtmf::command {
 
 inline constexpr int kPayloadBits = 27;
 inline constexpr FieldSpec kDurationField12{"duration_s", 0.0, 8.0, 12};
+inline constexpr FieldSpec kLinearFraction12{"linear_fraction", -1.0, 1.0, 12};
+inline constexpr FieldSpec kAngularFraction8{"angular_fraction", -1.0, 1.0, 8};
+// A lease field carries 0.25..2 s in steps of 0.125 s (15 codes), so that 0.5, 1 and 2 s are
+// exact; a lease in between is carried rounded down (encode_field_at_most): the robot never
+// holds a velocity longer than its sender asked. Senders ask for kMinLease_s..kMaxLease_s.
+inline constexpr FieldSpec kLeaseField4{"lease_s", 0.25, 2.0, 4};
+inline constexpr double kMinLease_s = 0.3;
+inline constexpr double kMaxLease_s = 2.0;
 
 enum class PayloadKind : std::uint8_t {
   Reset = 0,
@@ -29,7 +43,7 @@ enum class PayloadKind : std::uint8_t {
   TurnForDuration = 3,
   DriveForward = 4,
   Turn = 5,
-  Velocity = 6,  // reserved
+  Velocity = 6,
   Extended = 7,  // reserved
 };
 

@@ -1,5 +1,6 @@
 // Command abstraction layer: a random valid command (seeded), for benchmarks and tests that
-// need commands of every kind with parameters drawn over their whole ranges.
+// need commands of every kind (Velocity included: a teleop session's frames) with parameters
+// drawn over their whole ranges.
 #pragma once
 
 #include <random>

@@ -29,7 +29,10 @@ ParameterError::ParameterError(std::string field, const std::string& message)
 
 double field_step(const FieldSpec& field) { return (field.max - field.min) / static_cast<double>(max_code(field) - 1); }
 
-Word encode_field(const FieldSpec& field, double value) {
+namespace {
+
+// Throws ParameterError naming the field unless `value` lies in its range.
+void check_in_range(const FieldSpec& field, double value) {
   if (!std::isfinite(value)) {
     throw ParameterError(field.name, std::string(field.name) + " must be a number in " + range_text(field) + ", got " +
                                          std::to_string(value));
@@ -39,7 +42,20 @@ Word encode_field(const FieldSpec& field, double value) {
     std::snprintf(buf, sizeof buf, "%s %g is out of range: allowed %s", field.name, value, range_text(field).c_str());
     throw ParameterError(field.name, buf);
   }
+}
+
+}  // namespace
+
+Word encode_field(const FieldSpec& field, double value) {
+  check_in_range(field, value);
   const double steps = std::round((value - field.min) / field_step(field));
+  return static_cast<Word>(1 + static_cast<Word>(steps));
+}
+
+Word encode_field_at_most(const FieldSpec& field, double value) {
+  check_in_range(field, value);
+  // A hair under a step is that step: 1.0 s must not become 0.875 s through rounding error.
+  const double steps = std::floor((value - field.min) / field_step(field) + 1e-9);
   return static_cast<Word>(1 + static_cast<Word>(steps));
 }
 
@@ -61,17 +77,22 @@ struct ParameterEncoder {
   }
   std::optional<Word> operator()(const DriveForward& c) const { return encode_field(kSpeedField12, c.speed_percent); }
   std::optional<Word> operator()(const Turn& c) const { return encode_field(kRotationField12, c.rotation_percent); }
+  [[noreturn]] std::optional<Word> operator()(const Velocity&) const {
+    throw ParameterError("profile",
+                         "a velocity command needs a profile with whole-command frames (fast); the seed profile's "
+                         "12-bit words cannot carry it");
+  }
 };
 
 std::optional<Mode> mode_of(const Command& command) {
   using M = std::optional<Mode>;
-  return std::visit(
-      Overloaded{[](const Reset&) -> M { return std::nullopt; },
-                 [](const DriveForDuration&) -> M { return Mode::DriveForDuration; },
-                 [](const TurnForDuration&) -> M { return Mode::TurnForDuration; },
-                 [](const DriveForward&) -> M { return Mode::DriveForward; },
-                 [](const Turn&) -> M { return Mode::Turn; }, [](const Stop&) -> M { return Mode::Stop; }},
-      command);
+  return std::visit(Overloaded{[](const Reset&) -> M { return std::nullopt; },
+                               [](const DriveForDuration&) -> M { return Mode::DriveForDuration; },
+                               [](const TurnForDuration&) -> M { return Mode::TurnForDuration; },
+                               [](const DriveForward&) -> M { return Mode::DriveForward; },
+                               [](const Turn&) -> M { return Mode::Turn; }, [](const Stop&) -> M { return Mode::Stop; },
+                               [](const Velocity&) -> M { return std::nullopt; }},
+                    command);
 }
 
 }  // namespace

@@ -45,6 +45,8 @@ class ParameterError : public std::invalid_argument {
 double field_step(const FieldSpec& field);
 // value -> code in 1 .. 2^bits - 1 (nearest); throws ParameterError.
 Word encode_field(const FieldSpec& field, double value);
+// The same, rounded down to the code at or below `value` (for bounds that must not grow).
+Word encode_field_at_most(const FieldSpec& field, double value);
 // code -> value; codes outside 1 .. 2^bits - 1 give std::nullopt.
 std::optional<double> decode_field(const FieldSpec& field, Word code);
 

@@ -7,7 +7,8 @@
 
 namespace dtmf::agent {
 
-SimTurtlebot::SimTurtlebot(RobotModel model, Report report) : model_(std::move(model)), report_(std::move(report)) {}
+SimTurtlebot::SimTurtlebot(command::RobotModel model, Report report)
+    : model_(std::move(model)), report_(std::move(report)) {}
 
 void SimTurtlebot::say(double audio_ms, const char* what) {
   char line[160];

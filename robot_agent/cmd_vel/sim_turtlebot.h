@@ -9,7 +9,7 @@
 #include <string>
 
 #include "cmd_vel/velocity.h"
-#include "robot_model.h"
+#include "command/robot_model.h"
 
 namespace dtmf::agent {
 
@@ -22,7 +22,7 @@ struct Pose {
 class SimTurtlebot : public CmdVelOutput {
  public:
   using Report = std::function<void(const std::string&)>;
-  SimTurtlebot(RobotModel model, Report report);
+  SimTurtlebot(command::RobotModel model, Report report);
   void publish(const Velocity& velocity, double audio_ms, std::chrono::system_clock::time_point stamp) override;
   const Pose& pose() const { return pose_; }
   double distance_m() const { return distance_m_; }
@@ -30,7 +30,7 @@ class SimTurtlebot : public CmdVelOutput {
  private:
   void say(double audio_ms, const char* what);
 
-  RobotModel model_;
+  command::RobotModel model_;
   Report report_;
   Pose pose_;
   Velocity velocity_;  // in force since last_ms_

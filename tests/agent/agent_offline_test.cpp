@@ -67,6 +67,37 @@ TEST_F(AgentOffline, DrivesAbout011MpsForAbout2SecondsThenZeroAndAcksEveryFrame)
   for (const auto& h : heard) EXPECT_EQ(static_cast<signal::Reply>(h.symbol), signal::Reply::Ack);
 }
 
+// Issue [2/3]: a velocity frame shows on cmd_vel, held for its lease, then ramps to zero.
+TEST_F(AgentOffline, AVelocityHoldsForItsLeaseThenTheWheelsStop) {
+  encode("--profile fast velocity --linear-mps -0.05 --angular-radps 0.4 --lease-s 0.5", path("v.wav"));
+  const auto r = agent(path("v.wav"), "", true);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto lines = json_lines(r.out);
+  double first_move = -1, last_move = -1;
+  for (const auto& line : lines) {
+    const double linear = line["linear_mps"], angular = line["angular_rps"];
+    if (linear == 0 && angular == 0) continue;
+    if (first_move < 0) first_move = line["t_ms"];
+    last_move = line["t_ms"];
+    if (line["t_ms"].get<double>() < 450) {  // held, not yet ramping down
+      EXPECT_NEAR(linear, -0.05, 0.0001) << "reverse, at the payload's resolution";
+      EXPECT_NEAR(angular, 0.4, 2.84 / 127);
+    }
+  }
+  ASSERT_GE(first_move, 0) << r.out;
+  // The lease, 0.5 s (exact in the frame's field), runs from the frame's start (the
+  // recording's first chord, at 0 s), not from when it was heard (its end, 102.5 ms later).
+  // The robot places the start within a hop or two (10.25 ms each) of the chord's onset, and
+  // the wheels stand still at the lease's end: the ramp down (0.4 / 25 = 16 ms) ends by
+  // about 520 ms, so with cmd_vel sampled every 50 ms the last motion is at 450 or 500 ms.
+  EXPECT_GE(first_move, 102.5) << "heard at the frame's end";
+  EXPECT_GE(last_move, 450) << r.out;
+  EXPECT_LE(last_move, 500) << r.out;
+  EXPECT_EQ(lines.back()["linear_mps"], 0.0);
+  EXPECT_EQ(lines.back()["angular_rps"], 0.0);
+  EXPECT_NE(r.out.find("stop: lease ended"), std::string::npos) << r.out;
+}
+
 TEST_F(AgentOffline, ACorruptedChordIsNackedAndNothingMoves) {
   // A real command whose parameter chord gets one tone moved: the CRC no longer fits.
   const auto sent =

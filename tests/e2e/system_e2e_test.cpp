@@ -21,10 +21,10 @@
 #include "../agent/dds_test_subscriber.h"
 #include "../db/temp_database.h"
 #include "command/command_payload.h"
+#include "command/robot_model.h"
 #include "command/test_sequence.h"
 #include "command/word_codec.h"
 #include "profile/link_profile.h"
-#include "robot_model.h"
 #include "support/air_recording.h"
 #include "support/free_port.h"
 #include "support/processes.h"
@@ -42,7 +42,7 @@ namespace {
 std::set<std::pair<double, double>> expected_motions(const std::string& profile) {
   std::set<std::pair<double, double>> motions;
   for (const auto& command : command::seed_test_sequence()) {
-    agent::VelocityProvider provider(agent::burger(), 0);
+    agent::VelocityProvider provider(command::burger(), 0);
     provider.apply(profile == "fast" ? command::quantised_payload(command) : command::quantised(command), 0);
     const auto v = provider.update(0);
     if (v.linear_mps != 0 || v.angular_rps != 0) motions.insert({v.linear_mps, v.angular_rps});
