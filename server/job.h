@@ -20,7 +20,10 @@
 
 namespace dtmf::server {
 
-enum class Policy { Ask, Continue, Fail };
+// What to do with a frame the robot did not confirm after the profile's retransmissions.
+// Live (teleop): send each frame once and go on; the next target, or the lease's renewal,
+// is worth more than a stale one sent again.
+enum class Policy { Ask, Continue, Fail, Live };
 
 enum class Outcome { Pending, Confirmed, Continued, Failed, Cancelled, Unavailable };
 std::string outcome_name(Outcome outcome);

@@ -76,6 +76,7 @@ struct Flags {
   bool allow_anyone = false;
   dtmf::program::KeyFlags keys;
   int robot_address = 0;
+  std::string robot = "burger";
   dtmf::program::AudioProgramOptions program;
 };
 
@@ -141,6 +142,7 @@ int run(const Flags& f) {
                                                              : server::Policy::Fail;
   options.defaults.decision_timeout = std::chrono::milliseconds(static_cast<long>(f.decision_timeout_s * 1000));
   options.host = hostname;
+  options.robot = command::robot_model_by_name(f.robot);
   server::TeleopService service(transmitter, store, options);
 
   // gRPC's built-in health service carries no protobuf descriptors; touching one links
@@ -230,6 +232,11 @@ int main(int argc, char** argv) {
   app.add_option("--robot-address", f.robot_address, "the robot's address (0..7, dtmf-agent --address)")
       ->envname("DTMF_SERVER_ROBOT_ADDRESS")
       ->check(CLI::Range(0, 7))
+      ->capture_default_str();
+  app.add_option("--robot", f.robot,
+                 "TurtleBot3 model driven (as dtmf-agent --robot): Teleop's speeds are fractions of its limits")
+      ->envname("TURTLEBOT3_MODEL")
+      ->check(CLI::IsMember({"burger", "waffle", "waffle_pi"}))
       ->capture_default_str();
   dtmf::program::add_audio_program_options(app, f.program);
   f.program.without_devices =

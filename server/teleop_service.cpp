@@ -36,7 +36,9 @@ v1::FrameEvent frame_event(ProgressEvent::Kind kind) {
   return v1::FRAME_EVENT_UNSPECIFIED;
 }
 
-void fill(v1::Progress& out, Job& job, const ProgressEvent& event) {
+}  // namespace
+
+void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event) {
   out.set_command_id(job.id());
   out.set_event(frame_event(event.kind));
   out.set_command(job.description());
@@ -57,6 +59,8 @@ void fill(v1::Progress& out, Job& job, const ProgressEvent& event) {
   out.set_queue_position(static_cast<std::uint32_t>(event.queue_position));
   out.set_time_unix_ms(std::chrono::duration_cast<std::chrono::milliseconds>(event.time.time_since_epoch()).count());
 }
+
+namespace {
 
 grpc::Status outcome_status(Job& job) {
   const std::string detail = job.outcome_detail();
@@ -128,7 +132,7 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
     const auto event = job->next_event(std::chrono::milliseconds(100));
     if (!event || client_gone) continue;
     v1::Progress progress;
-    fill(progress, *job, *event);
+    fill_progress(progress, *job, *event);
     if (!write(progress)) {
       client_gone = true;
       job->cancel();
@@ -139,6 +143,7 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
 
 grpc::Status TeleopService::Drive(grpc::ServerContext* context, const v1::DriveRequest* request,
                                   grpc::ServerWriter<v1::DriveResponse>* writer) {
+  if (auto refused = refuse_while_teleop("Drive")) return *refused;
   try {
     return run_command(context, drive_command(*request), request->options(), false, progress_to(writer));
   } catch (const RequestError& e) {
@@ -148,6 +153,7 @@ grpc::Status TeleopService::Drive(grpc::ServerContext* context, const v1::DriveR
 
 grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnRequest* request,
                                  grpc::ServerWriter<v1::TurnResponse>* writer) {
+  if (auto refused = refuse_while_teleop("Turn")) return *refused;
   try {
     return run_command(context, turn_command(*request), request->options(), false, progress_to(writer));
   } catch (const RequestError& e) {
@@ -157,11 +163,13 @@ grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnReq
 
 grpc::Status TeleopService::Stop(grpc::ServerContext* context, const v1::StopRequest* request,
                                  grpc::ServerWriter<v1::StopResponse>* writer) {
+  halt_teleop();
   return run_command(context, command::Stop{}, request->options(), true, progress_to(writer));
 }
 
 grpc::Status TeleopService::Reset(grpc::ServerContext* context, const v1::ResetRequest* request,
                                   grpc::ServerWriter<v1::ResetResponse>* writer) {
+  if (auto refused = refuse_while_teleop("Reset")) return *refused;
   return run_command(context, command::Reset{}, request->options(), false, progress_to(writer));
 }
 
@@ -179,6 +187,7 @@ grpc::Status TeleopService::Decide(grpc::ServerContext*, const v1::DecideRequest
 
 grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const v1::RunTestSequenceRequest* request,
                                             grpc::ServerWriter<v1::RunTestSequenceResponse>* writer) {
+  if (auto refused = refuse_while_teleop("RunTestSequence")) return *refused;
   const LinkProfile* profile = nullptr;
   try {
     check_label("label", request->label());

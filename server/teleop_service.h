@@ -5,6 +5,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -14,13 +15,22 @@
 #include "store.h"
 #include "transmitter.h"
 
+#include "command/robot_model.h"
+
 namespace dtmf::server {
 
 struct ServiceOptions {
   store::DatabaseUrl database;  // for reports
   CommandSettings defaults{Policy::Fail, std::chrono::seconds(60)};
   std::string host;
+  // The robot driven (dtmf-server --robot): Teleop's m/s and rad/s as fractions of its limits.
+  command::RobotModel robot = command::burger();
 };
+
+class TeleopSession;
+
+// A command's progress event as the API streams it.
+void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event);
 
 class TeleopService final : public v1::TeleopService::Service {
  public:
@@ -32,6 +42,8 @@ class TeleopService final : public v1::TeleopService::Service {
   grpc::Status Reset(grpc::ServerContext*, const v1::ResetRequest*, grpc::ServerWriter<v1::ResetResponse>*) override;
   grpc::Status RunTestSequence(grpc::ServerContext*, const v1::RunTestSequenceRequest*,
                                grpc::ServerWriter<v1::RunTestSequenceResponse>*) override;
+  grpc::Status Teleop(grpc::ServerContext*,
+                      grpc::ServerReaderWriter<v1::TeleopResponse, v1::TeleopRequest>* stream) override;
   grpc::Status Decide(grpc::ServerContext*, const v1::DecideRequest*, v1::DecideResponse*) override;
   grpc::Status StartRun(grpc::ServerContext*, const v1::StartRunRequest*, v1::StartRunResponse*) override;
   grpc::Status EndRun(grpc::ServerContext*, const v1::EndRunRequest*, v1::EndRunResponse*) override;
@@ -49,12 +61,22 @@ class TeleopService final : public v1::TeleopService::Service {
   grpc::Status start_run(const std::string& label, const std::string& notes, const LinkProfile& profile,
                          std::string& run_id);
   grpc::Status end_run(const std::string& run_id);
+  // The request's target for the robot model; throws RequestError naming the field.
+  command::Velocity teleop_target(const v1::TeleopRequest& request) const;
+  // The teleop slot: false if another stream holds it.
+  bool claim_teleop(const std::shared_ptr<TeleopSession>& session);
+  // FAILED_PRECONDITION naming `rpc` while a Teleop stream drives.
+  std::optional<grpc::Status> refuse_while_teleop(const char* rpc);
+  // Stop overtook: the driving stream sends nothing more and ends.
+  void halt_teleop();
 
   Transmitter& transmitter_;
   store::Store& store_;
   ServiceOptions options_;
   std::mutex runs_mutex_;
   std::optional<store::TestRunRow> active_run_;
+  std::mutex teleop_mutex_;
+  std::weak_ptr<TeleopSession> teleop_;
 };
 
 }  // namespace dtmf::server

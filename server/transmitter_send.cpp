@@ -41,7 +41,8 @@ void Transmitter::end(Job& job, Outcome outcome, const std::string& detail) {
 
 void Transmitter::send(Job& job) {
   const LinkProfile& profile = job.profile();
-  const reliability::RetryPolicy policy{profile.timing.auto_retransmissions, profile.timing.ack_timeout_ms};
+  const int retransmissions = job.policy() == Policy::Live ? 0 : profile.timing.auto_retransmissions;
+  const reliability::RetryPolicy policy{retransmissions, profile.timing.ack_timeout_ms};
   bool continued = false;
   for (int index = 0; index < job.frame_count(); ++index) {
     const auto& frame_ptr = job.frames()[static_cast<std::size_t>(index)];
@@ -123,7 +124,7 @@ void Transmitter::send(Job& job) {
         }
         case RetryState::AwaitingDecision: {
           std::optional<reliability::Decision> decision;
-          if (job.policy() == Policy::Continue)
+          if (job.policy() == Policy::Continue || job.policy() == Policy::Live)
             decision = reliability::Decision::Continue;
           else if (job.policy() == Policy::Fail)
             decision = reliability::Decision::GiveUp;

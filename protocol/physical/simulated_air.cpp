@@ -21,6 +21,7 @@ struct SimulatedAir::Shared {
     double position_m;
     std::deque<float> to_play;
     std::deque<float> recorded;
+    bool muted = false;
     std::unique_ptr<AcousticChannel> channel;  // what this station's microphone hears
   };
   int sample_rate_hz;
@@ -100,7 +101,7 @@ SimulatedAir::~SimulatedAir() { stop(); }
 SimulatedAir::Station SimulatedAir::add_station(const std::string& name, double position_m) {
   std::lock_guard lock(shared_->mutex);
   if (shared_->running) throw std::logic_error("add every station before start()");
-  shared_->stations.push_back({name, position_m, {}, {}, nullptr});
+  shared_->stations.push_back({name, position_m, {}, {}, false, nullptr});
   const std::size_t index = shared_->stations.size() - 1;
   return {std::make_unique<AirSpeaker>(shared_, index), std::make_unique<AirMicrophone>(shared_, index)};
 }
@@ -157,6 +158,17 @@ void SimulatedAir::stop() {
   if (clock_.joinable()) clock_.join();
 }
 
+void SimulatedAir::mute(const std::string& station, bool muted) {
+  std::lock_guard lock(shared_->mutex);
+  for (auto& s : shared_->stations) {
+    if (s.name == station) {
+      s.muted = muted;
+      return;
+    }
+  }
+  throw std::invalid_argument("simulated air: no station named '" + station + "'");
+}
+
 void SimulatedAir::run() {
   using Clock = std::chrono::steady_clock;
   const auto period = std::chrono::duration<double>(static_cast<double>(shared_->block) / shared_->sample_rate_hz);
@@ -174,7 +186,8 @@ void SimulatedAir::run() {
     for (std::size_t s = 0; s < stations.size(); ++s) {
       auto& queue = stations[s].to_play;
       const std::size_t n = std::min(queue.size(), shared_->block);
-      std::copy(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(n), played[s].begin());
+      if (!stations[s].muted)
+        std::copy(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(n), played[s].begin());
       queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(n));
     }
     std::vector<std::span<const float>> blocks(played.begin(), played.end());

@@ -48,6 +48,10 @@ class SimulatedAir {
   void start();
   // Microphones then report the end of the stream; loudspeakers refuse to play.
   void stop();
+  // A station's loudspeaker goes silent (muted) or sounds again: what it is given still
+  // plays on time, unheard, as when something stands before the loudspeaker. Benchmarks cut
+  // the link so at a chosen moment, in the middle of a frame or between two.
+  void mute(const std::string& station, bool muted);
 
   struct Shared;  // state shared with the endpoints
 

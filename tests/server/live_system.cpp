@@ -20,9 +20,11 @@ class LiveSystem::Recorder : public agent::CmdVelOutput {
   void publish(const agent::Velocity& v, double, std::chrono::system_clock::time_point) override {
     std::lock_guard lock(mutex);
     last = v;
+    history.push_back({std::chrono::steady_clock::now(), v});
   }
   std::mutex mutex;
   agent::Velocity last;
+  std::vector<PublishedVelocity> history;
 };
 
 LiveSystem::LiveSystem(LiveSystemOptions options)
@@ -131,6 +133,12 @@ std::vector<std::string> LiveSystem::commands_executed() {
 agent::Velocity LiveSystem::last_velocity() {
   std::lock_guard lock(recorder_->mutex);
   return recorder_->last;
+}
+
+std::vector<PublishedVelocity> LiveSystem::velocities(std::size_t from) {
+  std::lock_guard lock(recorder_->mutex);
+  if (from >= recorder_->history.size()) return {};
+  return {recorder_->history.begin() + static_cast<std::ptrdiff_t>(from), recorder_->history.end()};
 }
 
 }  // namespace dtmf::test_support

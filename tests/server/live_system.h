@@ -43,6 +43,12 @@ struct HeardWords {
   int refused_frames = 0;  // intact, but refused (authentication, payload)
 };
 
+// One cmd_vel sample the robot published, and when (the agent runs in real time).
+struct PublishedVelocity {
+  std::chrono::steady_clock::time_point at;
+  agent::Velocity velocity;
+};
+
 class LiveSystem {
  public:
   explicit LiveSystem(LiveSystemOptions options = {});
@@ -56,8 +62,13 @@ class LiveSystem {
   int intact_frames_heard();
   int refused_frames_heard();
   agent::Velocity last_velocity();
+  // Every cmd_vel sample so far, in order, from the `from`th on (the history only grows).
+  std::vector<PublishedVelocity> velocities(std::size_t from = 0);
   // The sound devices go away (a USB sound card unplugged): the room stops.
   void pull_the_plug() { air_.stop(); }
+  // The sender's loudspeaker goes silent (or sounds again): the link is lost from now on, the
+  // frame on air cut where it is; the server goes on as if nothing happened.
+  void mute_sender(bool muted) { air_.mute("sender", muted); }
 
  private:
   class Recorder;

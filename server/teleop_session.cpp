@@ -1,0 +1,115 @@
+#include "teleop_session.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace dtmf::server {
+
+namespace {
+
+bool same(const command::Velocity& a, const command::Velocity& b) {
+  return a.linear_fraction == b.linear_fraction && a.angular_fraction == b.angular_fraction && a.lease_s == b.lease_s;
+}
+
+}  // namespace
+
+TeleopSession::TeleopSession(command::RobotModel model) : model_(std::move(model)) {}
+
+void TeleopSession::set_target(const command::Velocity& target, double now_s) {
+  {
+    std::lock_guard lock(mutex_);
+    target_ = target;
+    heard_at_s_ = now_s;
+  }
+  changed_.notify_all();
+}
+
+void TeleopSession::end_stream() {
+  {
+    std::lock_guard lock(mutex_);
+    ended_ = true;
+  }
+  changed_.notify_all();
+}
+
+void TeleopSession::halt(const std::string& why) {
+  {
+    std::lock_guard lock(mutex_);
+    if (!halted_) halted_ = why;
+  }
+  changed_.notify_all();
+}
+
+std::optional<command::Velocity> TeleopSession::frame_due(double now_s) {
+  std::lock_guard lock(mutex_);
+  if (in_flight_ || !target_ || ended_ || halted_ || now_s - heard_at_s_ > kClientSilence_s) return std::nullopt;
+  const bool changed = !last_sent_ || !same(*last_sent_, *target_);
+  const bool renewal_due = last_sent_ && now_s - sent_at_s_ >= last_sent_->lease_s / 2;
+  if (!changed && !renewal_due && last_confirmed_) return std::nullopt;
+  last_sent_ = target_;
+  last_confirmed_ = false;
+  in_flight_ = true;
+  sent_at_s_ = now_s;
+  return target_;
+}
+
+void TeleopSession::frame_ended(double now_s, bool answered, std::optional<command::Velocity> confirmed,
+                                double response_time_ms) {
+  std::lock_guard lock(mutex_);
+  in_flight_ = false;
+  window_.emplace_back(now_s, answered);
+  forget_old(now_s);
+  last_confirmed_ = confirmed.has_value();
+  if (confirmed) {
+    confirmed_ = confirmed;
+    confirmed_at_s_ = now_s;
+    response_time_ms_ = response_time_ms;
+  }
+}
+
+void TeleopSession::forget_old(double now_s) {
+  while (!window_.empty() && window_.front().first < now_s - kLinkWindow_s) window_.pop_front();
+}
+
+TeleopStatus TeleopSession::status(double now_s) {
+  std::lock_guard lock(mutex_);
+  forget_old(now_s);
+  TeleopStatus s;
+  if (target_) {
+    s.target_linear_mps = command::linear_mps(model_, *target_);
+    s.target_angular_radps = command::angular_radps(model_, *target_);
+  }
+  s.confirmed = confirmed_;
+  s.response_time_ms = response_time_ms_;
+  s.frames_in_window = static_cast<int>(window_.size());
+  const auto answered = std::count_if(window_.begin(), window_.end(), [](const auto& f) { return f.second; });
+  s.link_quality = window_.empty() ? 0.0 : static_cast<double>(answered) / static_cast<double>(window_.size());
+  // The robot heard the confirmed frame a little before its ACK came back: the lease left
+  // is at most this.
+  if (confirmed_) s.lease_left_s = std::max(0.0, confirmed_->lease_s - (now_s - confirmed_at_s_));
+  return s;
+}
+
+bool TeleopSession::stream_ended() {
+  std::lock_guard lock(mutex_);
+  return ended_;
+}
+
+std::optional<std::string> TeleopSession::halted() {
+  std::lock_guard lock(mutex_);
+  return halted_;
+}
+
+double TeleopSession::silent_s(double now_s) {
+  std::lock_guard lock(mutex_);
+  return now_s - heard_at_s_;
+}
+
+void TeleopSession::wait(double for_s) {
+  std::unique_lock lock(mutex_);
+  const auto target = target_;
+  changed_.wait_for(lock, std::chrono::duration<double>(for_s),
+                    [&] { return ended_ || halted_ || (target_ && (!target || !same(*target, *target_))); });
+}
+
+}  // namespace dtmf::server

@@ -1,0 +1,86 @@
+// One live-driving stream (TeleopService::Teleop) as pure state: the newest target, when to
+// send the next frame, what the robot confirmed, and the link's quality. No I/O and no
+// clock: the caller passes the time (seconds on a steady scale). Thread-safe: the stream's
+// reader sets targets while the RPC's thread sends frames and reads the status.
+//
+// Sending rule: one frame at a time (nothing is due until the last has ended); a frame goes
+// out when the target differs from the last one sent, when the last frame was not
+// confirmed, or when half the lease has passed since the last was sent — so a lease
+// survives a lost renewal, and a stale target is never sent again: only the newest is.
+// Nothing is sent once the client has been silent for kClientSilence_s, has ended the
+// stream, or a Stop overtook it; the lease then lapses on the robot.
+#pragma once
+
+#include <condition_variable>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "command/command.h"
+#include "command/robot_model.h"
+
+namespace dtmf::server {
+
+// A client that says nothing for this long has gone (a closed laptop, a lost network): its
+// lease is no longer renewed. Clients repeat their target at least once a second.
+inline constexpr double kClientSilence_s = 1.0;
+// Link quality is counted over this much of the recent past.
+inline constexpr double kLinkWindow_s = 3.0;
+
+struct TeleopStatus {
+  double target_linear_mps = 0;
+  double target_angular_radps = 0;
+  std::optional<command::Velocity> confirmed;  // as the robot executes it
+  double response_time_ms = 0;
+  double link_quality = 0;  // answers heard per frame sent in the window
+  int frames_in_window = 0;
+  double lease_left_s = 0;
+};
+
+class TeleopSession {
+ public:
+  explicit TeleopSession(command::RobotModel model);
+
+  // The reader: a new target (a Velocity of the robot's model, already checked), heard at now_s.
+  void set_target(const command::Velocity& target, double now_s);
+  // The reader: the stream ended (the client half-closed, or it is gone).
+  void end_stream();
+  // Another RPC: a Stop overtook the stream.
+  void halt(const std::string& why);
+
+  // The next frame to send now, if one is due (and marks it sent).
+  std::optional<command::Velocity> frame_due(double now_s);
+  // A frame sent ended: answered (ACK or NACK heard) or not; confirmed: the ACK, with the
+  // velocity as the robot executes it, `response_time_ms` after its chord started.
+  void frame_ended(double now_s, bool answered, std::optional<command::Velocity> confirmed, double response_time_ms);
+  TeleopStatus status(double now_s);
+
+  bool stream_ended();
+  std::optional<std::string> halted();
+  // Seconds since the client's last message.
+  double silent_s(double now_s);
+  // Waits until the target changes, the stream ends or it is halted, or `for_s` passes.
+  void wait(double for_s);
+
+ private:
+  void forget_old(double now_s);
+
+  const command::RobotModel model_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::optional<command::Velocity> target_;
+  double heard_at_s_ = 0;
+  std::optional<command::Velocity> last_sent_;
+  double sent_at_s_ = 0;
+  bool last_confirmed_ = false;
+  bool in_flight_ = false;  // sent, and not yet ended
+  std::optional<command::Velocity> confirmed_;
+  double confirmed_at_s_ = 0;
+  double response_time_ms_ = 0;
+  std::deque<std::pair<double, bool>> window_;  // (frame ended at, answered)
+  bool ended_ = false;
+  std::optional<std::string> halted_;
+};
+
+}  // namespace dtmf::server

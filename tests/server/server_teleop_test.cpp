@@ -1,0 +1,206 @@
+// Teleop through the whole system: a real gRPC bidirectional stream on loopback, the
+// transmitter, a simulated room, the robot agent and its cmd_vel. The client behaves as
+// dtmfctl teleop does: it sends its target when it changes and repeats it every 100 ms.
+#include <gtest/gtest.h>
+
+#include "live_system.h"
+#include "security/link_key.h"
+#include "teleop_client.h"
+
+using namespace dtmf;
+using namespace std::chrono_literals;
+using test_support::LiveSystem;
+using test_support::LiveSystemOptions;
+using test_support::read_stream;
+using test_support::TeleopClient;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// When the robot's cmd_vel was last non-zero, and whether it is zero at the end.
+struct StopSeen {
+  std::optional<Clock::time_point> last_moving;
+  bool still_at_end = false;
+};
+StopSeen stop_seen(LiveSystem& system) {
+  StopSeen seen;
+  for (const auto& s : system.velocities()) {
+    if (s.velocity.linear_mps != 0 || s.velocity.angular_rps != 0) seen.last_moving = s.at;
+  }
+  const auto all = system.velocities();
+  seen.still_at_end = !all.empty() && all.back().velocity == agent::Velocity{};
+  return seen;
+}
+
+// The lease as a frame carries it: rounded down to a step of 0.125 s from 0.25 s.
+double carried_lease_s(double lease_s) { return 0.25 + std::floor((lease_s - 0.25) / 0.125 + 1e-9) * 0.125; }
+
+}  // namespace
+
+TEST(ServerTeleop, DrivesAnArcThenReversesWithStatusAndEveryFrameStored) {
+  LiveSystem system;
+  auto stub = system.client();
+  TeleopClient teleop(*stub, 0.1, 0.5, 1.0);
+  const auto arc = teleop.confirmed(0.1, 0.5, 3s);
+  ASSERT_TRUE(arc) << "no confirmed arc";
+  EXPECT_GT(arc->response_time_ms(), 0);
+  EXPECT_LT(arc->response_time_ms(), 500);
+  EXPECT_DOUBLE_EQ(arc->target_linear_mps(), 0.1);
+  EXPECT_NEAR(arc->lease_s(), carried_lease_s(1.0), 1e-9);
+  EXPECT_EQ(arc->progress().profile(), "fast");
+  std::this_thread::sleep_for(200ms);  // the ramp (2.5 m/s², 25 rad/s²) is done long before
+  EXPECT_NEAR(system.last_velocity().linear_mps, 0.1, 0.0002);
+  EXPECT_NEAR(system.last_velocity().angular_rps, 0.5, 0.012);
+
+  teleop.target(-0.05, 0);
+  ASSERT_TRUE(teleop.confirmed(-0.05, 0, 3s)) << "no confirmed reverse";
+  std::this_thread::sleep_for(200ms);
+  EXPECT_NEAR(system.last_velocity().linear_mps, -0.05, 0.0002);
+  // Held by renewals for longer than one lease.
+  std::this_thread::sleep_for(1500ms);
+  EXPECT_NEAR(system.last_velocity().linear_mps, -0.05, 0.0002) << "the lease was renewed";
+  const auto status = teleop.responses().back();
+  EXPECT_GT(status.link_quality(), 0.9) << "a quiet room at 1 m";
+  EXPECT_GE(status.frames_in_window(), 3u) << "renewals at half the lease";
+  EXPECT_GT(status.lease_left_s(), 0);
+  const auto closed_at = Clock::now();
+  const grpc::Status closed = teleop.close();
+  EXPECT_TRUE(closed.ok()) << closed.error_message();
+  std::this_thread::sleep_for(std::chrono::duration<double>(carried_lease_s(1.0) + 0.5));
+  const StopSeen seen = stop_seen(system);
+  ASSERT_TRUE(seen.last_moving);
+  EXPECT_TRUE(seen.still_at_end);
+  EXPECT_LE(std::chrono::duration<double>(*seen.last_moving - closed_at).count(), carried_lease_s(1.0) + 0.2)
+      << "the lease lapsed when the stream ended";
+  // Every frame was a velocity command, executed as such.
+  int velocities = 0;
+  for (const auto& c : system.commands_executed()) velocities += c.rfind("velocity ", 0) == 0;
+  EXPECT_GE(velocities, 4) << "the arc, the reverse and renewals";
+}
+
+TEST(ServerTeleop, OneStreamDrivesAtATimeAndStopOvertakesAndEndsIt) {
+  LiveSystem system;
+  auto stub = system.client();
+  TeleopClient first(*stub, 0.05, 0, 0.5);
+  ASSERT_TRUE(first.confirmed(0.05, 0, 3s));
+
+  TeleopClient second(*stub, 0.1, 0, 0.5);
+  const grpc::Status refused = second.finish();
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_NE(refused.error_message().find("another Teleop stream drives the robot"), std::string::npos)
+      << refused.error_message();
+  v1::DriveRequest drive;
+  drive.set_speed_percent(50);
+  drive.mutable_options()->set_profile("fast");
+  const auto drove = read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return stub->Drive(&c, drive); });
+  EXPECT_EQ(drove.status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_NE(drove.status.error_message().find("Drive refused: a Teleop stream drives the robot"), std::string::npos);
+
+  v1::StopRequest stop;
+  stop.mutable_options()->set_profile("fast");
+  const auto stopped = read_stream<v1::StopResponse>([&](grpc::ClientContext& c) { return stub->Stop(&c, stop); });
+  EXPECT_TRUE(stopped.status.ok()) << stopped.status.error_message();
+  EXPECT_EQ(system.last_velocity(), agent::Velocity{}) << "Stop takes effect at once";
+  const grpc::Status ended = first.finish();
+  EXPECT_EQ(ended.error_code(), grpc::StatusCode::ABORTED);
+  EXPECT_NE(ended.error_message().find("a Stop call overtook this Teleop stream"), std::string::npos)
+      << ended.error_message();
+  std::this_thread::sleep_for(1s);
+  EXPECT_EQ(system.last_velocity(), agent::Velocity{}) << "nothing drove after the Stop";
+
+  // The slot is free again.
+  TeleopClient third(*stub, 0.02, 0, 0.5);
+  EXPECT_TRUE(third.confirmed(0.02, 0, 3s));
+  EXPECT_TRUE(third.close().ok());
+}
+
+TEST(ServerTeleop, BadTargetsAndTheSeedProfileAreInvalidArguments) {
+  LiveSystem system;
+  auto stub = system.client();
+  {
+    TeleopClient seed(*stub, 0.1, 0, 1.0, "seed");
+    const grpc::Status s = seed.finish();
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_NE(s.error_message().find("profile seed: a velocity command needs a profile with whole-command frames"),
+              std::string::npos)
+        << s.error_message();
+  }
+  {
+    TeleopClient fast(*stub, 0.5, 0, 1.0);
+    const grpc::Status s = fast.finish();
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_NE(s.error_message().find("linear_mps 0.5 is out of range for a burger"), std::string::npos)
+        << s.error_message();
+  }
+  {
+    TeleopClient lease(*stub, 0.1, 0, 5.0);
+    const grpc::Status s = lease.finish();
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_NE(s.error_message().find("lease_s"), std::string::npos) << s.error_message();
+  }
+  {
+    // A bad target mid-stream ends the stream naming it; the robot stops with the lease.
+    TeleopClient later(*stub, 0.1, 0, 0.5);
+    ASSERT_TRUE(later.confirmed(0.1, 0, 3s));
+    later.target(0.1, 9);
+    const grpc::Status s = later.finish();
+    EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_NE(s.error_message().find("angular_radps 9 is out of range"), std::string::npos) << s.error_message();
+  }
+  EXPECT_TRUE(system.words_heard().empty()) << "nothing went out under the seed profile";
+}
+
+TEST(ServerTeleop, ACancelledStreamStopsTheRobotWithinTheLease) {
+  LiveSystem system;
+  auto stub = system.client();
+  TeleopClient teleop(*stub, 0.15, -1.0, 0.5);
+  ASSERT_TRUE(teleop.confirmed(0.15, -1.0, 3s));
+  std::this_thread::sleep_for(700ms);  // renewals on air
+  const auto cancelled_at = Clock::now();
+  teleop.cancel();
+  EXPECT_EQ(teleop.finish().error_code(), grpc::StatusCode::CANCELLED);
+  std::this_thread::sleep_for(1500ms);
+  const StopSeen seen = stop_seen(system);
+  ASSERT_TRUE(seen.last_moving);
+  EXPECT_TRUE(seen.still_at_end);
+  EXPECT_LE(std::chrono::duration<double>(*seen.last_moving - cancelled_at).count(), carried_lease_s(0.5) + 0.2);
+}
+
+TEST(ServerTeleop, WithAKeyEveryVelocityFrameIsAuthenticatedAndAWrongKeyDrivesNothing) {
+  const auto key = security::LinkKey::generate();
+  {
+    LiveSystemOptions options;
+    options.sender_key = key;
+    options.robot_key = key;
+    LiveSystem system(options);
+    auto stub = system.client();
+    TeleopClient teleop(*stub, -0.1, 1.0, 0.6);
+    const auto confirmed = teleop.confirmed(-0.1, 1.0, 4s);
+    ASSERT_TRUE(confirmed) << "no confirmed velocity with keys on both sides";
+    EXPECT_TRUE(teleop.close().ok());
+    int transmitted = 0;
+    for (const auto& r : teleop.responses()) {
+      if (r.progress().event() != v1::FRAME_EVENT_TRANSMITTING) continue;
+      ++transmitted;
+      EXPECT_TRUE(r.progress().authenticated());
+      if (!r.progress().synchronisation()) {
+        EXPECT_EQ(r.progress().frame_bits().size(), 80u);
+      }
+    }
+    EXPECT_GE(transmitted, 1);
+    EXPECT_EQ(system.refused_frames_heard(), 0);
+  }
+  {
+    LiveSystemOptions options;
+    options.sender_key = key;
+    options.robot_key = security::LinkKey::generate();
+    LiveSystem system(options);
+    auto stub = system.client();
+    TeleopClient teleop(*stub, 0.1, 0, 0.6);
+    EXPECT_FALSE(teleop.confirmed(0.1, 0, 1500ms)) << "the robot confirmed a frame of another key";
+    teleop.close();
+    EXPECT_GE(system.refused_frames_heard(), 1);
+    for (const auto& s : system.velocities()) EXPECT_EQ(s.velocity, agent::Velocity{});
+  }
+}
