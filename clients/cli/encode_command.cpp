@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "command/robot_model.h"
 #include "command/test_sequence.h"
 #include "frame_output.h"
 #include "key_flags.h"
@@ -25,7 +26,11 @@ struct EncodeOptions {
   std::optional<double> speed;
   std::optional<double> rotation;
   std::optional<double> duration;
-  std::string kind;  // drive, turn, stop, reset, sequence
+  std::optional<double> linear_mps;
+  std::optional<double> angular_radps;
+  double lease_s = 1.0;
+  std::string robot = "burger";
+  std::string kind;  // drive, turn, stop, reset, sequence, velocity
   program::KeyFlags keys;
 };
 
@@ -37,6 +42,10 @@ command::Command build_command(const EncodeOptions& o) {
   if (o.kind == "turn") {
     if (o.duration) return command::TurnForDuration{*o.rotation, *o.duration};
     return command::Turn{*o.rotation};
+  }
+  if (o.kind == "velocity") {
+    return command::velocity_command(command::robot_model_by_name(o.robot), o.linear_mps.value_or(0),
+                                     o.angular_radps.value_or(0), o.lease_s);
   }
   if (o.kind == "stop") return command::Stop{};
   return command::Reset{};
@@ -125,6 +134,16 @@ void add_encode_command(CLI::App& app, Action& run, const GlobalOptions& global)
   turn->add_option("--rotation", o->rotation, "rotation, percent of the maximum; positive turns left (-100..100)")
       ->required();
   turn->add_option("--duration", o->duration, "seconds (0..8); omit to turn until the next command");
+  CLI::App* velocity = encode->add_subcommand(
+      "velocity", "live driving (fast): linear and angular speed together, held for a lease (VELOCITY)");
+  velocity->add_option("--linear-mps", o->linear_mps, "forward speed, m/s; negative reverses (within the robot's)");
+  velocity->add_option("--angular-radps", o->angular_radps, "turn rate, rad/s; positive turns left");
+  velocity->add_option("--lease-s", o->lease_s, "how long the robot holds it without a renewal (0.3..2)")
+      ->capture_default_str();
+  velocity->add_option("--robot", o->robot, "TurtleBot3 model whose limits the speeds are fractions of")
+      ->envname("TURTLEBOT3_MODEL")
+      ->check(CLI::IsMember({"burger", "waffle", "waffle_pi"}))
+      ->capture_default_str();
   encode->add_subcommand("stop", "stop the robot (RESET, STOP)");
   encode->add_subcommand("reset", "return the robot to MODE_SELECT (RESET)");
   encode->add_subcommand("sequence", "the seed's 65-frame system test sequence (its section 10)");
@@ -133,7 +152,8 @@ void add_encode_command(CLI::App& app, Action& run, const GlobalOptions& global)
     const auto chosen = encode->get_subcommands();
     if (!chosen.empty()) o->kind = chosen.front()->get_name();
     if (chosen.empty() == !o->word.has_value()) {
-      throw CLI::ValidationError("encode", "give either a command (drive, turn, stop, reset, sequence) or --word N");
+      throw CLI::ValidationError("encode",
+                                 "give either a command (drive, turn, velocity, stop, reset, sequence) or --word N");
     }
     run = [o, &global] {
       o->json = global.json;  // one JSON object per frame: word, frame, crc, tones_hz, index

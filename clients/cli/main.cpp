@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
       "  dtmfctl decode --replies --profile fast answers.wav   (the ACKs and NACKs a sender would hear)\n"
       "  dtmfctl drive --speed 50 --duration 2          (through dtmf-server: --server, DTMF_SERVER)\n"
       "  dtmfctl sequence --label general\n"
+      "  dtmfctl teleop                                  (drive live from the keyboard; fast profile)\n"
       "  dtmfctl report --json");
 
   dtmf::cli::Action run;
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
 #if DTMF_CLI_LIVE
   dtmf::cli::add_live_commands(app, run, global);
   dtmf::cli::add_run_commands(app, run, global);
+  dtmf::cli::add_teleop_command(app, run, global);
 #else
   app.footer(app.get_footer() + "\nThis dtmfctl was built without its live commands (cmake -DDTMF_CLI_LIVE=OFF).");
 #endif

@@ -27,5 +27,7 @@ void add_keygen_command(CLI::App& app, Action& run);
 // runs, report, health (report_view.cpp).
 void add_live_commands(CLI::App& app, Action& run, const GlobalOptions& global);
 void add_run_commands(CLI::App& app, Action& run, const GlobalOptions& global);
+// teleop: live driving from the keyboard in a full-screen view (teleop_command.cpp).
+void add_teleop_command(CLI::App& app, Action& run, const GlobalOptions& global);
 
 }  // namespace dtmf::cli

@@ -224,3 +224,40 @@ TEST_F(Dtmfctl, KeysMakeAuthenticatedFramesThatOnlyTheSameKeyAccepts) {
   const std::string secret = file.substr(at + 5, 64);
   for (const Result* r : {&made, &first, &second, &good, &other}) EXPECT_EQ(r->out.find(secret), std::string::npos);
 }
+
+TEST_F(Dtmfctl, AVelocityFrameEncodesOfflineAndDecodesBackAsTheSameVelocity) {
+  const Result enc = run("encode --profile fast --json --wav " + path("v.wav") +
+                         " velocity --linear-mps -0.05 --angular-radps 0.4 --lease-s 0.5");
+  ASSERT_EQ(enc.exit_code, 0) << enc.out;
+  const auto sent = json_lines(enc.out);
+  ASSERT_EQ(sent.size(), 1u) << enc.out;
+  const std::string what = sent[0]["command"].get<std::string>();
+  // -0.05 / 0.22 and 0.4 / 2.84 of a Burger's limits, at the payload's resolution (1/2047, 1/127, and
+  // the lease in steps of 0.125 s: 0.5 s exactly).
+  EXPECT_EQ(what, "velocity linear=-22.7% angular=+14.2% lease=0.50s") << what;
+  const Result dec = run("decode --profile fast --json " + path("v.wav"));
+  ASSERT_EQ(dec.exit_code, 0) << dec.out;
+  const auto heard = json_lines(dec.out);
+  ASSERT_EQ(heard.size(), 1u) << dec.out;
+  EXPECT_EQ(heard[0]["what"], what);
+
+  Result r = run("encode --profile seed velocity --linear-mps 0.1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("seed profile's 12-bit words cannot carry it"), std::string::npos) << r.out;
+  r = run("encode --profile fast velocity --linear-mps 0.3");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("linear_mps 0.3 is out of range for a burger: allowed -0.22..0.22 m/s"), std::string::npos)
+      << r.out;
+  r = run("encode --profile fast velocity --linear-mps 0.25 --robot waffle");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  r = run("encode --profile fast velocity --angular-radps 1 --lease-s 3");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("lease_s 3 is out of range: allowed 0.3..2"), std::string::npos) << r.out;
+}
+
+TEST_F(Dtmfctl, TeleopWithoutATerminalRefusesWithAClearMessage) {
+  const Result r = run("teleop < /dev/null");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("teleop needs a terminal"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Client.teleop()"), std::string::npos) << r.out;
+}
