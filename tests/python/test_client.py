@@ -1,9 +1,16 @@
 """Every Client call against the live system (conftest.py)."""
 
+import time
+
+import grpc
 import pytest
 
 from dtmf_teleop import (BadRequest, Client, Decision, FrameEvent, NotConfirmed, NotFound, Progress,
-                         ServerUnreachable, Unconfirmed)
+                         ServerUnreachable, TeleopError, Unconfirmed)
+
+# A Velocity frame's steps (docs/protocol.md §10) for a Burger (dtmf-server --robot's default).
+LINEAR_STEP_MPS = 0.22 / 2047
+ANGULAR_STEP_RADPS = 2.84 / 127
 
 
 def test_health_is_serving(robot):
@@ -106,3 +113,46 @@ def test_a_run_frames_commands_and_reports_them_as_a_dict(robot):
     assert by_number["run"]["run_id"] == run_id and "frames" not in by_number
     with pytest.raises(NotFound):
         robot.report(999999)
+
+
+# --- Teleop: the bidirectional stream of server/teleop_rpc.cpp, live ---------------------------
+# Its parts that need no server: test_teleop.py.
+
+def first_confirmed(stream, linear_mps, angular_radps, within_s=10):
+    """The first status whose confirmed velocity is the target's, within the frame's steps."""
+    deadline = time.monotonic() + within_s
+    for status in stream.updates(timeout_s=within_s):
+        if (status.confirmed and abs(status.confirmed_linear_mps - linear_mps) <= LINEAR_STEP_MPS
+                and abs(status.confirmed_angular_radps - angular_radps) <= ANGULAR_STEP_RADPS):
+            return status
+        if time.monotonic() > deadline:
+            break
+    pytest.fail(f"no confirmation of ({linear_mps}, {angular_radps}) within {within_s} s: {stream.status()}")
+
+
+def test_teleop_drives_at_the_target_one_stream_at_a_time_and_only_with_fast(robot):
+    with robot.teleop(linear_mps=0.1, angular_radps=0.5, profile="fast", lease_s=1.0) as stream:
+        status = first_confirmed(stream, 0.1, 0.5)
+        assert status.target == (0.1, 0.5) and status.velocity is not None
+        assert 0 < status.response_time_ms < 500
+        assert 0 < status.link_quality <= 1 and status.frames_in_window >= 1 and status.link_window_s > 0
+        assert status.lease_s == pytest.approx(1.0, abs=0.15) and 0 <= status.lease_left_s <= status.lease_s
+        assert isinstance(status.progress, Progress) and status.progress.profile == "fast"
+        assert stream.status().confirmed
+
+        with pytest.raises(TeleopError) as raised:  # one stream drives at a time
+            robot.teleop(linear_mps=0.05, profile="fast")
+        assert raised.value.code == grpc.StatusCode.FAILED_PRECONDITION and raised.value.details
+        with pytest.raises(TeleopError) as raised:  # and no command meanwhile
+            robot.drive(speed=20, duration=1, profile="fast").result()
+        assert raised.value.code == grpc.StatusCode.FAILED_PRECONDITION
+
+        stream.set(linear_mps=-0.05, angular_radps=0.0)
+        assert first_confirmed(stream, -0.05, 0.0).target == (-0.05, 0.0)
+    # the block's end sent a Stop the robot confirmed, and freed the robot for commands
+    assert stream.ended
+    assert robot.drive(speed=30, duration=0.5, profile="fast").result().event == FrameEvent.CONFIRMED
+
+    with pytest.raises(BadRequest) as raised:
+        robot.teleop(profile="seed")
+    assert raised.value.code == grpc.StatusCode.INVALID_ARGUMENT and "seed" in raised.value.details

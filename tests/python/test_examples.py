@@ -1,4 +1,5 @@
-"""The examples, run end to end as a user would: the seed test, its plot, a square."""
+"""The examples, run end to end as a user would: the seed test, its plot, a square, and
+the keyboard teleop in a pseudo-terminal."""
 
 import os
 import subprocess
@@ -10,6 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.image  # noqa: E402
 
 from conftest import EXAMPLES  # noqa: E402
+from teleop_helpers import KeyboardInTerminal  # noqa: E402
 
 
 def run_example(name, *args, server):
@@ -41,3 +43,15 @@ def test_drive_square_confirms_all_eight_commands(system):
     assert len(lines) == 8, out
     assert all(line.endswith(": confirmed") for line in lines), out
     assert lines[0].startswith("side 1: drive_for_duration") and lines[1].startswith("turn 1: turn_for_duration")
+
+
+def test_teleop_keyboard_steps_the_robot_from_a_terminal_and_stops_on_q(system):
+    keyboard = KeyboardInTerminal(system.address)
+    try:
+        keyboard.press(b"", r"target \+0\.00 m/s \+0\.00 rad/s")  # the stream is open
+        keyboard.press(b"wwwww", r"target \+0\.05 m/s \+0\.00 rad/s \| robot \+0\.05 m/s")
+        keyboard.press(b"a ", r"target \+0\.00 m/s \+0\.00 rad/s \| robot \+0\.00 m/s \+0\.00 rad/s")
+        assert keyboard.quit() == 0, keyboard.text
+    finally:
+        keyboard.close()
+    assert "stopping" in keyboard.text

@@ -8,8 +8,9 @@
         print(robot.report()["success_rate_pct"])
 
 Each command call starts at once and returns a CommandCall: iterate it for progress events,
-or call result() for the final one. A command that ends unconfirmed, a bad value or an
-unreachable server raise TeleopError subclasses (errors.py) carrying the gRPC status.
+or call result() for the final one; teleop() opens a live-driving stream (teleop.py). A
+command that ends unconfirmed, a bad value or an unreachable server raise TeleopError
+subclasses (errors.py) carrying the gRPC status.
 """
 
 from __future__ import annotations
@@ -22,8 +23,9 @@ from . import errors
 from ._stubs.dtmf.v1 import teleop_pb2 as pb
 from ._stubs.dtmf.v1 import teleop_pb2_grpc
 from ._stubs.grpc.health.v1 import health_pb2, health_pb2_grpc
-from .events import Decision, FrameEvent, Progress, SequenceProgress, Unconfirmed
+from .events import Decision, FrameEvent, Progress, SequenceProgress, TeleopStatus, Unconfirmed
 from .records import message_to_dict
+from .teleop import REPEAT_S, TeleopStream
 
 DEFAULT_TARGET = "localhost:50051"
 
@@ -126,6 +128,27 @@ class Client:
         request = pb.RunTestSequenceRequest(label=label, notes=notes, options=_options(on_unconfirmed, profile))
         call = self._stub.RunTestSequence(request, metadata=self._metadata)
         return CommandCall(self, call, SequenceProgress.from_proto)
+
+    def teleop(self, linear_mps: float = 0.0, angular_radps: float = 0.0, *, lease_s: float = 1.0,
+               profile: str = "fast", on_status: Optional[Callable[[TeleopStatus], None]] = None,
+               stop_on_exit: bool = True, repeat_s: float = REPEAT_S) -> TeleopStream:
+        """Live driving (teleop.py): opens a Teleop stream starting at this target (m/s, rad/s,
+        left positive) and returns once the server has taken it. lease_s (0.3..2): how long
+        the robot holds a target without a renewal; profile: one that carries velocity
+        ("fast"); on_status: called with each TeleopStatus (on the stream's reader thread). One
+        stream drives at a time: a second one, and drive(), turn(), reset() or run_sequence()
+        meanwhile, are refused (FAILED_PRECONDITION); stop() overtakes and ends it.
+
+        Use it in a with-block: leaving it half-closes the stream and, unless stop_on_exit is
+        False, sends a Stop (with this profile) and waits for the robot to confirm it, so the
+        robot stops at once instead of when its lease runs out."""
+        def stop_robot() -> None:
+            self.stop(on_unconfirmed=Unconfirmed.FAIL, profile=profile).result()
+
+        return TeleopStream(lambda requests: self._stub.Teleop(requests, metadata=self._metadata), stop_robot,
+                            linear_mps=linear_mps, angular_radps=angular_radps, lease_s=lease_s, profile=profile,
+                            on_status=on_status, stop_on_exit=stop_on_exit, repeat_s=repeat_s,
+                            accept_timeout_s=self.timeout_s, target=self.target)
 
     def decide(self, command_id: str, decision: Decision) -> None:
         self._unary(self._stub.Decide, pb.DecideRequest(command_id=command_id, decision=decision.value))

@@ -1,5 +1,6 @@
-"""Typed views of what the server streams: a command's progress frame by frame, and the
-test sequence's progress, as frozen dataclasses with Python enums (no protobuf needed)."""
+"""Typed views of what the server streams: a command's progress frame by frame, the test
+sequence's progress and a Teleop stream's status, as frozen dataclasses with Python enums
+(no protobuf needed)."""
 
 from __future__ import annotations
 
@@ -88,3 +89,40 @@ class SequenceProgress:
     def from_proto(cls, r: pb.RunTestSequenceResponse) -> "SequenceProgress":
         return cls(run_id=r.run_id, command_index=r.command_index, command_count=r.command_count,
                    frames_done=r.frames_done, frames_total=r.frames_total, progress=Progress.from_proto(r.progress))
+
+
+@dataclass(frozen=True)
+class TeleopStatus:
+    """A Teleop stream after one frame's event: the target the server holds, the velocity
+    the robot last confirmed, and how well the link carries (Client.teleop)."""
+    target_linear_mps: float         # the newest target the server holds
+    target_angular_radps: float
+    confirmed: bool                  # the robot has confirmed a frame of this stream
+    confirmed_linear_mps: float      # the last velocity it confirmed, as it executes it (0 before)
+    confirmed_angular_radps: float
+    response_time_ms: float          # the last confirmed frame's chord start to its ACK
+    link_quality: float              # answers heard per frame sent over the last link_window_s (0..1)
+    frames_in_window: int
+    link_window_s: float
+    lease_s: float                   # the lease each frame carries (as the frame encodes it)
+    lease_left_s: float              # until the lease of the last frame sent ends, if the robot heard it
+    progress: Optional[Progress] = None  # the frame's event, as drive() yields it
+
+    @property
+    def target(self) -> tuple[float, float]:
+        """(linear m/s, angular rad/s) the server is sending."""
+        return (self.target_linear_mps, self.target_angular_radps)
+
+    @property
+    def velocity(self) -> Optional[tuple[float, float]]:
+        """(linear m/s, angular rad/s) the robot confirmed last; None before its first ACK."""
+        return (self.confirmed_linear_mps, self.confirmed_angular_radps) if self.confirmed else None
+
+    @classmethod
+    def from_proto(cls, r: pb.TeleopResponse) -> "TeleopStatus":
+        return cls(target_linear_mps=r.target_linear_mps, target_angular_radps=r.target_angular_radps,
+                   confirmed=r.confirmed, confirmed_linear_mps=r.confirmed_linear_mps,
+                   confirmed_angular_radps=r.confirmed_angular_radps, response_time_ms=r.response_time_ms,
+                   link_quality=r.link_quality, frames_in_window=r.frames_in_window, link_window_s=r.link_window_s,
+                   lease_s=r.lease_s, lease_left_s=r.lease_left_s,
+                   progress=Progress.from_proto(r.progress) if r.HasField("progress") else None)
