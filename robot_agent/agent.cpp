@@ -125,18 +125,28 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
 }
 
 void Agent::publish(const Velocity& velocity, double audio_ms) {
+  published_ms_ = audio_ms;
   const auto stamp = timeline_.wall(audio_ms);
   for (CmdVelOutput* output : outputs_) output->publish(velocity, audio_ms, stamp);
 }
 
 void Agent::publish_until(double audio_ms, bool inclusive) {
   const double period_ms = 1000.0 / options_.publish_rate_hz;
-  while (next_publish_ms_ < audio_ms || (inclusive && next_publish_ms_ == audio_ms)) {
-    const Velocity velocity = provider_.update(next_publish_ms_ / 1000.0);
-    if (auto reason = provider_.take_stop_reason())
-      spdlog::info("t={:.3f}s stop: {}", next_publish_ms_ / 1000.0, *reason);
-    publish(velocity, next_publish_ms_);
-    next_publish_ms_ += period_ms;
+  for (;;) {
+    // Besides every period, the moment the wheels reach a new velocity or stand still at a
+    // lease's end: cmd_vel carries a key press, and the lease's stop, without waiting for
+    // the next period.
+    double at_ms = next_publish_ms_;
+    if (const auto settles_s = provider_.settles_at_s()) {
+      if (const double settles_ms = *settles_s * 1000; settles_ms > published_ms_ && settles_ms < at_ms) {
+        at_ms = settles_ms;
+      }
+    }
+    if (!(at_ms < audio_ms || (inclusive && at_ms == audio_ms))) return;
+    const Velocity velocity = provider_.update(at_ms / 1000.0);
+    if (auto reason = provider_.take_stop_reason()) spdlog::info("t={:.3f}s stop: {}", at_ms / 1000.0, *reason);
+    publish(velocity, at_ms);
+    if (at_ms == next_publish_ms_) next_publish_ms_ += period_ms;
   }
 }
 

@@ -5,7 +5,8 @@
 //                      does), NACK if not (ReplyPlayer)
 //                       -> a receptions row (store)
 //                       -> a complete, new command -> VelocityProvider
-//   every publish period -> VelocityProvider::update -> every cmd_vel output
+//   every publish period, and the end of each ramp (a Velocity reached, a lease's
+//   standstill) -> VelocityProvider::update -> every cmd_vel output
 //
 // The agent listens with every profile it is given at once, so the sender may choose the
 // profile per command.
@@ -117,7 +118,8 @@ class Agent {
   // The command takes effect from `heard_ms`; the row gets the velocity it set.
   void execute(const command::Command& command, double start_ms, double heard_ms, store::ReceptionRow& row);
   void told(const HeardFrame& frame) const;
-  // Publishes every tick up to audio_ms (including a tick at exactly audio_ms if inclusive).
+  // Publishes every tick up to audio_ms (including a tick at exactly audio_ms if inclusive),
+  // and the moments between ticks when a ramp ends (VelocityProvider::settles_at_s).
   void publish_until(double audio_ms, bool inclusive = true);
   void publish(const Velocity& velocity, double audio_ms);
 
@@ -134,6 +136,7 @@ class Agent {
   VelocityProvider provider_;
   long long samples_ = 0;
   double next_publish_ms_ = 0;
+  double published_ms_ = -1;  // the last sample's audio time
   std::size_t frames_heard_ = 0;
   // The last intact frame's link, and until when (audio ms) that frame and its answer sound.
   const link::Link* sounding_link_ = nullptr;

@@ -83,6 +83,15 @@ void VelocityProvider::stop() {
   velocity_ = target_ = {};
 }
 
+std::optional<double> VelocityProvider::settles_at_s() const {
+  if (velocity_ != target_) {
+    return ramped_at_s_ + std::max(std::abs(target_.linear_mps - velocity_.linear_mps) / model_.linear_accel_mps2,
+                                   std::abs(target_.angular_rps - velocity_.angular_rps) / model_.angular_accel_rps2);
+  }
+  if (state_ == MotionState::Leased) return end_s_;
+  return std::nullopt;
+}
+
 double VelocityProvider::stopping_time_s(const Velocity& from) const {
   return std::max(std::abs(from.linear_mps) / model_.linear_accel_mps2,
                   std::abs(from.angular_rps) / model_.angular_accel_rps2);

@@ -48,6 +48,9 @@ class VelocityProvider {
   // the velocity still ramps towards its target.
   bool changing_by_itself() const;
   Velocity velocity() const { return velocity_; }
+  // When the wheels next stop changing by themselves: a ramp reaching its target, or the
+  // standstill at a lease's end; nothing while they hold a velocity with no end set here.
+  std::optional<double> settles_at_s() const;
   // What the wheels are heading for (a Velocity's own, while they ramp towards it).
   Velocity target() const { return target_; }
   // Why the last automatic stop happened ("duration ended", "continuous limit of 30 s"), once.

@@ -93,6 +93,12 @@ TEST_F(AgentOffline, AVelocityHoldsForItsLeaseThenTheWheelsStop) {
   EXPECT_GE(first_move, 102.5) << "heard at the frame's end";
   EXPECT_GE(last_move, 450) << r.out;
   EXPECT_LE(last_move, 500) << r.out;
+  // The standstill itself is published when it comes, not at the next 50 ms tick (550 ms).
+  const auto zero = std::find_if(lines.begin(), lines.end(), [&](const nlohmann::json& line) {
+    return line["t_ms"].get<double>() > last_move && line["linear_mps"] == 0.0 && line["angular_rps"] == 0.0;
+  });
+  ASSERT_NE(zero, lines.end()) << r.out;
+  EXPECT_LT((*zero)["t_ms"].get<double>(), 530) << r.out;
   EXPECT_EQ(lines.back()["linear_mps"], 0.0);
   EXPECT_EQ(lines.back()["angular_rps"], 0.0);
   EXPECT_NE(r.out.find("stop: lease ended"), std::string::npos) << r.out;

@@ -108,6 +108,21 @@ TEST(VelocityProvider, AVelocityRampsAtTheAccelerationLimitsAndHoldsForItsLease)
   EXPECT_EQ(p.take_stop_reason(), "lease ended");
   EXPECT_EQ(p.update(1.0), Velocity{}) << "zero at the lease's end, exactly";
   EXPECT_FALSE(p.changing_by_itself());
+  EXPECT_FALSE(p.settles_at_s()) << "standing still";
+}
+
+TEST(VelocityProvider, SaysWhenTheWheelsSettleSoTheAgentPublishesThen) {
+  VelocityProvider p(burger(), 30);
+  p.update(0);
+  EXPECT_FALSE(p.settles_at_s());
+  p.apply(command::Velocity{0.5, -0.5, 1.0}, 0.2);
+  // The turn takes longest to reach: 1.42 / 25 = 56.8 ms after the frame was heard.
+  ASSERT_TRUE(p.settles_at_s());
+  EXPECT_NEAR(*p.settles_at_s(), 0.2568, 1e-9);
+  EXPECT_EQ(p.update(0.2568), (Velocity{0.11, -1.42})) << "exactly the target then";
+  EXPECT_DOUBLE_EQ(*p.settles_at_s(), 1.2) << "next: standing still at the lease's end";
+  p.apply(command::DriveForward{50}, 0.5);
+  EXPECT_FALSE(p.settles_at_s()) << "a seed command holds with no end set here";
 }
 
 TEST(VelocityProvider, ARenewalExtendsTheLeaseAndAReversalNeverJerks) {
