@@ -1,4 +1,4 @@
-"""The targets section of docs/benchmarks.md: every target of issues 15 and 22, judged for each
+"""The targets section of docs/benchmarks.md: every target of issues 15, 22 and 23, judged for each
 profile (and for `fast+key`, the fast profile's authenticated frames, issue 22).
 
 Each row names a target, and each cell says whether the profile met it, with the figure it
@@ -165,6 +165,28 @@ def _decoder(factor):
     return judge
 
 
+def _teleop(test, text):
+    def judge(p, ok):
+        d = p.get("teleop", {"error": "not run"})
+        if not ok(d):
+            return None, "not run"
+        return test(d), text(d)
+    return judge
+
+
+def _teleop_stop(trial):
+    trials = {"kill": "kills", "loss": "losses"}[trial]
+
+    def test(d):
+        return (d[trials + "_not_stopped"] == 0 and d[trials + "_moved_after"] == 0
+                and bool(d[trial + "_to_stop_ms"]["all"]) and d[trial + "_to_stop_ms"]["max"] <= d["stop_bound_ms"])
+
+    def text(d):
+        return (f"max {d[trial + '_to_stop_ms']['max']:.0f} ms of {d[trials]} (bound {d['stop_bound_ms']:.0f} ms), "
+                f"{d[trials + '_not_stopped']} not stopped, {d[trials + '_moved_after']} moved again")
+    return _teleop(test, text)
+
+
 def targets(decoder_factor):
     """(key, the target as the issue states it, profiles it binds, judge(profile data, ok))."""
     rows = [(label, f"≥ {100 * least:g} %", BOTH, _rooms(least, pick)) for label, pick, least in ROOM_TARGETS]
@@ -189,12 +211,19 @@ def targets(decoder_factor):
         ("answer path: an answer taken before the robot answered (an echo, noise)", "0", FAST_BOTH, _answers_wrong),
         ("talk-off: false confirmations per hour (with a key: a forged tag; without, anyone may ACK)", "0", KEYED,
          _false_confirmations),
+        ("teleop through the seminar room both ways: key press → cmd_vel, median", "≤ 200 ms", FAST_BOTH,
+         _teleop(lambda d: d["presses_not_reached"] == 0 and d["press_to_cmd_vel_ms"]["median"] <= 200,
+                 lambda d: f"{d['press_to_cmd_vel_ms']['median']:.0f} ms, {d['presses_not_reached']} of "
+                           f"{d['presses']} presses not reached")),
+        ("teleop: the client killed with -9 → the robot stopped", "≤ lease + 0.2 s", FAST_BOTH, _teleop_stop("kill")),
+        ("teleop: the link lost while driving → the robot stopped, never on an old velocity past its lease",
+         "≤ lease + 0.2 s", FAST_BOTH, _teleop_stop("loss")),
     ]
     return rows
 
 
 def targets_section(w, data, profiles, ok, decoder_factor):
-    w("## Targets (issues 15 and 22)")
+    w("## Targets (issues 15, 22 and 23)")
     w("")
     w("Every target, judged on the figures above; a profile the target does not bind shows its figure only. "
       "A miss gives its reason (typed into `bench/targets_section.py` from the analysis; docs/protocol.md §10).")

@@ -5,7 +5,7 @@
         --machine "..." --date "..." --minutes 9 --build-type Release --talkoff-s 3600
 
 Each profile's directory holds one JSON file per benchmark (decoder, snr, distance,
-distance_loud, rooms, talkoff_speech, talkoff_music, talkoff_noise, e2e) or NAME.error when the
+distance_loud, rooms, talkoff_speech, talkoff_music, talkoff_noise, e2e, teleop...) or NAME.error when the
 benchmark could not run for that profile. Every figure of ours comes from those files; the
 seed report's figures and the issue's targets for the fast profile are typed once below.
 Needs Python 3 and matplotlib (Debian: python3-matplotlib).
@@ -25,9 +25,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rooms_section import rooms_section  # noqa: E402
 from answers_section import answers_section  # noqa: E402
 from targets_section import targets_section  # noqa: E402
+from teleop_section import teleop_section  # noqa: E402
 
 BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "answers", "talkoff_speech", "talkoff_music",
-           "talkoff_noise", "roundtrip", "roundtrip_room", "e2e", "e2e_room"]
+           "talkoff_noise", "roundtrip", "roundtrip_room", "e2e", "e2e_room", "teleop"]
 TALKOFF = [("speech", "speech (espeak-ng)"), ("music", "music-like (sox synth)"), ("noise", "noise (white, pink, brown)")]
 
 
@@ -466,6 +467,7 @@ def main() -> int:
           f"| {d['latency_ms_max']:.0f} ms | {d['payload_bits']} bits | {d['wall_s']:.1f} s | {d['throughput_bps']:.2f} bit/s "
           f"| {d['frames_acked_first_attempt']} of {d['frames_first_attempt']} | {d['retransmissions']} |")
     w("")
+    teleop_section(w, data, profiles, ok)
     targets_section(w, data, profiles, ok, decoder_factor)
     with open(args.out, "w") as f:
         f.write("\n".join(out))

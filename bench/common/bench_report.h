@@ -41,6 +41,16 @@ inline std::pair<double, double> wilson95(std::uint64_t k, std::uint64_t n) {
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
+// The p-quantile (0..1) of `v`, interpolated between the two nearest ranks; 0 when empty.
+inline double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const double at = p * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(at);
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (v[hi] - v[lo]) * (at - static_cast<double>(lo));
+}
+
 // Runs job(0) .. job(count - 1) on `threads` threads, each job once; jobs must be independent.
 // The first exception a job throws is rethrown here once every thread has stopped.
 inline void run_parallel(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& job) {

@@ -88,6 +88,28 @@ class TargetsSection(unittest.TestCase):
         self.assertTrue(confirmations["fast+key"].startswith("**missed**: 3 in 3 h"))
         self.assertEqual(rows["measured rooms (1 and 3 m)"]["fast+key"], "met: worst 100.00 % (seminar_room_clap 1 m)")
 
+    def test_teleop_rows_judge_the_median_press_and_every_stop_against_its_bound(self):
+        def teleop(press_median=150.0, kill_max=1100.0, moved=0, not_reached=0):
+            def stops(worst):
+                return dict(median=worst - 100, p95=worst, max=worst, all=[worst - 100, worst])
+            return dict(presses=100, presses_not_reached=not_reached, stop_bound_ms=1230.0,
+                        press_to_cmd_vel_ms=dict(median=press_median, p95=190.0, max=300.0, all=[press_median]),
+                        kills=2, kills_not_stopped=0, kills_moved_after=moved, kill_to_stop_ms=stops(kill_max),
+                        losses=2, losses_not_stopped=0, losses_moved_after=0, loss_to_stop_ms=stops(1000.0))
+        fast, keyed = profile_data(), profile_data()
+        fast["teleop"], keyed["teleop"] = teleop(), teleop(press_median=230.0, kill_max=1300.0)
+        rows = table({"seed": profile_data(), "fast": fast, "fast+key": keyed}, ("seed", "fast", "fast+key"))
+        press = rows["teleop through the seminar room both ways: key press → cmd_vel, median"]
+        self.assertEqual(press["seed"], "not run")
+        self.assertEqual(press["fast"], "met: 150 ms, 0 of 100 presses not reached")
+        self.assertTrue(press["fast+key"].startswith("**missed**: 230 ms"))
+        kill = rows["teleop: the client killed with -9 → the robot stopped"]
+        self.assertEqual(kill["fast"], "met: max 1100 ms of 2 (bound 1230 ms), 0 not stopped, 0 moved again")
+        self.assertTrue(kill["fast+key"].startswith("**missed**: max 1300 ms"))
+        fast["teleop"] = teleop(moved=1)
+        rows = table({"seed": profile_data(), "fast": fast})
+        self.assertTrue(rows["teleop: the client killed with -9 → the robot stopped"]["fast"].startswith("**missed**"))
+
     def test_every_typed_reason_belongs_to_a_target(self):
         keys = {key for key, _, _, _ in targets_section.targets(lambda d, s: 0)}
         for key, profile in targets_section.REASONS:
