@@ -8,11 +8,11 @@
 //                VELOCITY: linear_fraction -1..1, 12 bits (code 2048 is exactly zero)
 //   bits 11..0   field B: duration_s, 12 bits, for the *_FOR_DURATION kinds; else 0;
 //                VELOCITY: angular_fraction -1..1 in bits 11..4 (8 bits, code 128 is zero)
-//                and lease_s 0.3..2 in bits 3..0 (4 bits)
+//                and lease_s 0.25..2 in bits 3..0 (4 bits)
 //
 // VELOCITY's steps: 1/2047 of the top speed (0.0001 m/s on a Burger) and 1/127 of the top
 // turn rate (0.022 rad/s), finer than turtlebot3_teleop's 0.01 m/s and 0.1 rad/s; the lease
-// in 14 steps of about 0.12 s.
+// in 14 steps of 0.125 s, rounded down (kLeaseField4).
 // Every field has the 12-bit resolution of the seed's DRIVE_FORWARD word, duration included
 // (8 s in 4094 steps of about 2 ms). A payload decodes only when its kind is a command and
 // every field is either a valid code or, where the kind has no such field, zero — so a
