@@ -77,10 +77,14 @@ bool Job::decide(reliability::Decision decision) {
   return true;
 }
 
-std::optional<reliability::Decision> Job::await_decision() {
-  std::unique_lock lock(mutex_);
+void Job::open_decision() {
+  std::lock_guard lock(mutex_);
   awaiting_decision_ = true;
   decision_.reset();
+}
+
+std::optional<reliability::Decision> Job::await_decision() {
+  std::unique_lock lock(mutex_);
   changed_.wait_for(lock, decision_timeout_, [this] { return decision_.has_value() || cancelled_; });
   awaiting_decision_ = false;
   return decision_;

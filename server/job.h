@@ -92,7 +92,10 @@ class Job {
   void emit(ProgressEvent event);
   void finish(Outcome outcome, std::string detail = {});
   bool cancelled();
-  // Waits for decide() (or cancel); nullopt on timeout or cancel.
+  // Opens the question before it is announced, so that a caller who answers
+  // the AWAITING_DECISION event at once finds it open; then waits for decide()
+  // (or cancel). await_decision() gives nullopt on timeout or cancel.
+  void open_decision();
   std::optional<reliability::Decision> await_decision();
 
  private:

@@ -137,6 +137,7 @@ void Transmitter::send(Job& job) {
             ask.detail = "frame " + std::to_string(index + 1) + " unconfirmed after " +
                          std::to_string(retry.attempt()) +
                          " transmissions: call Decide(command_id, CONTINUE | RETRANSMIT | ABORT)";
+            job.open_decision();
             emit(job, ask);
             decision = job.await_decision();
             if (!decision) {
