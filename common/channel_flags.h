@@ -3,9 +3,9 @@
 // reverberator, a measured room (--rir) or an image-source room (--room and its walls,
 // positions and RT60), microphone and loudspeaker responses, whines, clock offset and
 // radial motion. add_channel_flags() declares them on a CLI11 app; channel_setup() turns
-// what was given into a physical::ChannelConfig, refusing combinations that make no sense
-// with a message naming the flags. The physical layer parses the values themselves
-// (physical/room_spec.h, frequency_response.h, whines.h) and knows nothing of flags.
+// what was given into a sim::ChannelConfig, refusing combinations that make no sense
+// with a message naming the flags. The simulator parses the values themselves
+// (sim/room_spec.h, frequency_response.h, whines.h) and knows nothing of flags.
 // Header-only, like program_main.h: each program includes it once.
 #pragma once
 
@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "physical/acoustic_channel.h"
-#include "physical/room_spec.h"
+#include "sim/acoustic_channel.h"
+#include "sim/room_spec.h"
 
 namespace dtmf::program {
 
@@ -82,9 +82,8 @@ inline void add_channel_flags(CLI::App& app, ChannelFlags& f) {
   app.add_option("--mic-at", f.mic_at, "microphone position in --room, x,y,z metres (default 5 cm above the floor)");
   app.add_option("--room-seed", f.room_seed, "random seed of --room's image positions (the same both ways)")
       ->capture_default_str();
-  app.add_option(
-         "--mic-response", f.mic_response,
-         "microphone frequency response: " + physical::response_preset_names() + ", Hz:dB,... or a file of them")
+  app.add_option("--mic-response", f.mic_response,
+                 "microphone frequency response: " + sim::response_preset_names() + ", Hz:dB,... or a file of them")
       ->capture_default_str();
   app.add_option("--speaker-response", f.speaker_response, "loudspeaker frequency response, as --mic-response")
       ->capture_default_str();
@@ -100,8 +99,8 @@ inline void add_channel_flags(CLI::App& app, ChannelFlags& f) {
 }
 
 struct ChannelSetup {
-  physical::ChannelConfig config;
-  std::optional<physical::Point3> speaker_at;
+  sim::ChannelConfig config;
+  std::optional<sim::Point3> speaker_at;
   double distance_m = 1;
 };
 
@@ -121,18 +120,17 @@ auto from_flag(const char* flag, F parse) {
 // that cannot work together or a value that cannot be read.
 inline ChannelSetup channel_setup(const ChannelFlags& f) {
   using channel_flags_detail::from_flag;
-  namespace ph = physical;
   ChannelSetup s;
-  ph::ChannelConfig& c = s.config;
+  sim::ChannelConfig& c = s.config;
   s.distance_m = f.distance_m;
-  c.noise = ph::parse_noise(f.noise, f.noise_dbfs);
+  c.noise = sim::parse_noise(f.noise, f.noise_dbfs);
   c.clock_offset_ppm = f.clock_ppm;
   c.seed = f.seed;
-  c.mic_response = from_flag("--mic-response", [&] { return ph::parse_response(f.mic_response); });
-  c.speaker_response = from_flag("--speaker-response", [&] { return ph::parse_response(f.speaker_response); });
-  for (const auto& w : f.whines) c.whines.push_back(from_flag("--whine", [&] { return ph::parse_whine(w); }));
+  c.mic_response = from_flag("--mic-response", [&] { return sim::parse_response(f.mic_response); });
+  c.speaker_response = from_flag("--speaker-response", [&] { return sim::parse_response(f.speaker_response); });
+  for (const auto& w : f.whines) c.whines.push_back(from_flag("--whine", [&] { return sim::parse_whine(w); }));
   c.motion.speed_mps = f.radial_speed_mps;
-  const auto range = from_flag("--radial-range-m", [&] { return ph::parse_range(f.radial_range_m); });
+  const auto range = from_flag("--radial-range-m", [&] { return sim::parse_range(f.radial_range_m); });
   c.motion.min_distance_m = range.first;
   c.motion.max_distance_m = range.second;
 
@@ -153,12 +151,12 @@ inline ChannelSetup channel_setup(const ChannelFlags& f) {
   if (f.rir.empty() && f.room.empty()) c.reverb.rt60_s = f.reverb_rt60_s;  // the old reverberator, as before
   c.room.rir_file = f.rir;
   if (!f.room.empty()) {
-    ph::ShoeboxRoom box;
-    box.size_m = from_flag("--room", [&] { return ph::parse_room_size(f.room); });
+    sim::ShoeboxRoom box;
+    box.size_m = from_flag("--room", [&] { return sim::parse_room_size(f.room); });
     for (const auto& spec : f.reflections) {
-      const auto surfaces = from_flag("--wall-reflection", [&] { return ph::apply_reflection(box, spec); });
-      for (ph::Surface surface : surfaces) {
-        if (f.room_rt60_s > 0 && surface != ph::kFloor) {
+      const auto surfaces = from_flag("--wall-reflection", [&] { return sim::apply_reflection(box, spec); });
+      for (sim::Surface surface : surfaces) {
+        if (f.room_rt60_s > 0 && surface != sim::kFloor) {
           throw std::invalid_argument("--wall-reflection '" + spec +
                                       "' and --room-rt60: the RT60 sets the walls and "
                                       "ceiling itself; with it give only the floor's (floor=0.95)");
@@ -168,12 +166,12 @@ inline ChannelSetup channel_setup(const ChannelFlags& f) {
     c.room.shoebox = box;
     c.room.target_rt60_s = f.room_rt60_s;
     c.room.seed = f.room_seed;
-    if (!f.mic_at.empty()) c.room.mic_at = from_flag("--mic-at", [&] { return ph::parse_position(f.mic_at); });
+    if (!f.mic_at.empty()) c.room.mic_at = from_flag("--mic-at", [&] { return sim::parse_position(f.mic_at); });
     if (!f.speaker_at.empty()) {
       if (distance_given)
         throw std::invalid_argument(
             "--distance and --speaker-at: give the loudspeaker's distance or its position, not both");
-      s.speaker_at = from_flag("--speaker-at", [&] { return ph::parse_position(f.speaker_at); });
+      s.speaker_at = from_flag("--speaker-at", [&] { return sim::parse_position(f.speaker_at); });
     }
   }
   return s;
@@ -181,9 +179,9 @@ inline ChannelSetup channel_setup(const ChannelFlags& f) {
 
 // The channel with its one loudspeaker; std::invalid_argument naming the flags (a
 // loudspeaker outside the room, a moving one outside its range...).
-inline std::unique_ptr<physical::AcousticChannel> make_channel(const ChannelSetup& s, int sample_rate_hz) {
+inline std::unique_ptr<sim::AcousticChannel> make_channel(const ChannelSetup& s, int sample_rate_hz) {
   try {
-    auto channel = std::make_unique<physical::AcousticChannel>(sample_rate_hz, s.config);
+    auto channel = std::make_unique<sim::AcousticChannel>(sample_rate_hz, s.config);
     if (s.speaker_at)
       channel->add_transmitter_at(*s.speaker_at);
     else
@@ -198,13 +196,13 @@ inline std::unique_ptr<physical::AcousticChannel> make_channel(const ChannelSetu
 }
 
 // One line on what the channel does, for a program's report.
-inline std::string describe_channel(const ChannelSetup& s, const physical::AcousticChannel& channel) {
+inline std::string describe_channel(const ChannelSetup& s, const sim::AcousticChannel& channel) {
   const auto number = [](double v) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", v);
     return std::string(text);
   };
-  const physical::ChannelConfig& c = s.config;
+  const sim::ChannelConfig& c = s.config;
   std::string text;
   if (const auto* room = channel.room()) {
     text = room->describe();
@@ -217,7 +215,7 @@ inline std::string describe_channel(const ChannelSetup& s, const physical::Acous
     text = "free field, " + number(s.distance_m) + " m" +
            (c.reverb.rt60_s > 0 ? ", reverberator RT60 " + number(c.reverb.rt60_s) + " s" : "");
   }
-  if (c.noise.kind != physical::NoiseKind::None) text += ", noise at " + number(c.noise.level_dbfs) + " dBFS";
+  if (c.noise.kind != sim::NoiseKind::None) text += ", noise at " + number(c.noise.level_dbfs) + " dBFS";
   if (!c.mic_response.flat()) text += ", microphone " + c.mic_response.name;
   if (!c.speaker_response.flat()) text += ", loudspeaker response " + c.speaker_response.name;
   for (const auto& w : c.whines)

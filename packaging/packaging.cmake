@@ -16,7 +16,10 @@ set(DTMF_PACKAGE_MAINTAINER "dtmf-teleop maintainers <maintainers@users.noreply.
 # Which programs each component installs, for the manual pages.
 set(DTMF_COMPONENT_PROGRAMS_agent dtmf-agent)
 set(DTMF_COMPONENT_PROGRAMS_server dtmf-server dtmf-migrate)
-set(DTMF_COMPONENT_PROGRAMS_cli dtmfctl dtmf-room)
+set(DTMF_COMPONENT_PROGRAMS_cli dtmfctl)
+if(DTMF_BUILD_SIMULATOR)
+  list(APPEND DTMF_COMPONENT_PROGRAMS_cli dtmf-room)
+endif()
 set(DTMF_COMPONENT_SUMMARY_agent "robot agent: drive a TurtleBot3 by sound")
 set(DTMF_COMPONENT_SUMMARY_server "sender server: robot commands as audio chords, with a gRPC API")
 set(DTMF_COMPONENT_SUMMARY_cli "command-line client and offline tools of the sound link")

@@ -19,9 +19,9 @@
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "link/frame_trials.h"
-#include "physical/noise.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
+#include "sim/noise.h"
 
 using namespace dtmf;
 using namespace dtmf::bench;
@@ -40,7 +40,7 @@ double thread_cpu_s() {
 
 std::vector<float> noise_only(const LinkProfile& profile, double audio_s) {
   std::vector<float> audio(static_cast<std::size_t>(audio_s * profile.sample_rate_hz), 0.0f);
-  physical::NoiseSource(physical::parse_noise("pink", kNoiseOnlyDbfs), profile.sample_rate_hz, 1).add_to(audio);
+  sim::NoiseSource(sim::parse_noise("pink", kNoiseOnlyDbfs), profile.sample_rate_hz, 1).add_to(audio);
   return audio;
 }
 
@@ -54,7 +54,7 @@ std::pair<std::vector<float>, std::size_t> back_to_back_frames(FrameTrials& tria
   for (std::size_t i = 0; i < count; ++i) {
     FrameTrials::add_frame(trials.random_frame(rng), std::span<float>(audio).subspan(i * trials.slot_samples()));
   }
-  physical::NoiseSource(physical::parse_noise("pink", kUnderFramesDbfs), profile.sample_rate_hz, 2).add_to(audio);
+  sim::NoiseSource(sim::parse_noise("pink", kUnderFramesDbfs), profile.sample_rate_hz, 2).add_to(audio);
   return {audio, count};
 }
 

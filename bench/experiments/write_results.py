@@ -278,7 +278,7 @@ def main() -> int:
       "`scripts/lib/room_air.sh`): the server plays into `speaker` and listens to `sender_ear`, the agent "
       "listens to `robot_ear` and answers into `robot_speaker`. Between them, in both directions, runs "
       "`parec | dtmf-room | pacat` (`tools/room/`): the simulated acoustic channel of "
-      "`protocol/physical/acoustic_channel.h`, the one the tests and benchmarks use, applied to the live "
+      "`protocol/sim/acoustic_channel.h`, the one the tests and benchmarks use, applied to the live "
       + ("audio stream. " if args.rir == "none" else f"audio stream, here with the measured response of {room} "
                                                     f"(`--rir {args.rir}`). ")
       + "Chord and ACK / NACK cross the same room and distance (a room's response is reciprocal).")

@@ -28,10 +28,10 @@
 #include "link/answer_wait.h"
 #include "link/channel_case.h"
 #include "link/link.h"
-#include "physical/acoustic_channel.h"
-#include "physical/room_model.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
+#include "sim/acoustic_channel.h"
+#include "sim/room_model.h"
 
 using namespace dtmf;
 using namespace dtmf::bench;
@@ -81,7 +81,7 @@ std::vector<AnswerCase> default_cases(const std::string& rirs) {
 
 // One stream of `answers` slots through the case's room.
 Counts run_stream(const LinkProfile& profile, const AnswerCase& c, const program::ChannelSetup& setup,
-                  const std::shared_ptr<const physical::RoomModel>& room, const link::LinkOptions& options,
+                  const std::shared_ptr<const sim::RoomModel>& room, const link::LinkOptions& options,
                   std::size_t answers, double slot_ms, std::uint64_t seed) {
   const auto sender = link::make_link(profile, options);
   const auto robot = link::make_link(profile, options);
@@ -119,10 +119,10 @@ Counts run_stream(const LinkProfile& profile, const AnswerCase& c, const program
         own_track[start + i] += static_cast<float>(kOwnFramesGain) * frame[i];
     }
   }
-  physical::ChannelConfig config = setup.config;
+  sim::ChannelConfig config = setup.config;
   config.seed = seed;
-  const auto channel = room ? std::make_unique<physical::AcousticChannel>(profile.sample_rate_hz, config, room)
-                            : std::make_unique<physical::AcousticChannel>(profile.sample_rate_hz, config);
+  const auto channel = room ? std::make_unique<sim::AcousticChannel>(profile.sample_rate_hz, config, room)
+                            : std::make_unique<sim::AcousticChannel>(profile.sample_rate_hz, config);
   channel->add_transmitter(setup.distance_m);
   channel->add_transmitter(setup.distance_m);
   const std::array<std::span<const float>, 2> both{std::span<const float>(answer_track),
@@ -200,7 +200,7 @@ int main(int argc, char** argv) {
           const AnswerCase& c = cases[ci];
           const program::ChannelSetup setup = channel_setup_of(c.channel);
           const auto room = setup.config.room.enabled()
-                                ? std::make_shared<const physical::RoomModel>(setup.config.room, profile.sample_rate_hz)
+                                ? std::make_shared<const sim::RoomModel>(setup.config.room, profile.sample_rate_hz)
                                 : nullptr;
           Counts total;
           std::size_t next = 0;

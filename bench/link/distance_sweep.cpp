@@ -1,7 +1,7 @@
 // dtmf-bench-distance: frame success and wrong accepts against distance in a simulated room.
 //
 // Random frames (chord + gap each) are played by a loudspeaker `d` metres from the robot's
-// microphone through physical::AcousticChannel: propagation delay, 1/d spreading, air
+// microphone through sim::AcousticChannel: propagation delay, 1/d spreading, air
 // absorption, a Schroeder room (RT60 0.3 s, wet 0.3 by default) and a fixed background noise
 // (pink, -50 dBFS RMS by default: a quiet room; the chords are -11 dBFS RMS at 1 m). The
 // robot's receiver is fed in 1024-sample blocks and every slot is scored as in the SNR sweep
@@ -16,9 +16,9 @@
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "link/sweep.h"
-#include "physical/acoustic_channel.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
+#include "sim/acoustic_channel.h"
 
 using namespace dtmf;
 using namespace dtmf::bench;
@@ -74,11 +74,11 @@ int main(int argc, char** argv) {
         const auto started = std::chrono::steady_clock::now();
         const auto points =
             run_sweep(profile, distances_m, options, [&](double distance_m, std::uint64_t seed) -> Channel {
-              physical::ChannelConfig config;
-              config.noise = physical::parse_noise(noise_kind, noise_dbfs);
+              sim::ChannelConfig config;
+              config.noise = sim::parse_noise(noise_kind, noise_dbfs);
               config.reverb = {rt60_s, wet};
               config.seed = seed;
-              auto room = std::make_shared<physical::AcousticChannel>(profile.sample_rate_hz, config);
+              auto room = std::make_shared<sim::AcousticChannel>(profile.sample_rate_hz, config);
               room->add_transmitter(distance_m);
               return [room](std::span<const float> clean, std::vector<float>& heard) { room->process(clean, heard); };
             });

@@ -23,10 +23,10 @@
 #include "common/bench_report.h"
 #include "link/channel_case.h"
 #include "link/sweep.h"
-#include "physical/acoustic_channel.h"
-#include "physical/room_model.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
+#include "sim/acoustic_channel.h"
+#include "sim/room_model.h"
 
 using namespace dtmf;
 using namespace dtmf::bench;
@@ -106,11 +106,11 @@ int main(int argc, char** argv) {
         // Each case's channel settings and its room, prepared once (a measured file read, a
         // shoebox tuned to its RT60) and shared by every stream.
         std::vector<program::ChannelSetup> setups;
-        std::vector<std::shared_ptr<const physical::RoomModel>> rooms;
+        std::vector<std::shared_ptr<const sim::RoomModel>> rooms;
         for (const ChannelCase& c : cases) {
           setups.push_back(channel_setup_of(c));
           const auto& room = setups.back().config.room;
-          rooms.push_back(room.enabled() ? std::make_shared<const physical::RoomModel>(room, profile.sample_rate_hz)
+          rooms.push_back(room.enabled() ? std::make_shared<const sim::RoomModel>(room, profile.sample_rate_hz)
                                          : nullptr);
         }
         std::printf("dtmf-bench-rooms: profile %s, seed %llu, %zu frames per case, %g s lead-in, %u threads\n",
@@ -123,11 +123,11 @@ int main(int argc, char** argv) {
         const auto started = std::chrono::steady_clock::now();
         const auto points = run_sweep(profile, xs, options, [&](double x, std::uint64_t seed) -> Channel {
           const auto i = static_cast<std::size_t>(x);
-          physical::ChannelConfig config = setups[i].config;
+          sim::ChannelConfig config = setups[i].config;
           config.seed = seed;
-          std::shared_ptr<physical::AcousticChannel> channel =
-              rooms[i] ? std::make_shared<physical::AcousticChannel>(profile.sample_rate_hz, config, rooms[i])
-                       : std::make_shared<physical::AcousticChannel>(profile.sample_rate_hz, config);
+          std::shared_ptr<sim::AcousticChannel> channel =
+              rooms[i] ? std::make_shared<sim::AcousticChannel>(profile.sample_rate_hz, config, rooms[i])
+                       : std::make_shared<sim::AcousticChannel>(profile.sample_rate_hz, config);
           if (setups[i].speaker_at)
             channel->add_transmitter_at(*setups[i].speaker_at);
           else

@@ -1,7 +1,7 @@
 // dtmf-bench-roundtrip: the link's round trip in a simulated room — command to confirmation.
 //
 // A stop-and-wait sender and a robot face each other `d` metres apart in a simulated room
-// (physical::AcousticChannel both ways: delay, spreading, air absorption, RT60 0.3 s, pink
+// (sim::AcousticChannel both ways: delay, spreading, air absorption, RT60 0.3 s, pink
 // noise at -50 dBFS; the sender's microphone also hears its own loudspeaker from 0.1 m), or
 // with --rir in a measured room both ways. Both
 // run block by block (--block-samples, 5 ms by default, like low-latency sound cards): the
@@ -24,10 +24,10 @@
 #include "common/bench_report.h"
 #include "link/answer_wait.h"
 #include "link/frame_trials.h"
-#include "physical/acoustic_channel.h"
-#include "physical/room_model.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
+#include "sim/acoustic_channel.h"
+#include "sim/room_model.h"
 
 using namespace dtmf;
 using namespace dtmf::bench;
@@ -77,23 +77,23 @@ double percentile(std::vector<double> v, double p) {
 }
 
 nlohmann::json run(const LinkProfile& profile, const Options& o) {
-  physical::ChannelConfig room;
-  room.noise = physical::parse_noise("pink", -50);
-  std::shared_ptr<const physical::RoomModel> measured;
+  sim::ChannelConfig room;
+  room.noise = sim::parse_noise("pink", -50);
+  std::shared_ptr<const sim::RoomModel> measured;
   if (o.rir.empty()) {
     room.reverb.rt60_s = 0.3;
   } else {
     room.room.rir_file = o.rir;
-    measured = std::make_shared<const physical::RoomModel>(room.room, profile.sample_rate_hz);
+    measured = std::make_shared<const sim::RoomModel>(room.room, profile.sample_rate_hz);
   }
   const auto channel = [&](std::uint64_t seed) {
     room.seed = seed;
-    return measured ? std::make_unique<physical::AcousticChannel>(profile.sample_rate_hz, room, measured)
-                    : std::make_unique<physical::AcousticChannel>(profile.sample_rate_hz, room);
+    return measured ? std::make_unique<sim::AcousticChannel>(profile.sample_rate_hz, room, measured)
+                    : std::make_unique<sim::AcousticChannel>(profile.sample_rate_hz, room);
   };
   const auto to_robot_channel = channel(o.seed), to_sender_channel = channel(o.seed + 1);
-  physical::AcousticChannel& to_robot = *to_robot_channel;
-  physical::AcousticChannel& to_sender = *to_sender_channel;
+  sim::AcousticChannel& to_robot = *to_robot_channel;
+  sim::AcousticChannel& to_sender = *to_sender_channel;
   to_robot.add_transmitter(o.distance_m);
   to_sender.add_transmitter(0.1);  // its own loudspeaker
   to_sender.add_transmitter(o.distance_m);

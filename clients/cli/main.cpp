@@ -9,6 +9,9 @@
 #ifndef DTMF_CLI_LIVE
 #define DTMF_CLI_LIVE 0
 #endif
+#ifndef DTMF_CLI_SIMULATE
+#define DTMF_CLI_SIMULATE 0
+#endif
 
 #include "offline_commands.h"
 #include "profile/link_profile.h"
@@ -45,7 +48,11 @@ int main(int argc, char** argv) {
   dtmf::cli::add_global_options(app, global, /*with_server=*/DTMF_CLI_LIVE);
   dtmf::cli::add_encode_command(app, run, global);
   dtmf::cli::add_decode_command(app, run, global);
+#if DTMF_CLI_SIMULATE
   dtmf::cli::add_simulate_command(app, run);
+#else
+  app.footer(app.get_footer() + "\nThis dtmfctl was built without the simulator (cmake -DDTMF_BUILD_SIMULATOR=OFF).");
+#endif
   dtmf::cli::add_keygen_command(app, run);
 #if DTMF_CLI_LIVE
   dtmf::cli::add_live_commands(app, run, global);

@@ -7,9 +7,9 @@
 
 #include "channel_flags.h"
 #include "offline_commands.h"
-#include "physical/acoustic_channel.h"
 #include "physical/wav_file.h"
 #include "profile/link_profile.h"
+#include "sim/acoustic_channel.h"
 
 namespace dtmf::cli {
 

@@ -23,8 +23,11 @@ DTMF_PACKAGES=(
   python3 python3-pip python3-venv python3-grpcio python3-protobuf python3-pytest python3-matplotlib
 )
 
-# What a robot needs to build dtmf-agent and the offline dtmfctl (cmake -DBUILD_TESTING=OFF
-# -DDTMF_BUILD_SERVER=OFF -DDTMF_CLI_LIVE=OFF): no gRPC, Protocol Buffers or GoogleTest.
+# A robot's build: dtmf-agent and dtmfctl's offline commands (encode, decode, keygen); no
+# sender, no live commands, no simulator (tests/install/robot_build_test.sh checks it).
+DTMF_ROBOT_CMAKE_OPTIONS=(-DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF -DDTMF_BUILD_SERVER=OFF -DDTMF_CLI_LIVE=OFF
+  -DDTMF_BUILD_SIMULATOR=OFF)
+# What a robot needs to build it: no gRPC, Protocol Buffers or GoogleTest.
 # scripts/robot-build-check proves it in a fresh Debian root; the README lists the same.
 DTMF_ROBOT_PACKAGES=(
   build-essential cmake ninja-build pkg-config

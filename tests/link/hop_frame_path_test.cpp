@@ -10,9 +10,9 @@
 #include "command/test_sequence.h"
 #include "link/hop_frame_path.h"
 #include "link/link.h"
-#include "physical/acoustic_channel.h"
 #include "reliability/command_frame.h"
 #include "signal/hop_synthesizer.h"
+#include "sim/acoustic_channel.h"
 
 using namespace dtmf;
 
@@ -49,10 +49,10 @@ class HopFramePathRoom : public ::testing::TestWithParam<double> {};
 
 // Frames 100 ms apart (the next follows an ACK) in a quiet room's pink noise, at 1 m and 5 m.
 TEST_P(HopFramePathRoom, EveryKindWithEverySequenceNumberComesBackOnceWithNoNack) {
-  physical::ChannelConfig room;
-  room.noise = physical::parse_noise("pink", -45);
+  sim::ChannelConfig room;
+  room.noise = sim::parse_noise("pink", -45);
   room.reverb.rt60_s = 0.6;
-  physical::AcousticChannel channel(p.sample_rate_hz, room);
+  sim::AcousticChannel channel(p.sample_rate_hz, room);
   channel.add_transmitter(GetParam());
   std::vector<float> sent, heard;
   std::vector<std::string> expected;
@@ -170,10 +170,10 @@ TEST(HopFramePath, TheSeedsChordsMakeNoVerdictAtAll) {
   for (const auto& c : command::seed_test_sequence()) {
     for (auto& f : seed->plan(c)) frames.push_back(std::move(f));
   }
-  physical::ChannelConfig room;
-  room.noise = physical::parse_noise("white", -70);
+  sim::ChannelConfig room;
+  room.noise = sim::parse_noise("white", -70);
   room.reverb.rt60_s = 0.3;
-  physical::AcousticChannel channel(p.sample_rate_hz, room);
+  sim::AcousticChannel channel(p.sample_rate_hz, room);
   channel.add_transmitter(1.0);
   std::vector<float> heard;
   channel.process(seed->render(frames), heard);

@@ -16,8 +16,8 @@
 #include "command/command.h"
 #include "link/answer_wait.h"
 #include "link/link.h"
-#include "physical/acoustic_channel.h"
-#include "physical/room_model.h"
+#include "sim/acoustic_channel.h"
+#include "sim/room_model.h"
 
 using namespace dtmf;
 
@@ -56,16 +56,16 @@ std::vector<Case> cases() {
 // or nothing but a little white noise. The listener hears 100 ms of the air before the sound
 // comes, as a live one does (a listener learns what the air holds before a reply).
 std::vector<float> through(const LinkProfile& profile, bool room, const std::vector<float>& sound, std::uint64_t seed) {
-  physical::ChannelConfig config;
+  sim::ChannelConfig config;
   config.seed = seed;
-  config.noise = room ? physical::parse_noise("pink", -50) : physical::parse_noise("white", -80);
-  std::shared_ptr<const physical::RoomModel> model;
+  config.noise = room ? sim::parse_noise("pink", -50) : sim::parse_noise("white", -80);
+  std::shared_ptr<const sim::RoomModel> model;
   if (room) {
     config.room.rir_file = std::string(DTMF_RIR_DIR) + "/seminar_room_clap.wav";
-    model = std::make_shared<const physical::RoomModel>(config.room, profile.sample_rate_hz);
+    model = std::make_shared<const sim::RoomModel>(config.room, profile.sample_rate_hz);
   }
-  auto channel = model ? std::make_unique<physical::AcousticChannel>(profile.sample_rate_hz, config, model)
-                       : std::make_unique<physical::AcousticChannel>(profile.sample_rate_hz, config);
+  auto channel = model ? std::make_unique<sim::AcousticChannel>(profile.sample_rate_hz, config, model)
+                       : std::make_unique<sim::AcousticChannel>(profile.sample_rate_hz, config);
   channel->add_transmitter(1.0);
   const auto lead = static_cast<std::size_t>(profile.sample_rate_hz / 10);
   std::vector<float> padded(lead, 0.0f);

@@ -6,10 +6,10 @@
 #include <filesystem>
 
 #include "link/sender_path.h"
-#include "physical/acoustic_channel.h"
 #include "physical/wav_file.h"
 #include "profile/link_profile.h"
 #include "signal/synthesizer.h"
+#include "sim/acoustic_channel.h"
 #include "support/listen.h"
 
 using namespace dtmf;
@@ -19,8 +19,8 @@ namespace {
 const LinkProfile& P() { return seed_profile(); }
 
 std::vector<float> noise(const char* kind, double dbfs, double seconds, std::uint64_t seed) {
-  physical::ChannelConfig config;
-  config.noise = physical::parse_noise(kind, dbfs);
+  sim::ChannelConfig config;
+  config.noise = sim::parse_noise(kind, dbfs);
   config.seed = seed;
   return test_support::through_channel(std::vector<float>(static_cast<std::size_t>(seconds * P().sample_rate_hz), 0.0f),
                                        P().sample_rate_hz, 1.0, config, 0);

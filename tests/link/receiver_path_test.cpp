@@ -31,8 +31,8 @@ class SequenceAtDistance : public ::testing::TestWithParam<double> {};
 TEST_P(SequenceAtDistance, AllFramesHeardOnceInOrderAndEveryCommandExecuted) {
   const LinkProfile& p = seed_profile();
   const auto frames = sequence_frames(p);
-  physical::ChannelConfig room;
-  room.noise = physical::parse_noise("pink", -60);
+  sim::ChannelConfig room;
+  room.noise = sim::parse_noise("pink", -60);
   room.reverb.rt60_s = 0.3;
   room.reverb.wet = 0.2;
   room.clock_offset_ppm = 50;

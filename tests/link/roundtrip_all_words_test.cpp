@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 
 #include "link/sender_path.h"
-#include "physical/acoustic_channel.h"
 #include "profile/link_profile.h"
 #include "signal/synthesizer.h"
 #include "signal/tone_listener.h"
+#include "sim/acoustic_channel.h"
 
 using namespace dtmf;
 
@@ -22,10 +22,10 @@ class AllWords : public ::testing::TestWithParam<int> {};
 
 TEST_P(AllWords, EveryWordIsRecoveredOnceAndNothingElseIsHeard) {
   const LinkProfile& p = seed_profile();
-  physical::ChannelConfig quiet;
-  quiet.noise = physical::parse_noise("white", -80);
+  sim::ChannelConfig quiet;
+  quiet.noise = sim::parse_noise("white", -80);
   quiet.seed = static_cast<std::uint64_t>(GetParam()) + 1;
-  physical::AcousticChannel channel(p.sample_rate_hz, quiet);
+  sim::AcousticChannel channel(p.sample_rate_hz, quiet);
   channel.add_transmitter(1.0);
   auto listener = signal::chord_listener(p);
 

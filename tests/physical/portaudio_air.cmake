@@ -17,7 +17,7 @@ set_tests_properties(air.stop PROPERTIES FIXTURES_CLEANUP air RESOURCE_LOCK air 
 
 foreach(test portaudio_air_test portaudio_no_device_test)
   add_executable(${test} ${CMAKE_CURRENT_LIST_DIR}/${test}.cpp)
-  target_link_libraries(${test} PRIVATE GTest::gtest_main dtmf_physical dtmf_signal dtmf_link
+  target_link_libraries(${test} PRIVATE GTest::gtest_main dtmf_sim dtmf_signal dtmf_link
                                         Threads::Threads)
 endforeach()
 

@@ -32,9 +32,8 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
       air_(
           options_.profile->sample_rate_hz,
           [this] {
-            physical::ChannelConfig air;
-            air.noise =
-                options_.rir_file.empty() ? physical::parse_noise("white", -70) : physical::parse_noise("pink", -50);
+            sim::ChannelConfig air;
+            air.noise = options_.rir_file.empty() ? sim::parse_noise("white", -70) : sim::parse_noise("pink", -50);
             air.room.rir_file = options_.rir_file;
             return air;
           }(),

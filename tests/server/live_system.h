@@ -1,5 +1,5 @@
 // Test fixture: the whole system in one process. The server's transmitter and the robot's
-// agent talk through a simulated room running in real time (physical/simulated_air.h); the
+// agent talk through a simulated room running in real time (sim/simulated_air.h); the
 // service listens on a loopback port for real gRPC clients.
 #pragma once
 
@@ -12,7 +12,7 @@
 
 #include "agent.h"
 #include "dtmf/v1/teleop.grpc.pb.h"
-#include "physical/simulated_air.h"
+#include "sim/simulated_air.h"
 #include "store_recorder.h"
 #include "teleop_service.h"
 
@@ -74,7 +74,7 @@ class LiveSystem {
   class Recorder;
   LiveSystemOptions options_;
   HeardWords heard_;
-  physical::SimulatedAir air_;
+  sim::SimulatedAir air_;
   std::unique_ptr<store::Store> store_;
   std::unique_ptr<server::StoreRecorder> recorder_of_sends_;
   std::unique_ptr<server::Transmitter> transmitter_;

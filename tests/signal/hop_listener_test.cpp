@@ -11,12 +11,12 @@
 #include <random>
 
 #include "link/link.h"
-#include "physical/acoustic_channel.h"
 #include "reliability/command_frame.h"
 #include "reliability/reply_code.h"
 #include "signal/hop_listener.h"
 #include "signal/hop_reply.h"
 #include "signal/hop_synthesizer.h"
+#include "sim/acoustic_channel.h"
 
 using namespace dtmf;
 
@@ -136,9 +136,9 @@ class HopListenerOffset : public ::testing::TestWithParam<double> {};
 TEST_P(HopListenerOffset, TheBlindOffsetEstimateReadsEverySymbolAndConfirmTracksIt) {
   signal::HoppedSymbols sent{};
   for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((11 * t + 4) % 32);
-  physical::ChannelConfig config;
+  sim::ChannelConfig config;
   config.clock_offset_ppm = -GetParam();  // the microphone's clock: a slow clock hears tones high
-  physical::AcousticChannel channel(p.sample_rate_hz, config);
+  sim::AcousticChannel channel(p.sample_rate_hz, config);
   channel.add_transmitter(1.0);
   std::vector<float> heard;
   channel.process(with_silence(signal::synthesize_hopped_frame(p, sent), 3000, 6000), heard);

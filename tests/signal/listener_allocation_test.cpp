@@ -13,13 +13,13 @@
 #include "link/hop_frame_path.h"
 #include "link/link.h"
 #include "link/sender_path.h"
-#include "physical/noise.h"
 #include "profile/link_profile.h"
 #include "reliability/reply_code.h"
 #include "signal/hop_reply.h"
 #include "signal/hop_synthesizer.h"
 #include "signal/synthesizer.h"
 #include "signal/tone_listener.h"
+#include "sim/noise.h"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -50,7 +50,7 @@ std::vector<float> busy_audio(const LinkProfile& profile) {
     for (const auto& f : link::plan_command(profile, command)) frames.push_back(f);
   }
   std::vector<float> audio = link::render_frames(profile, frames);
-  physical::NoiseSource noise(physical::parse_noise("pink", -40), profile.sample_rate_hz, 7);
+  sim::NoiseSource noise(sim::parse_noise("pink", -40), profile.sample_rate_hz, 7);
   noise.add_to(audio);
   return audio;
 }
@@ -124,7 +124,7 @@ TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFram
       }
     }
   }
-  physical::NoiseSource noise(physical::parse_noise("pink", -40), profile.sample_rate_hz, 7);
+  sim::NoiseSource noise(sim::parse_noise("pink", -40), profile.sample_rate_hz, 7);
   noise.add_to(audio);
   std::vector<float> replies;
   for (int s = 0; s <= 16; ++s) {

@@ -1,11 +1,11 @@
 // Signal layer: the listeners put together, on clean synthesized audio.
 #include <gtest/gtest.h>
 
-#include "physical/fft_convolver.h"
-#include "physical/measured_rir.h"
 #include "profile/link_profile.h"
 #include "signal/synthesizer.h"
 #include "signal/tone_listener.h"
+#include "sim/fft_convolver.h"
+#include "sim/measured_rir.h"
 #include "support/listen.h"
 
 using namespace dtmf;
@@ -89,8 +89,8 @@ std::vector<float> chord_with_a_hole(const LinkProfile& p, std::uint16_t frame, 
 }
 
 std::vector<float> through_the_seminar_room(const LinkProfile& p, const std::vector<float>& audio) {
-  const auto rir = physical::load_measured_rir(DTMF_RIR_DIR "/seminar_room_clap.wav", p.sample_rate_hz);
-  physical::FftConvolver room(rir.samples);
+  const auto rir = sim::load_measured_rir(DTMF_RIR_DIR "/seminar_room_clap.wav", p.sample_rate_hz);
+  sim::FftConvolver room(rir.samples);
   std::vector<float> heard(audio.size(), 0.0f);
   room.process_add(audio, heard);
   return heard;

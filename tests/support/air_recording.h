@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "physical/real_fft.h"
 #include "physical/wav_file.h"
+#include "sim/real_fft.h"
 #include "support/processes.h"
 
 namespace dtmf::test_support {
@@ -44,9 +44,9 @@ inline constexpr double kLongestHoleMs = 2000;
 inline std::vector<SplitChord> find_split_chords(const std::vector<float>& audio, int rate_hz, double chord_ms,
                                                  double low_hz, double high_hz) {
   const auto frame = static_cast<std::size_t>(rate_hz / 100);  // 10 ms
-  physical::RealFft fft(frame);
-  physical::FftReal in(frame);
-  physical::FftBins out(fft.bins());
+  sim::RealFft fft(frame);
+  sim::FftReal in(frame);
+  sim::FftBins out(fft.bins());
   std::vector<float> window(frame);
   for (std::size_t i = 0; i < frame; ++i)
     window[i] = static_cast<float>(0.5 - 0.5 * std::cos(2 * std::numbers::pi * i / frame));

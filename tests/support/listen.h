@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "link/receiver_path.h"
-#include "physical/acoustic_channel.h"
 #include "signal/tone_listener.h"
+#include "sim/acoustic_channel.h"
 
 namespace dtmf::test_support {
 
@@ -34,8 +34,8 @@ inline std::vector<link::ReceivedFrame> receive(const LinkProfile& profile, std:
 // `audio` as heard through a channel with one loudspeaker at `distance_m`, plus `tail_ms`
 // of the room after the audio ends.
 inline std::vector<float> through_channel(std::span<const float> audio, int rate, double distance_m,
-                                          const physical::ChannelConfig& config = {}, double tail_ms = 100) {
-  physical::AcousticChannel channel(rate, config);
+                                          const sim::ChannelConfig& config = {}, double tail_ms = 100) {
+  sim::AcousticChannel channel(rate, config);
   channel.add_transmitter(distance_m);
   std::vector<float> padded(audio.begin(), audio.end());
   padded.resize(padded.size() + static_cast<std::size_t>(tail_ms * rate / 1000), 0.0f);

@@ -1,4 +1,4 @@
-// dtmf-room: the simulated acoustic channel (protocol/physical/acoustic_channel.h) as a
+// dtmf-room: the simulated acoustic channel (protocol/sim/acoustic_channel.h) as a
 // streaming filter, so that real processes can talk through a modelled room.
 //
 //   parec ... --format=float32le | dtmf-room --distance-m 7 | pacat ... --format=float32le
@@ -34,8 +34,8 @@
 
 #include "channel_flags.h"
 #include "lag_keeper.h"
-#include "physical/acoustic_channel.h"
 #include "program_main.h"
+#include "sim/acoustic_channel.h"
 
 namespace {
 

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# A robot's build (the options scripts/robot-build-check uses) compiles no file of the
+# simulator (protocol/sim), no dtmfctl simulate and no dtmf-room, but keeps dtmf-agent and
+# dtmfctl with encode and decode. Configures only (seconds): the build itself, in a bare
+# Debian root, is scripts/robot-build-check's. Prints PASS when every check holds.
+#   robot_build_test.sh SOURCE_DIR
+set -euo pipefail
+src=$1
+build=$(mktemp -d)
+trap 'rm -rf "$build"' EXIT
+source "$src/scripts/lib/common.sh"
+cmake -S "$src" -B "$build" -G Ninja "${DTMF_ROBOT_CMAKE_OPTIONS[@]}" >"$build/configure.log" 2>&1 ||
+  { tail -n 20 "$build/configure.log"; echo "FAIL: the robot build does not configure"; exit 1; }
+compiled=$(ninja -C "$build" -t targets all | grep -oE '[^ ]+\.(cpp|c)\.o' | sort -u)
+failed=0
+check() { if ! eval "$1"; then echo "FAIL: $2"; failed=1; fi; }
+check '! grep -q "/sim/" <<<"$compiled"' "it compiles the simulator: $(grep /sim/ <<<"$compiled" | head -3 | tr '\n' ' ')"
+check '! grep -q "simulate_command" <<<"$compiled"' "dtmfctl simulate is built"
+check '! ninja -C "$build" -t targets all | grep -q "^bin/dtmf-room:"' "dtmf-room is built"
+check 'ninja -C "$build" -t targets all | grep -q "^bin/dtmf-agent:"' "dtmf-agent is not built"
+check 'ninja -C "$build" -t targets all | grep -q "^bin/dtmfctl:"' "dtmfctl is not built"
+check 'grep -q "encode_command" <<<"$compiled" && grep -q "decode_command" <<<"$compiled"' \
+  "dtmfctl lost encode or decode"
+check '! grep -q "server/" <<<"$compiled"' "the sender is built"
+[ $failed -eq 0 ] && echo "PASS: a robot's build compiles $(wc -l <<<"$compiled") files, none of the simulator"
