@@ -1,4 +1,5 @@
 #include "signal/chord_decoder.h"
+#include "units/decibels.h"
 
 #include <algorithm>
 #include <array>
@@ -58,7 +59,7 @@ double common_offset_ppm(const TonePlan& plan, std::span<const Peak> peaks, cons
 std::optional<ChordMatch> decode_chord(const TonePlan& plan, std::span<const Peak> peaks, const DetectorParams& rules) {
   const double offset_ppm = rules.max_offset_ppm > 0 ? common_offset_ppm(plan, peaks, rules) : 0.0;
   const double scale = 1.0 + offset_ppm * 1e-6;
-  const double ratio = std::pow(10.0, -rules.dominance_db / 20.0);
+  const double ratio = units::amplitude_ratio_from_db(-rules.dominance_db);
   std::array<int, 4> nibble{-1, -1, -1, -1};
   std::array<double, 4> level{}, other{};  // the band's strongest tone, and its strongest other tone
   for (const Peak& peak : peaks) {
@@ -97,7 +98,7 @@ std::optional<ChordMatch> decode_chord(const TonePlan& plan, std::span<const Pea
 
 std::optional<ReplyMatch> decode_reply(const TonePlan& plan, std::span<const Peak> peaks, double tolerance_hz,
                                        double dominance_db) {
-  const double ratio = std::pow(10.0, -dominance_db / 20.0);
+  const double ratio = units::amplitude_ratio_from_db(-dominance_db);
   const auto levels = [&](const std::array<double, 2>& tones) {
     return std::array<double, 2>{heard(peaks, tones[0], tolerance_hz), heard(peaks, tones[1], tolerance_hz)};
   };

@@ -1,4 +1,5 @@
 #include "signal/debouncer.h"
+#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +7,7 @@
 namespace dtmf::signal {
 
 Debouncer::Debouncer(const DebounceParams& params)
-    : params_(params), rearm_ratio_(std::pow(10.0, -params.rearm_drop_db / 20.0)) {}
+    : params_(params), rearm_ratio_(units::amplitude_ratio_from_db(-params.rearm_drop_db)) {}
 
 void Debouncer::reset() {
   size_ = 0;

@@ -1,4 +1,5 @@
 #include "signal/hop_listener.h"
+#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,9 +24,9 @@ HopListener::HopListener(const LinkProfile& profile)
       sample_rate_hz_(profile.sample_rate_hz),
       hop_(profile.hops.hop_samples),
       hops_per_chord_(profile.hops.chord_samples() / profile.hops.hop_samples),
-      presence_ratio_(static_cast<float>(std::pow(10.0, profile.hops.presence_db / 10.0))),
-      onset_ratio_(static_cast<float>(std::pow(10.0, profile.hops.onset_db / 10.0))),
-      gate_ratio_(static_cast<float>(std::pow(10.0, profile.hops.gate_db / 10.0))),
+      presence_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.presence_db))),
+      onset_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.onset_db))),
+      gate_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.gate_db))),
       rise_per_hop_(static_cast<float>(std::pow(
           10.0, profile.hops.background_rise_db_per_s * profile.hops.hop_samples / profile.sample_rate_hz / 10.0))),
       lo_bin_([&] {

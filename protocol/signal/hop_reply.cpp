@@ -1,4 +1,5 @@
 #include "signal/hop_reply.h"
+#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,11 +16,10 @@ HopReplyListener::HopReplyListener(const LinkProfile& profile, int min_heard)
     : hops_(profile.hops),
       min_heard_(min_heard),
       sample_rate_hz_(profile.sample_rate_hz),
-      presence_ratio_(static_cast<float>(std::pow(10.0, profile.hops.reply_presence_db / 10.0))),
-      onset_ratio_(static_cast<float>(std::pow(10.0, profile.hops.reply_onset_db / 10.0))),
-      rise_per_hop_(
-          static_cast<float>(std::pow(10.0, profile.hops.reply_background_rise_db_per_s *
-                                                profile.hops.reply_hop_samples / profile.sample_rate_hz / 10.0))),
+      presence_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.reply_presence_db))),
+      onset_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.reply_onset_db))),
+      rise_per_hop_(static_cast<float>(units::power_ratio_from_db(
+          profile.hops.reply_background_rise_db_per_s * profile.hops.reply_hop_samples / profile.sample_rate_hz))),
       lo_bin_(profile.hops.reply_tone_bin.front().front() - kMarginBins),
       hops_per_chord_(profile.hops.reply_chord_samples() / profile.hops.reply_hop_samples),
       bins_(profile.hops.reply_window_samples, lo_bin_,

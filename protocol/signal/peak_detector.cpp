@@ -1,4 +1,5 @@
 #include "signal/peak_detector.h"
+#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +10,8 @@ namespace {
 constexpr double kHannScallopingGain = 1.178;  // +1.42 dB: a Hann window's worst-case loss, made good
 }  // namespace
 
-double dbfs(double amplitude) { return 20.0 * std::log10(std::max(amplitude, 1e-12)); }
-double amplitude_from_dbfs(double level_dbfs) { return std::pow(10.0, level_dbfs / 20.0); }
+double dbfs(double amplitude) { return units::db_from_amplitude_ratio(std::max(amplitude, 1e-12)); }
+double amplitude_from_dbfs(double level_dbfs) { return units::amplitude_ratio_from_db(level_dbfs); }
 
 PeakDetector::PeakDetector(const DetectorParams& params, double bin_hz, std::size_t bin_count)
     : bin_hz_(bin_hz),

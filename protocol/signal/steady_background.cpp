@@ -1,4 +1,5 @@
 #include "signal/steady_background.h"
+#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,7 @@ namespace dtmf::signal {
 
 SteadyBackground::SteadyBackground(std::size_t bins, double rise_db_per_s, double windows_per_s, float floor)
     : enabled_(rise_db_per_s > 0),
-      rise_per_window_(static_cast<float>(std::pow(10.0, rise_db_per_s / windows_per_s / 20.0))),
+      rise_per_window_(static_cast<float>(units::amplitude_ratio_from_db(rise_db_per_s / windows_per_s))),
       floor_(floor),
       background_(bins, floor),
       excess_(bins, 0.0f) {

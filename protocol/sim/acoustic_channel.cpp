@@ -9,6 +9,7 @@
 #include "sim/clock_drift.h"
 #include "sim/fft_convolver.h"
 #include "sim/real_fft.h"
+#include "units/decibels.h"
 
 namespace dtmf::sim {
 
@@ -26,7 +27,7 @@ std::vector<float> absorption_fir(double distance_m, int sample_rate_hz) {
     double h = 0;
     for (int k = 0; k < kGrid; ++k) {
       const double f = (k + 0.5) * sample_rate_hz / (2.0 * kGrid);
-      const double gain = std::pow(10.0, -kAirAbsorptionDbPerMPerHz2 * f * f * distance_m / 20.0);
+      const double gain = units::amplitude_ratio_from_db(-kAirAbsorptionDbPerMPerHz2 * f * f * distance_m);
       h += gain * std::cos(std::numbers::pi * (k + 0.5) * n / kGrid);
     }
     h /= kGrid;
@@ -50,7 +51,8 @@ void check_distance(double distance_m) {
 }  // namespace
 
 double channel_loss_db(double frequency_hz, double distance_m) {
-  return 20.0 * std::log10(distance_m) + kAirAbsorptionDbPerMPerHz2 * frequency_hz * frequency_hz * distance_m;
+  return units::db_from_amplitude_ratio(distance_m) +
+         kAirAbsorptionDbPerMPerHz2 * frequency_hz * frequency_hz * distance_m;
 }
 
 struct AcousticChannel::Transmitter {

@@ -9,6 +9,7 @@
 
 #include "sim/number_text.h"
 #include "sim/real_fft.h"
+#include "units/decibels.h"
 
 namespace dtmf::sim {
 
@@ -137,7 +138,7 @@ std::vector<float> response_fir(const FrequencyResponse& response, int sample_ra
   FftBins bins(fft.bins());
   for (std::size_t k = 0; k < bins.size(); ++k) {
     const double f = static_cast<double>(k) * sample_rate_hz / static_cast<double>(kDesignGrid);
-    bins[k] = static_cast<float>(std::pow(10.0, response_gain_db(response, f) / 20.0) / kDesignGrid);
+    bins[k] = static_cast<float>(units::amplitude_ratio_from_db(response_gain_db(response, f)) / kDesignGrid);
   }
   FftReal impulse(kDesignGrid);
   fft.inverse(bins.data(), impulse.data());

@@ -11,6 +11,7 @@
 #include "sim/number_text.h"
 #include "sim/real_fft.h"
 #include "sim/room_decay.h"
+#include "units/decibels.h"
 
 namespace dtmf::sim {
 
@@ -94,7 +95,7 @@ double estimated_length_s(const ShoeboxRoom& room, double direct_s) {
       r1 = std::max(r1, room.reflection[static_cast<std::size_t>(2 * axis + 1)][b]);
     }
     if (r0 * r1 <= 0) continue;
-    const double db_per_s = -20.0 * std::log10(r0 * r1) * kSpeedOfSoundMps / (2 * sides[axis]);
+    const double db_per_s = -units::db_from_amplitude_ratio(r0 * r1) * kSpeedOfSoundMps / (2 * sides[axis]);
     slowest_s = std::max(slowest_s, 60.0 / db_per_s);
   }
   const double diagonal_m = std::sqrt(sides[0] * sides[0] + sides[1] * sides[1] + sides[2] * sides[2]);
@@ -186,8 +187,9 @@ std::vector<float> image_source_response(const ShoeboxRoom& room, const Point3& 
     const double d = static_cast<double>(i * kAirStep) / fs * kSpeedOfSoundMps;
     for (std::size_t b = 0; b < B; ++b) {
       const double f = kOctaveCentresHz[b];
-      air[i][b] =
-          room.air_absorption ? static_cast<float>(std::pow(10.0, -kAirAbsorptionDbPerMPerHz2 * f * f * d / 20)) : 1.0f;
+      air[i][b] = room.air_absorption
+                      ? static_cast<float>(units::amplitude_ratio_from_db(-kAirAbsorptionDbPerMPerHz2 * f * f * d))
+                      : 1.0f;
     }
   }
   std::vector<float> trains(length * B, 0.0f);  // [sample][band]: float halves the cache misses

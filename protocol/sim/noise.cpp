@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "physical/wav_file.h"
+#include "units/decibels.h"
 
 namespace dtmf::sim {
 
@@ -44,7 +45,7 @@ NoiseConfig parse_noise(const std::string& text, double level_dbfs) {
 
 NoiseSource::NoiseSource(const NoiseConfig& config, int sample_rate_hz, std::uint64_t seed)
     : config_(config), rng_(seed) {
-  scale_ = static_cast<float>(std::pow(10.0, config.level_dbfs / 20.0));
+  scale_ = static_cast<float>(units::amplitude_ratio_from_db(config.level_dbfs));
   pink_scale_ = scale_ / pink_rms();
   if (config.kind == NoiseKind::File) {
     file_ = physical::read_audio_file(config.file, sample_rate_hz);

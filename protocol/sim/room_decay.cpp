@@ -1,4 +1,5 @@
 #include "sim/room_decay.h"
+#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +19,7 @@ std::vector<double> energy_decay_curve_db(std::span<const float> response) {
     edc[i] = remaining;
   }
   const double total = response.empty() ? 0 : edc[0];
-  for (double& e : edc) e = total > 0 && e > 0 ? 10.0 * std::log10(e / total) : -400.0;
+  for (double& e : edc) e = total > 0 && e > 0 ? units::db_from_power_ratio(e / total) : -400.0;
   return edc;
 }
 
@@ -70,7 +71,7 @@ double direct_to_reverberant_db(std::span<const float> response, int sample_rate
     const double e = static_cast<double>(response[i]) * response[i];
     (i <= peak + window ? direct : reverberant) += e;
   }
-  return reverberant > 0 ? 10.0 * std::log10(direct / reverberant) : 400.0;
+  return reverberant > 0 ? units::db_from_power_ratio(direct / reverberant) : 400.0;
 }
 
 }  // namespace dtmf::sim

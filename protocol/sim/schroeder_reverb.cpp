@@ -1,4 +1,5 @@
 #include "sim/schroeder_reverb.h"
+#include "units/decibels.h"
 
 #include <cmath>
 
@@ -16,7 +17,7 @@ SchroederReverb::SchroederReverb(const ReverbConfig& config, int sample_rate_hz)
   for (double ms : kCombMs) {
     const auto length = static_cast<std::size_t>(ms * sample_rate_hz / 1000.0);
     // Feedback that decays by 60 dB in rt60_s.
-    const double g = std::pow(10.0, -3.0 * (ms / 1000.0) / config.rt60_s);
+    const double g = units::amplitude_ratio_from_db(-60.0 * (ms / 1000.0) / config.rt60_s);
     combs_.push_back(Line{std::vector<float>(length, 0.0f), 0, static_cast<float>(g)});
   }
   for (double ms : kAllpassMs) {

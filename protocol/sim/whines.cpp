@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sim/number_text.h"
+#include "units/decibels.h"
 
 namespace dtmf::sim {
 
@@ -37,7 +38,7 @@ WhineSource::WhineSource(std::vector<Whine> whines, int sample_rate_hz, std::uin
                                   " dBFS: give an RMS level at or below 0 dBFS (a full-scale sine is -3 dBFS)");
     }
     tones_.push_back(
-        {w.frequency_hz / sample_rate_hz, std::sqrt(2.0) * std::pow(10.0, w.level_dbfs / 20.0), phase(rng)});
+        {w.frequency_hz / sample_rate_hz, std::sqrt(2.0) * units::amplitude_ratio_from_db(w.level_dbfs), phase(rng)});
   }
 }
 

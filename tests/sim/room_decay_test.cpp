@@ -8,6 +8,7 @@
 #include "sim/image_source_room.h"
 #include "sim/room_calibration.h"
 #include "sim/room_decay.h"
+#include "units/decibels.h"
 
 using namespace dtmf::sim;
 using namespace dtmf::room_test;
@@ -19,7 +20,7 @@ TEST(RoomDecay, T20OfAnExponentialDecayIsItsRt60) {
   for (std::size_t i = 0; i < h.size(); ++i) {
     state = state * 6364136223846793005ull + 1442695040888963407ull;
     const double u = static_cast<double>(state >> 11) * 0x1.0p-53 - 0.5;
-    h[i] = static_cast<float>(u * std::pow(10.0, -3.0 * static_cast<double>(i) / kRate / 0.7));
+    h[i] = static_cast<float>(u * dtmf::units::amplitude_ratio_from_db(-60.0 * static_cast<double>(i) / kRate / 0.7));
   }
   const auto rt60 = rt60_t20_s(h, kRate);
   ASSERT_TRUE(rt60);
