@@ -18,7 +18,7 @@
 
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
-#include "link/frame_trials.h"
+#include "frames/frame_trials.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
 #include "sim/noise.h"

@@ -1,4 +1,4 @@
-#include "link/channel_case.h"
+#include "frames/channel_case.h"
 
 #include <CLI/CLI.hpp>
 

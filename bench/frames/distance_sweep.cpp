@@ -15,7 +15,7 @@
 
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
-#include "link/sweep.h"
+#include "frames/sweep.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
 #include "sim/acoustic_channel.h"

@@ -1,4 +1,4 @@
-#include "link/frame_trials.h"
+#include "frames/frame_trials.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -22,8 +22,8 @@
 
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
+#include "frames/frame_trials.h"
 #include "link/answer_wait.h"
-#include "link/frame_trials.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
 #include "sim/acoustic_channel.h"

@@ -18,9 +18,10 @@
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "common/gaussian.h"
-#include "link/sweep.h"
+#include "frames/sweep.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
+#include "units/decibels.h"
 
 using namespace dtmf;
 using namespace dtmf::bench;
@@ -68,12 +69,12 @@ int main(int argc, char** argv) {
             "dtmf-bench-snr: profile %s, seed %llu, %zu frames per point (up to %zu near the thresholds), "
             "%u threads\n  signal power over the chords %.4f (%.2f dBFS RMS, a full-scale sine = -3.01)\n",
             profile.name.c_str(), static_cast<unsigned long long>(options.seed), options.frames, options.topup_frames,
-            options.threads, signal_power, 10 * std::log10(signal_power));
+            options.threads, signal_power, units::db_from_power_ratio(signal_power));
         std::fflush(stdout);
 
         const auto started = std::chrono::steady_clock::now();
         const auto points = run_sweep(profile, snrs_db, options, [&](double snr_db, std::uint64_t seed) -> Channel {
-          const auto sigma = static_cast<float>(std::sqrt(signal_power / std::pow(10.0, snr_db / 10)));
+          const auto sigma = static_cast<float>(std::sqrt(signal_power / units::power_ratio_from_db(snr_db)));
           return [sigma, noise = std::make_shared<GaussianNoise>(seed)](std::span<const float> clean,
                                                                         std::vector<float>& heard) {
             heard.assign(clean.begin(), clean.end());
@@ -106,7 +107,7 @@ int main(int argc, char** argv) {
                            {"sample_rate_hz", profile.sample_rate_hz},
                            {"slot_ms", profile.timing.chord_ms + profile.timing.gap_ms},
                            {"signal_power", signal_power},
-                           {"signal_rms_dbfs", 10 * std::log10(signal_power)},
+                           {"signal_rms_dbfs", units::db_from_power_ratio(signal_power)},
                            {"lowest_snr_db_99", t99},
                            {"lowest_snr_db_99_9", t999},
                            {"total_frames", total_frames},

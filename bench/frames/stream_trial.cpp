@@ -1,4 +1,4 @@
-#include "link/stream_trial.h"
+#include "frames/stream_trial.h"
 
 #include <cmath>
 #include <cstdio>

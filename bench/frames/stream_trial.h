@@ -18,7 +18,7 @@
 #include <span>
 #include <vector>
 
-#include "link/frame_trials.h"
+#include "frames/frame_trials.h"
 
 namespace dtmf::bench {
 

@@ -1,4 +1,4 @@
-#include "link/sweep.h"
+#include "frames/sweep.h"
 
 #include <chrono>
 #include <cmath>

@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "link/stream_trial.h"
+#include "frames/stream_trial.h"
 
 namespace dtmf::bench {
 

@@ -17,10 +17,11 @@
 
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
-#include "link/frame_trials.h"
+#include "frames/frame_trials.h"
 #include "physical/wav_file.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
+#include "units/decibels.h"
 
 using namespace dtmf;
 using namespace dtmf::bench;
@@ -87,7 +88,7 @@ int main(int argc, char** argv) {
         if (samples == 0) throw std::runtime_error("no audio read");
         const std::uint64_t acks = replies.acks(), nacks = replies.nacks(), confirmations = replies.confirmations();
         const double hours = static_cast<double>(samples) / profile.sample_rate_hz / 3600.0;
-        const double rms_dbfs = 10 * std::log10(sum_squares / static_cast<double>(samples) + 1e-30);
+        const double rms_dbfs = units::db_from_power_ratio(sum_squares / static_cast<double>(samples) + 1e-30);
         const auto per_hour = [&](std::uint64_t n) { return static_cast<double>(n) / hours; };
         std::printf(
             "talk-off  %-6s %-8s %7.2f h (RMS %6.1f dBFS, peak %5.2f): accepted %llu (%.2f/h), "

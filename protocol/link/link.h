@@ -6,7 +6,7 @@
 // none of them asks which wire format a profile has. The options carry what a link needs
 // beyond its profile: the key it shares with its peer, where its freshness counters live,
 // and the robot's address. Each format keeps its own paths behind it (the seed's words:
-// seed_link.cpp with sender_path.h and receiver_path.h; the fast profile's frames:
+// seed_link.cpp with seed_sender_path.h and seed_receiver_path.h; the fast profile's frames:
 // fast_link.cpp with hop_frame_path.h), so adding or changing a profile touches protocol/
 // and the docs only. A link numbers the frames it plans (sequence numbers, or with a key its
 // freshness counter) and the robot's side remembers what it accepted: a link is one sender's

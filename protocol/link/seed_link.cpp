@@ -5,8 +5,8 @@
 #include <random>
 
 #include "command/word_codec.h"
-#include "link/receiver_path.h"
-#include "link/sender_path.h"
+#include "link/seed_receiver_path.h"
+#include "link/seed_sender_path.h"
 #include "reliability/crc4.h"
 #include "signal/synthesizer.h"
 #include "signal/tone_listener.h"
@@ -51,12 +51,12 @@ class SeedReceiver final : public FrameReceiver {
       : profile_(profile), refuse_(refuse_all), path_(profile, !refuse_all) {}
   std::span<const Reception> feed(std::span<const float> samples) override {
     receptions_.clear();
-    for (const ReceivedFrame& f : path_.feed(samples)) {
+    for (const SeedReceivedFrame& f : path_.feed(samples)) {
       Reception r;
       r.start_ms = f.start_ms;
       r.heard_ms = f.heard_ms;
       r.bits = f.frame;
-      r.bit_count = reliability::kFrameBits;
+      r.bit_count = reliability::kSeedFrameBits;
       r.check_bit_count = reliability::kCrcBits;
       r.intact = f.crc_ok;
       const signal::Chord chord = signal::chord_for(profile_.tones, f.frame);
@@ -82,7 +82,7 @@ class SeedReceiver final : public FrameReceiver {
  private:
   const LinkProfile& profile_;
   bool refuse_;
-  ReceiverPath path_;
+  SeedReceiverPath path_;
   std::vector<Reception> receptions_;
 };
 
@@ -105,11 +105,11 @@ class SeedAnswerListener final : public AnswerListener {
 
 }  // namespace
 
-TransmitFrame SeedLink::transmit_frame(const PlannedFrame& planned) const {
+TransmitFrame SeedLink::transmit_frame(const SeedPlannedFrame& planned) const {
   TransmitFrame f;
   f.word = planned.word;
   f.bits = planned.frame;
-  f.bit_count = reliability::kFrameBits;
+  f.bit_count = reliability::kSeedFrameBits;
   f.check_bit_count = reliability::kCrcBits;
   f.tones_hz.assign(planned.tones_hz.begin(), planned.tones_hz.end());
   f.audio = signal::synthesize_chord(profile(), planned.tones_hz, profile().timing.chord_ms);
@@ -119,7 +119,7 @@ TransmitFrame SeedLink::transmit_frame(const PlannedFrame& planned) const {
 
 std::vector<TransmitFrame> SeedLink::plan(const command::Command& command) {
   std::vector<TransmitFrame> frames;
-  for (const PlannedFrame& planned : plan_command(profile(), command)) frames.push_back(transmit_frame(planned));
+  for (const SeedPlannedFrame& planned : plan_command(profile(), command)) frames.push_back(transmit_frame(planned));
   return frames;
 }
 
@@ -134,7 +134,8 @@ std::optional<TransmitFrame> SeedLink::plan_word(std::uint32_t word) const {
 command::Command SeedLink::as_received(const command::Command& command) const { return command::quantised(command); }
 
 int SeedLink::payload_bits(const command::Command& command) const {
-  return static_cast<int>(plan_command(profile(), command).size()) * (reliability::kFrameBits - reliability::kCrcBits);
+  return static_cast<int>(plan_command(profile(), command).size()) *
+         (reliability::kSeedFrameBits - reliability::kCrcBits);
 }
 
 // Any of the 4096 words, not just the commands': the CRC and the tone plan see them all.

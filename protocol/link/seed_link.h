@@ -5,7 +5,7 @@
 #pragma once
 
 #include "link/link.h"
-#include "link/sender_path.h"
+#include "link/seed_sender_path.h"
 
 namespace dtmf::link {
 
@@ -28,7 +28,7 @@ class SeedLink final : public Link {
   bool answers(const Answer& answer, const TransmitFrame& frame) const override;
 
  private:
-  TransmitFrame transmit_frame(const PlannedFrame& planned) const;
+  TransmitFrame transmit_frame(const SeedPlannedFrame& planned) const;
 };
 
 }  // namespace dtmf::link

@@ -1,15 +1,15 @@
-#include "link/receiver_path.h"
+#include "link/seed_receiver_path.h"
 
 namespace dtmf::link {
 
-ReceiverPath::ReceiverPath(const LinkProfile& profile, bool execute_words)
+SeedReceiverPath::SeedReceiverPath(const LinkProfile& profile, bool execute_words)
     : listener_(signal::chord_listener(profile)), execute_words_(execute_words) {}
 
-std::span<const ReceivedFrame> ReceiverPath::feed(std::span<const float> samples) {
+std::span<const SeedReceivedFrame> SeedReceiverPath::feed(std::span<const float> samples) {
   received_.clear();
   for (const signal::Heard& heard : listener_.feed(samples)) {
-    const auto frame = static_cast<reliability::Frame>(heard.symbol);
-    ReceivedFrame received{heard.start_ms, heard.heard_ms, frame, reliability::frame_ok(frame), std::nullopt};
+    const auto frame = static_cast<reliability::SeedFrame>(heard.symbol);
+    SeedReceivedFrame received{heard.start_ms, heard.heard_ms, frame, reliability::frame_ok(frame), std::nullopt};
     if (received.crc_ok && execute_words_) received.event = commands_.on_word(reliability::frame_word(frame));
     received_.push_back(std::move(received));
   }

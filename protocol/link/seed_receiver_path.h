@@ -1,4 +1,4 @@
-// The robot's path through the layers: audio -> spectrum -> chord -> frame -> word -> command.
+// The seed profile's robot path through the layers: audio -> spectrum -> chord -> frame -> word -> command.
 //
 // Audio goes to the signal layer's chord listener (debounced chords), each chord is checked
 // by the reliability layer (CRC-4), and the words of intact frames drive the command layer's
@@ -17,22 +17,22 @@
 
 namespace dtmf::link {
 
-struct ReceivedFrame {
+struct SeedReceivedFrame {
   double start_ms;  // when the chord began sounding (within one analysis hop)
   double heard_ms;  // when the debouncer passed it
-  reliability::Frame frame;
+  reliability::SeedFrame frame;
   bool crc_ok;
   std::optional<command::ReceiverEvent> event;  // for intact frames only
 };
 
-class ReceiverPath {
+class SeedReceiverPath {
  public:
   // `execute_words` false: intact frames are reported but never reach the state machine (a
   // robot with a key refuses the seed's unauthenticated words).
-  explicit ReceiverPath(const LinkProfile& profile, bool execute_words = true);
+  explicit SeedReceiverPath(const LinkProfile& profile, bool execute_words = true);
 
   // Frames heard within `samples`; valid until the next call.
-  std::span<const ReceivedFrame> feed(std::span<const float> samples);
+  std::span<const SeedReceivedFrame> feed(std::span<const float> samples);
 
   const command::CommandReceiver& commands() const { return commands_; }
   const signal::ToneListener& listener() const { return listener_; }
@@ -41,7 +41,7 @@ class ReceiverPath {
   signal::ToneListener listener_;
   bool execute_words_;
   command::CommandReceiver commands_;
-  std::vector<ReceivedFrame> received_;
+  std::vector<SeedReceivedFrame> received_;
 };
 
 }  // namespace dtmf::link

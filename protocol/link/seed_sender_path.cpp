@@ -1,4 +1,4 @@
-#include "link/sender_path.h"
+#include "link/seed_sender_path.h"
 
 #include <span>
 
@@ -7,14 +7,14 @@
 
 namespace dtmf::link {
 
-PlannedFrame plan_word(const LinkProfile& profile, command::Word word) {
-  const reliability::Frame frame = reliability::make_frame(word & command::kWordMask);
-  return PlannedFrame{static_cast<command::Word>(word & command::kWordMask), frame,
-                      signal::chord_for(profile.tones, frame)};
+SeedPlannedFrame plan_word(const LinkProfile& profile, command::Word word) {
+  const reliability::SeedFrame frame = reliability::make_frame(word & command::kWordMask);
+  return SeedPlannedFrame{static_cast<command::Word>(word & command::kWordMask), frame,
+                          signal::chord_for(profile.tones, frame)};
 }
 
-std::vector<PlannedFrame> plan_command(const LinkProfile& profile, const command::Command& command) {
-  std::vector<PlannedFrame> frames;
+std::vector<SeedPlannedFrame> plan_command(const LinkProfile& profile, const command::Command& command) {
+  std::vector<SeedPlannedFrame> frames;
   for (command::Word word : command::encode(command)) frames.push_back(plan_word(profile, word));
   return frames;
 }
@@ -23,7 +23,7 @@ double frame_start_ms(const LinkProfile& profile, std::size_t index) {
   return static_cast<double>(index) * (profile.timing.chord_ms + profile.timing.gap_ms);
 }
 
-std::vector<float> render_frames(const LinkProfile& profile, const std::vector<PlannedFrame>& frames) {
+std::vector<float> render_frames(const LinkProfile& profile, const std::vector<SeedPlannedFrame>& frames) {
   const auto chord = static_cast<std::size_t>(profile.samples_for_ms(profile.timing.chord_ms));
   const auto slot = static_cast<std::size_t>(profile.samples_for_ms(profile.timing.chord_ms + profile.timing.gap_ms));
   std::vector<float> audio(slot * frames.size(), 0.0f);

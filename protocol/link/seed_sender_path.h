@@ -1,4 +1,4 @@
-// The sender's path through the layers: command -> words -> frames -> tones -> audio.
+// The seed profile's sender path through the layers: command -> words -> frames -> tones -> audio.
 //
 // Each layer is called in turn; this file only strings them together and lays the chords
 // out in time (chord_ms of tone, gap_ms of silence) for offline use, such as
@@ -14,21 +14,21 @@
 
 namespace dtmf::link {
 
-struct PlannedFrame {
+struct SeedPlannedFrame {
   command::Word word;
-  reliability::Frame frame;
+  reliability::SeedFrame frame;
   signal::Chord tones_hz;
 };
 
-PlannedFrame plan_word(const LinkProfile& profile, command::Word word);
+SeedPlannedFrame plan_word(const LinkProfile& profile, command::Word word);
 
 // The frames of `command` in transmission order; throws command::ParameterError.
-std::vector<PlannedFrame> plan_command(const LinkProfile& profile, const command::Command& command);
+std::vector<SeedPlannedFrame> plan_command(const LinkProfile& profile, const command::Command& command);
 
 // Where each frame's chord starts in a rendered recording.
 double frame_start_ms(const LinkProfile& profile, std::size_t index);
 
 // The frames one after another: chord_ms of chord, then gap_ms of silence, each.
-std::vector<float> render_frames(const LinkProfile& profile, const std::vector<PlannedFrame>& frames);
+std::vector<float> render_frames(const LinkProfile& profile, const std::vector<SeedPlannedFrame>& frames);
 
 }  // namespace dtmf::link

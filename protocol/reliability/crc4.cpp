@@ -10,16 +10,16 @@ std::uint8_t crc_remainder(std::uint32_t bits, int width) {
 }
 
 std::uint8_t crc4(Word word) {
-  return crc_remainder(static_cast<std::uint32_t>(word & 0x0FFF) << kCrcBits, kFrameBits);
+  return crc_remainder(static_cast<std::uint32_t>(word & 0x0FFF) << kCrcBits, kSeedFrameBits);
 }
 
-Frame make_frame(Word word) { return static_cast<Frame>(((word & 0x0FFF) << kCrcBits) | crc4(word)); }
+SeedFrame make_frame(Word word) { return static_cast<SeedFrame>(((word & 0x0FFF) << kCrcBits) | crc4(word)); }
 
-bool frame_ok(Frame frame) { return crc_remainder(frame, kFrameBits) == 0; }
+bool frame_ok(SeedFrame frame) { return crc_remainder(frame, kSeedFrameBits) == 0; }
 
-Word frame_word(Frame frame) { return static_cast<Word>(frame >> kCrcBits); }
+Word frame_word(SeedFrame frame) { return static_cast<Word>(frame >> kCrcBits); }
 
-std::uint8_t frame_crc(Frame frame) { return static_cast<std::uint8_t>(frame & 0xF); }
+std::uint8_t frame_crc(SeedFrame frame) { return static_cast<std::uint8_t>(frame & 0xF); }
 
 std::string bit_string(std::uint64_t bits, int width) {
   std::string text(static_cast<std::size_t>(width), '0');

@@ -1,6 +1,6 @@
-// Reliability layer: CRC-4 frames.
+// Reliability layer: the seed profile's CRC-4 frames (SeedFrame).
 //
-// A frame is 16 bits: the 12-bit data word followed by the 4-bit remainder of
+// A seed frame is 16 bits: the 12-bit data word followed by the 4-bit remainder of
 // (word << 4) divided by the generator x^4 + x + 1 (binary 10011), computed as the seed's
 // long division with XOR (its section 7, Fig. 7). A received frame is intact when dividing
 // all 16 bits leaves remainder 0. Example from the seed: 101100101101 -> CRC 1101 ->
@@ -12,24 +12,24 @@
 
 namespace dtmf::reliability {
 
-using Frame = std::uint16_t;
+using SeedFrame = std::uint16_t;
 using Word = std::uint16_t;  // 12 data bits
 
 inline constexpr unsigned kGenerator = 0b10011;  // x^4 + x + 1
 inline constexpr int kCrcBits = 4;
-inline constexpr int kFrameBits = 16;
+inline constexpr int kSeedFrameBits = 16;
 
 // Remainder of the polynomial division of `bits` (the low `width` bits) by the generator.
 std::uint8_t crc_remainder(std::uint32_t bits, int width);
 // The CRC of a 12-bit data word.
 std::uint8_t crc4(Word word);
 // word followed by its CRC.
-Frame make_frame(Word word);
+SeedFrame make_frame(Word word);
 // True when the frame's 16 bits divide by the generator without remainder.
-bool frame_ok(Frame frame);
-Word frame_word(Frame frame);
-std::uint8_t frame_crc(Frame frame);
+bool frame_ok(SeedFrame frame);
+Word frame_word(SeedFrame frame);
+std::uint8_t frame_crc(SeedFrame frame);
 // "1011001011011101": `width` bits, most significant first.
-std::string bit_string(std::uint64_t bits, int width = kFrameBits);
+std::string bit_string(std::uint64_t bits, int width = kSeedFrameBits);
 
 }  // namespace dtmf::reliability

@@ -33,7 +33,7 @@ inline constexpr std::uint32_t kReplyTagSpace = 4u * 4 * 4 * 4 * 4 * 4 * 3 * 3 *
 inline constexpr int kTagTonesNeeded = 11;
 // Readings of 11 or more tones that do not spell the tag, per transmission: in the measured
 // rooms with the sender's own frames 20 dB over the answer, an answer came after at most 9
-// (bench/link/rooms.cpp, the answer-path case).
+// (bench/frames/rooms.cpp, the answer-path case).
 inline constexpr int kTagGuessesPerAttempt = 16;
 
 struct NamedReply {

@@ -4,7 +4,7 @@
 #include "agent.h"
 #include "command/word_codec.h"
 #include "link/link.h"
-#include "link/sender_path.h"
+#include "link/seed_sender_path.h"
 #include "physical/wav_file.h"
 #include "reliability/command_frame.h"
 #include "signal/hop_synthesizer.h"
@@ -136,7 +136,7 @@ TEST(Agent, DrivesForTheQuantisedDurationThenPublishesZero) {
 
 TEST(Agent, ACorruptedChordGetsANackAndNoMotion) {
   const LinkProfile& p = seed_profile();
-  std::vector<link::PlannedFrame> frames = link::plan_command(p, command::DriveForward{80});
+  std::vector<link::SeedPlannedFrame> frames = link::plan_command(p, command::DriveForward{80});
   frames[2].frame ^= 0x0001;  // the parameter frame's CRC no longer fits
   frames[2].tones_hz = signal::chord_for(p.tones, frames[2].frame);
   AgentRun run;

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "command/word_codec.h"
-#include "link/sender_path.h"
+#include "link/seed_sender_path.h"
 #include "physical/wav_file.h"
 #include "profile/link_profile.h"
 #include "support/run_command.h"
@@ -14,8 +14,8 @@ using dtmf::test_support::TempDatabase;
 TEST(AgentDatabase, EveryReceptionIsLoggedWithItsVerdictAnswerAndEffect) {
   TempDatabase db;
   const LinkProfile& p = seed_profile();
-  std::vector<link::PlannedFrame> frames = link::plan_command(p, command::DriveForDuration{50, 1});
-  link::PlannedFrame bad = link::plan_word(p, 0x123);
+  std::vector<link::SeedPlannedFrame> frames = link::plan_command(p, command::DriveForDuration{50, 1});
+  link::SeedPlannedFrame bad = link::plan_word(p, 0x123);
   bad.frame ^= 0x0002;  // fails the CRC
   bad.tones_hz = signal::chord_for(p.tones, bad.frame);
   frames.push_back(bad);

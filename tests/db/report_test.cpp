@@ -5,7 +5,7 @@
 #include <numeric>
 
 #include "command/test_sequence.h"
-#include "link/sender_path.h"
+#include "link/seed_sender_path.h"
 #include "profile/link_profile.h"
 #include "run_reader.h"
 #include "store.h"
@@ -21,7 +21,7 @@ namespace {
 struct Transmission {
   std::string command_id;
   int position;
-  link::PlannedFrame frame;
+  link::SeedPlannedFrame frame;
 };
 
 // The seed's 65 frames, one 3 s slot each (room for a retransmission at +1.5 s).

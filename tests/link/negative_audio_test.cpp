@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "link/sender_path.h"
+#include "link/seed_sender_path.h"
 #include "physical/wav_file.h"
 #include "profile/link_profile.h"
 #include "signal/synthesizer.h"
@@ -26,7 +26,7 @@ std::vector<float> noise(const char* kind, double dbfs, double seconds, std::uin
                                        P().sample_rate_hz, 1.0, config, 0);
 }
 
-int accepted(const std::vector<link::ReceivedFrame>& frames) {
+int accepted(const std::vector<link::SeedReceivedFrame>& frames) {
   int n = 0;
   for (const auto& f : frames) n += f.crc_ok ? 1 : 0;
   return n;

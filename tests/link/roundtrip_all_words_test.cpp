@@ -5,7 +5,7 @@
 // on both cores.
 #include <gtest/gtest.h>
 
-#include "link/sender_path.h"
+#include "link/seed_sender_path.h"
 #include "profile/link_profile.h"
 #include "signal/synthesizer.h"
 #include "signal/tone_listener.h"
@@ -32,19 +32,19 @@ TEST_P(AllWords, EveryWordIsRecoveredOnceAndNothingElseIsHeard) {
   const auto slot = static_cast<std::size_t>(p.samples_for_ms(p.timing.chord_ms + p.timing.gap_ms));
   const auto chord = static_cast<std::size_t>(p.samples_for_ms(p.timing.chord_ms));
   std::vector<float> block(slot), heard_audio;
-  std::vector<reliability::Frame> expected, heard;
+  std::vector<reliability::SeedFrame> expected, heard;
   bool all_intact = true;
   auto listen = [&](std::span<const float> audio) {
     heard_audio.clear();
     channel.process(audio, heard_audio);
     for (const signal::Heard& h : listener.feed(heard_audio)) {
-      heard.push_back(static_cast<reliability::Frame>(h.symbol));
-      all_intact = all_intact && reliability::frame_ok(static_cast<reliability::Frame>(h.symbol));
+      heard.push_back(static_cast<reliability::SeedFrame>(h.symbol));
+      all_intact = all_intact && reliability::frame_ok(static_cast<reliability::SeedFrame>(h.symbol));
     }
   };
   const int first = GetParam() * kWordsPerShard;
   for (int word = first; word < first + kWordsPerShard; ++word) {
-    const link::PlannedFrame frame = link::plan_word(p, static_cast<command::Word>(word));
+    const link::SeedPlannedFrame frame = link::plan_word(p, static_cast<command::Word>(word));
     expected.push_back(frame.frame);
     std::fill(block.begin(), block.end(), 0.0f);
     signal::add_chord(std::span(block).first(chord), frame.tones_hz, p.tones.tone_amplitude, p.tones.edge_ms,

@@ -3,7 +3,7 @@
 
 #include "command/test_sequence.h"
 #include "command/word_codec.h"
-#include "link/sender_path.h"
+#include "link/seed_sender_path.h"
 #include "profile/link_profile.h"
 #include "support/listen.h"
 
@@ -11,8 +11,8 @@ using namespace dtmf;
 
 namespace {
 
-std::vector<link::PlannedFrame> sequence_frames(const LinkProfile& p) {
-  std::vector<link::PlannedFrame> frames;
+std::vector<link::SeedPlannedFrame> sequence_frames(const LinkProfile& p) {
+  std::vector<link::SeedPlannedFrame> frames;
   for (const auto& command : command::seed_test_sequence()) {
     for (const auto& f : link::plan_command(p, command)) frames.push_back(f);
   }
@@ -58,13 +58,13 @@ TEST_P(SequenceAtDistance, AllFramesHeardOnceInOrderAndEveryCommandExecuted) {
 
 INSTANTIATE_TEST_SUITE_P(Metres, SequenceAtDistance, ::testing::Values(1.0, 4.0, 7.0, 10.0));
 
-TEST(ReceiverPath, ACorruptedChordIsHeardButFailsTheCrcAndChangesNothing) {
+TEST(SeedReceiverPath, ACorruptedChordIsHeardButFailsTheCrcAndChangesNothing) {
   const LinkProfile& p = seed_profile();
-  std::vector<link::PlannedFrame> frames = {
+  std::vector<link::SeedPlannedFrame> frames = {
       link::plan_word(p, command::kResetWord),
       link::plan_word(p, static_cast<command::Word>(command::Mode::DriveForward))};
   // One tone moved: bits 0..3 (the CRC band) changed, so the CRC no longer matches.
-  link::PlannedFrame bad = link::plan_word(p, 0x800);
+  link::SeedPlannedFrame bad = link::plan_word(p, 0x800);
   bad.frame ^= 0x0003;
   bad.tones_hz = signal::chord_for(p.tones, bad.frame);
   frames.push_back(bad);

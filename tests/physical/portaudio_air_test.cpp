@@ -14,7 +14,7 @@
 #include <thread>
 #include <vector>
 
-#include "link/sender_path.h"
+#include "link/seed_sender_path.h"
 #include "physical/portaudio_device.h"
 #include "profile/link_profile.h"
 #include "signal/synthesizer.h"
@@ -62,7 +62,7 @@ TEST_F(PortAudioAir, SeesThePulseDevicesBothWays) {
 TEST_F(PortAudioAir, AChordPlayedIntoTheAirIsHeardOnceWithItsBits) {
   const LinkProfile& profile = seed_profile();
   const int rate = profile.sample_rate_hz;
-  const link::PlannedFrame planned = link::plan_word(profile, 0b1011'0010'1101);
+  const link::SeedPlannedFrame planned = link::plan_word(profile, 0b1011'0010'1101);
 
   // One second of sound: the 0.8 s chord, then silence.
   std::vector<float> sound = signal::synthesize_frame(profile, planned.frame);

@@ -25,15 +25,15 @@ TEST(Crc4, ReproducesTheSeedsWorkedExample) {
 
 TEST(Crc4, EveryWordMakesAValidFrameAndEverySingleBitErrorIsCaught) {
   for (Word w = 0; w < 4096; ++w) {
-    const Frame f = make_frame(w);
+    const SeedFrame f = make_frame(w);
     ASSERT_TRUE(frame_ok(f)) << w;
-    for (int bit = 0; bit < 16; ++bit) ASSERT_FALSE(frame_ok(static_cast<Frame>(f ^ (1u << bit)))) << w;
+    for (int bit = 0; bit < 16; ++bit) ASSERT_FALSE(frame_ok(static_cast<SeedFrame>(f ^ (1u << bit)))) << w;
   }
 }
 
 TEST(Crc4, ExactlyOneFrameInSixteenIsValid) {
   int valid = 0;
-  for (std::uint32_t f = 0; f < 65536; ++f) valid += frame_ok(static_cast<Frame>(f)) ? 1 : 0;
+  for (std::uint32_t f = 0; f < 65536; ++f) valid += frame_ok(static_cast<SeedFrame>(f)) ? 1 : 0;
   EXPECT_EQ(valid, 4096);
 }
 
@@ -42,15 +42,15 @@ TEST(Crc4, ExactlyOneFrameInSixteenIsValid) {
 struct WindowScramble {
   int accepted = 0;
   int rejected = 0;
-  int accepted_unchanged = 0;       // accepted variants equal to the listed frame itself
-  std::set<Frame> accepted_frames;  // distinct accepted bit patterns
+  int accepted_unchanged = 0;           // accepted variants equal to the listed frame itself
+  std::set<SeedFrame> accepted_frames;  // distinct accepted bit patterns
 };
 
-WindowScramble scramble(Frame original) {
+WindowScramble scramble(SeedFrame original) {
   WindowScramble result;
   for (int position = 0; position <= 12; ++position) {
     for (unsigned pattern = 0; pattern < 16; ++pattern) {
-      const auto variant = static_cast<Frame>((original & ~(0xFu << position)) | (pattern << position));
+      const auto variant = static_cast<SeedFrame>((original & ~(0xFu << position)) | (pattern << position));
       if (frame_ok(variant)) {
         ++result.accepted;
         result.accepted_frames.insert(variant);
@@ -67,7 +67,7 @@ TEST(Crc4, SeedTable1WindowScrambleGives13AcceptedAnd195Rejected) {
   const std::array<std::string, 5> listed = {"1011001011011101", "0000001011011110", "0011110101010001",
                                              "1111111000111111", "0010000000001101"};
   for (const std::string& text : listed) {
-    const auto frame = static_cast<Frame>(bits(text));
+    const auto frame = static_cast<SeedFrame>(bits(text));
     const WindowScramble r = scramble(frame);
     EXPECT_EQ(r.accepted + r.rejected, 208) << text;
     EXPECT_EQ(r.accepted, 13) << text;
@@ -80,16 +80,16 @@ TEST(Crc4, Table1AcceptedVariantsAreTheUnchangedFramesNotMissedErrors) {
   // window position (the pattern that rewrites the window with its own bits). No changed
   // frame passes: x^4 + x + 1 catches every error burst of four bits or fewer.
   for (const std::string text : {"1011001011011101", "0000001011011110", "0011110101010001", "0010000000001101"}) {
-    const auto frame = static_cast<Frame>(bits(text));
+    const auto frame = static_cast<SeedFrame>(bits(text));
     ASSERT_TRUE(frame_ok(frame)) << text;
     const WindowScramble r = scramble(frame);
     EXPECT_EQ(r.accepted_unchanged, 13) << text;
-    EXPECT_EQ(r.accepted_frames, std::set<Frame>{frame}) << text;
+    EXPECT_EQ(r.accepted_frames, std::set<SeedFrame>{frame}) << text;
   }
   // 1111111000111111 is not a valid frame (its data 111111100011 has CRC 1100, not 1111).
   // Its 13 accepted variants are 13 different corrections, one per window position, that
   // land on 8 distinct valid frames.
-  const auto invalid = static_cast<Frame>(bits("1111111000111111"));
+  const auto invalid = static_cast<SeedFrame>(bits("1111111000111111"));
   EXPECT_FALSE(frame_ok(invalid));
   EXPECT_EQ(crc4(frame_word(invalid)), bits("1100"));
   const WindowScramble r = scramble(invalid);
@@ -99,10 +99,10 @@ TEST(Crc4, Table1AcceptedVariantsAreTheUnchangedFramesNotMissedErrors) {
 
 TEST(Crc4, EveryBurstOfUpToFourBitsIsDetectedForEveryWord) {
   for (Word w = 0; w < 4096; ++w) {
-    const Frame f = make_frame(w);
+    const SeedFrame f = make_frame(w);
     for (int position = 0; position <= 12; ++position) {
       for (unsigned error = 1; error < 16; ++error) {
-        ASSERT_FALSE(frame_ok(static_cast<Frame>(f ^ (error << position)))) << w << " " << position;
+        ASSERT_FALSE(frame_ok(static_cast<SeedFrame>(f ^ (error << position)))) << w << " " << position;
       }
     }
   }

@@ -12,7 +12,7 @@
 #include "link/frame_admission.h"
 #include "link/hop_frame_path.h"
 #include "link/link.h"
-#include "link/sender_path.h"
+#include "link/seed_sender_path.h"
 #include "profile/link_profile.h"
 #include "reliability/reply_code.h"
 #include "signal/hop_reply.h"
@@ -45,7 +45,7 @@ namespace {
 
 // The seed's 65 frames back to back, in pink noise at -40 dBFS.
 std::vector<float> busy_audio(const LinkProfile& profile) {
-  std::vector<link::PlannedFrame> frames;
+  std::vector<link::SeedPlannedFrame> frames;
   for (const auto& command : command::seed_test_sequence()) {
     for (const auto& f : link::plan_command(profile, command)) frames.push_back(f);
   }

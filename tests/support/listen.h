@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "link/receiver_path.h"
+#include "link/seed_receiver_path.h"
 #include "signal/tone_listener.h"
 #include "sim/acoustic_channel.h"
 
@@ -21,9 +21,9 @@ std::vector<signal::Heard> listen(Listener& listener, std::span<const float> aud
   return heard;
 }
 
-inline std::vector<link::ReceivedFrame> receive(const LinkProfile& profile, std::span<const float> audio) {
-  link::ReceiverPath receiver(profile);
-  std::vector<link::ReceivedFrame> frames;
+inline std::vector<link::SeedReceivedFrame> receive(const LinkProfile& profile, std::span<const float> audio) {
+  link::SeedReceiverPath receiver(profile);
+  std::vector<link::SeedReceivedFrame> frames;
   for (std::size_t i = 0; i < audio.size(); i += 2400) {
     const auto part = audio.subspan(i, std::min<std::size_t>(2400, audio.size() - i));
     for (const auto& f : receiver.feed(part)) frames.push_back(f);
