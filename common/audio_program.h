@@ -15,6 +15,7 @@
 
 #include "physical/portaudio_device.h"
 #include "program_main.h"
+#include "signal/fft_wisdom.h"
 
 namespace dtmf::program {
 
@@ -44,6 +45,11 @@ inline int audio_program_main(CLI::App& app, int argc, char** argv, const AudioP
                               const std::function<int()>& body) {
   if (const auto exit_code = parse(app, argc, argv)) return *exit_code;
   spdlog::set_level(spdlog::level::from_str(options.log_level));
+  // Before any receiver is built: its FFT plans come from the wisdom file, or are measured
+  // once and saved there (protocol/signal/fft_wisdom.h).
+  const std::string wisdom = signal::fft_wisdom_default_file();
+  signal::use_fft_wisdom_file(wisdom);
+  spdlog::debug("FFT wisdom: {}", wisdom.empty() ? "none (plans measured at every start)" : wisdom);
   return run(
       [&] {
         if (options.list_devices) {

@@ -261,3 +261,37 @@ TEST_F(Dtmfctl, TeleopWithoutATerminalRefusesWithAClearMessage) {
   EXPECT_NE(r.out.find("teleop needs a terminal"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Client.teleop()"), std::string::npos) << r.out;
 }
+
+// FFTW's wisdom (signal/fft_wisdom.h): the first decode measures its plans and saves them;
+// a later one finds them there and has nothing new to save; a file that is garbage or a
+// place that cannot be written costs time only, never the result.
+TEST_F(Dtmfctl, DecodeSavesItsFftPlansOnceAndSurvivesABadWisdomFile) {
+  ASSERT_EQ(run("encode --profile fast --json --wav " + path("f.wav") + " drive --speed 40").exit_code, 0);
+  const std::string wisdom = path("cache/fftw-wisdom");
+  const auto decode = [&](const std::string& file) {
+    return dtmf::test_support::run_command("env DTMF_FFTW_WISDOM=" + file + " " + DTMFCTL_PATH +
+                                           " decode --json --profile fast " + path("f.wav"))
+        .out;
+  };
+  const std::string heard = decode("none");
+  ASSERT_EQ(json_lines(heard).size(), 1u) << heard;
+  EXPECT_FALSE(fs::exists(wisdom));
+
+  EXPECT_EQ(decode(wisdom), heard);
+  ASSERT_TRUE(fs::exists(wisdom));  // the directory made, the plans saved
+  std::string text(fs::file_size(wisdom), '\0');
+  std::FILE* f = std::fopen(wisdom.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(std::fread(text.data(), 1, text.size(), f), text.size());
+  std::fclose(f);
+  EXPECT_NE(text.find("fftwf_wisdom"), std::string::npos) << text;
+  const auto saved_at = fs::last_write_time(wisdom);
+  EXPECT_EQ(decode(wisdom), heard);
+  EXPECT_EQ(fs::last_write_time(wisdom), saved_at);  // nothing measured, nothing saved
+
+  std::FILE* garbage = std::fopen(wisdom.c_str(), "w");
+  std::fputs("(not wisdom at all", garbage);
+  std::fclose(garbage);
+  EXPECT_EQ(decode(wisdom), heard);
+  EXPECT_EQ(decode("/proc/no-such-place/fftw-wisdom"), heard);
+}
