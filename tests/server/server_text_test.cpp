@@ -2,11 +2,13 @@
 // caller sends is either stored verbatim and read back intact, or refused with
 // INVALID_ARGUMENT naming its field, before anything is queued or stored. Nothing may end
 // in the store's `.rejected` file (a row PostgreSQL refused after the API answered OK).
+#include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 
 #include <filesystem>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -189,4 +191,22 @@ TEST_F(ServerText, EveryTextFieldOfEveryRequestIsChecked) {
   EXPECT_EQ(db_.query<long>("SELECT count(*) FROM commands"), 0);
   EXPECT_EQ(db_.query<long>("SELECT count(*) FROM test_runs"), 0);
   EXPECT_FALSE(fs::exists(path("server.spill.rejected")));
+}
+
+// A body that is not the method's request message at all is the caller's fault too: it is
+// refused as INVALID_ARGUMENT saying what to send, not INTERNAL, and nothing is stored.
+TEST_F(ServerText, ABodyThatIsNotARequestMessageIsInvalidArgument) {
+  grpc::GenericStub generic(channel_);
+  for (const std::string& body : {std::string("\x0a\x7f garbage", 10), std::string("\xff\xff\xff\xff", 4)}) {
+    grpc::ClientContext context;
+    grpc::Slice slice(body);
+    grpc::ByteBuffer request(&slice, 1), response;
+    std::promise<grpc::Status> done;
+    generic.UnaryCall(&context, "/dtmf.v1.TeleopService/StartRun", grpc::StubOptions(), &request, &response,
+                      [&](grpc::Status status) { done.set_value(status); });
+    const grpc::Status status = done.get_future().get();
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << status.error_message();
+    EXPECT_NE(status.error_message().find("could not be parsed"), std::string::npos) << status.error_message();
+  }
+  EXPECT_TRUE(list_runs().empty());
 }
