@@ -5,10 +5,15 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <algorithm>
 #include <atomic>
+#include <condition_variable>
+#include <functional>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 #include "agent.h"
 #include "dtmf/v1/teleop.grpc.pb.h"
@@ -101,15 +106,55 @@ struct StreamResult {
 };
 
 template <class Response, class Start>
-StreamResult<Response> read_stream(Start start, const std::string& token = "") {
+StreamResult<Response> read_stream(Start start, const std::string& token = "",
+                                   const std::function<void(const Response&)>& on_response = {}) {
   grpc::ClientContext context;
   if (!token.empty()) context.AddMetadata("authorization", "Bearer " + token);
   StreamResult<Response> result;
   auto reader = start(context);
   Response response;
-  while (reader->Read(&response)) result.responses.push_back(response);
+  while (reader->Read(&response)) {
+    result.responses.push_back(response);
+    if (on_response) on_response(response);
+  }
   result.status = reader->Finish();
   return result;
 }
+
+// A server stream read on its own thread, so that a test waits for the command's progress
+// (QUEUED, TRANSMITTING) instead of sleeping and assuming it got there.
+template <class Response>
+class BackgroundStream {
+ public:
+  // `start(context)` begins the call, on the stream's own thread, with its own client.
+  template <class Start>
+  explicit BackgroundStream(Start start) {
+    result_ = std::async(std::launch::async, [this, start] {
+      return read_stream<Response>(start, "", [this](const Response& r) {
+        {
+          std::lock_guard lock(mutex_);
+          events_.push_back(r.progress().event());
+        }
+        changed_.notify_all();
+      });
+    });
+  }
+  ~BackgroundStream() {
+    if (result_.valid()) result_.wait();
+  }
+  // True once the stream has carried `event`; false if `within` passed first.
+  bool wait_for(v1::FrameEvent event, std::chrono::milliseconds within = std::chrono::seconds(30)) {
+    std::unique_lock lock(mutex_);
+    return changed_.wait_for(lock, within,
+                             [&] { return std::find(events_.begin(), events_.end(), event) != events_.end(); });
+  }
+  StreamResult<Response> finish() { return result_.get(); }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::vector<v1::FrameEvent> events_;
+  std::future<StreamResult<Response>> result_;  // last: its thread uses the members above
+};
 
 }  // namespace dtmf::test_support

@@ -143,18 +143,25 @@ TEST_F(ServerProcess, WithoutARobotFramesGoUnansweredAndTheFileHoldsThem) {
 }
 
 TEST_F(ServerProcess, SigtermFinishesTheChordOnAirAndEndsQueuedCallsUnavailable) {
-  auto drive = std::async(std::launch::async, [this] {
+  std::promise<void> on_air;
+  auto drive = std::async(std::launch::async, [this, &on_air] {
     auto client = v1::TeleopService::NewStub(channel_);
     grpc::ClientContext context;
     v1::DriveRequest request;
     request.set_speed_percent(10);
     auto reader = client->Drive(&context, request);
     v1::DriveResponse response;
+    bool transmitting = false;
     while (reader->Read(&response)) {
+      if (!transmitting && response.progress().event() == v1::FRAME_EVENT_TRANSMITTING) {
+        transmitting = true;
+        on_air.set_value();
+      }
     }
+    if (!transmitting) on_air.set_value();  // ended before: the checks below say how
     return reader->Finish();
   });
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));  // its first chord is on air
+  on_air.get_future().wait();  // its first chord is on air
   const std::string log = terminate();
   const grpc::Status status = drive.get();
   EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAVAILABLE) << status.error_message();

@@ -13,6 +13,7 @@
 #include "live_system.h"
 
 using namespace dtmf;
+using test_support::BackgroundStream;
 using test_support::LiveSystem;
 using test_support::LiveSystemOptions;
 using test_support::read_stream;
@@ -164,28 +165,20 @@ TEST(Server, TenConcurrentClientsEachGetTheirCommandWholeAndOnce) {
 
 TEST(Server, StopOvertakesQueuedCommands) {
   LiveSystem system;
-  auto first = std::async(std::launch::async, [&] {
-    auto client = system.client();
-    v1::DriveRequest r;
-    r.set_speed_percent(20);
-    return read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, r); }).status;
-  });
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the drive is on air
-  auto queued = std::async(std::launch::async, [&] {
-    auto client = system.client();
-    v1::TurnRequest r;
-    r.set_rotation_percent(30);
-    return read_stream<v1::TurnResponse>([&](grpc::ClientContext& c) { return client->Turn(&c, r); }).status;
-  });
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the turn waits
-  auto stop = std::async(std::launch::async, [&] {
-    auto client = system.client();
-    v1::StopRequest r;
-    return read_stream<v1::StopResponse>([&](grpc::ClientContext& c) { return client->Stop(&c, r); }).status;
-  });
-  EXPECT_TRUE(first.get().ok());
-  EXPECT_TRUE(stop.get().ok());
-  EXPECT_TRUE(queued.get().ok());
+  auto client = system.client();
+  v1::DriveRequest drive;
+  drive.set_speed_percent(20);
+  BackgroundStream<v1::DriveResponse> first([&](grpc::ClientContext& c) { return client->Drive(&c, drive); });
+  ASSERT_TRUE(first.wait_for(v1::FRAME_EVENT_TRANSMITTING));  // the drive is on air
+  v1::TurnRequest turn;
+  turn.set_rotation_percent(30);
+  BackgroundStream<v1::TurnResponse> queued([&](grpc::ClientContext& c) { return client->Turn(&c, turn); });
+  ASSERT_TRUE(queued.wait_for(v1::FRAME_EVENT_QUEUED));  // the turn waits behind it
+  v1::StopRequest stop;
+  const auto stopped = read_stream<v1::StopResponse>([&](grpc::ClientContext& c) { return client->Stop(&c, stop); });
+  EXPECT_TRUE(first.finish().status.ok());
+  EXPECT_TRUE(stopped.status.ok());
+  EXPECT_TRUE(queued.finish().status.ok());
   const auto words = system.words_heard();
   ASSERT_EQ(words.size(), 8u);
   EXPECT_EQ(words[1], static_cast<int>(command::Mode::DriveForward));
@@ -195,29 +188,27 @@ TEST(Server, StopOvertakesQueuedCommands) {
 
 TEST(Server, ACancelledCallsQueuedFramesNeverPlay) {
   LiveSystem system;
-  auto first = std::async(std::launch::async, [&] {
-    auto client = system.client();
-    v1::DriveRequest r;
-    r.set_speed_percent(40);
-    r.set_duration_s(1);
-    return read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, r); }).status;
-  });
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  auto client = system.client();
+  v1::DriveRequest drive;
+  drive.set_speed_percent(40);
+  drive.set_duration_s(1);
+  BackgroundStream<v1::DriveResponse> first([&](grpc::ClientContext& c) { return client->Drive(&c, drive); });
+  ASSERT_TRUE(first.wait_for(v1::FRAME_EVENT_TRANSMITTING));
   {
-    auto client = system.client();
     grpc::ClientContext context;
     context.set_deadline(std::chrono::system_clock::now() + std::chrono::milliseconds(800));
     v1::TurnRequest r;
     r.set_rotation_percent(-77);
     auto reader = client->Turn(&context, r);
     v1::TurnResponse response;
-    while (reader->Read(&response)) {
-    }
+    bool queued = false;
+    while (reader->Read(&response)) queued = queued || response.progress().event() == v1::FRAME_EVENT_QUEUED;
+    EXPECT_TRUE(queued);  // it waited behind the drive, then its caller gave up
     EXPECT_EQ(reader->Finish().error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
   }
-  EXPECT_TRUE(first.get().ok());
-  std::this_thread::sleep_for(std::chrono::seconds(2));
-  EXPECT_EQ(system.words_heard().size(), 3u);  // the drive only; no frame of the turn
+  EXPECT_TRUE(first.finish().status.ok());
+  std::this_thread::sleep_for(std::chrono::seconds(2));  // time for a frame that should not come
+  EXPECT_EQ(system.words_heard().size(), 3u);            // the drive only; no frame of the turn
 }
 
 TEST(Server, ALostAckGetsExactlyOneAutomaticRetransmissionThenThePolicy) {
@@ -264,20 +255,16 @@ TEST(Server, AFullQueueAnswersResourceExhausted) {
   LiveSystemOptions options;
   options.max_queue = 1;
   LiveSystem system(options);
-  std::vector<std::future<grpc::StatusCode>> calls;
-  for (int i = 0; i < 3; ++i) {
-    calls.push_back(std::async(std::launch::async, [&system] {
-      auto client = system.client();
-      v1::ResetRequest r;
-      return read_stream<v1::ResetResponse>([&](grpc::ClientContext& c) { return client->Reset(&c, r); })
-          .status.error_code();
-    }));
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  std::multiset<grpc::StatusCode> codes;
-  for (auto& call : calls) codes.insert(call.get());
-  EXPECT_EQ(codes.count(grpc::StatusCode::OK), 2u);  // one on air, one waiting
-  EXPECT_EQ(codes.count(grpc::StatusCode::RESOURCE_EXHAUSTED), 1u);
+  auto client = system.client();
+  const auto reset = [&](grpc::ClientContext& c) { return client->Reset(&c, v1::ResetRequest{}); };
+  BackgroundStream<v1::ResetResponse> on_air(reset);
+  ASSERT_TRUE(on_air.wait_for(v1::FRAME_EVENT_TRANSMITTING));
+  BackgroundStream<v1::ResetResponse> waiting(reset);
+  ASSERT_TRUE(waiting.wait_for(v1::FRAME_EVENT_QUEUED));  // the queue's one place is taken
+  const auto refused = read_stream<v1::ResetResponse>(reset);
+  EXPECT_EQ(refused.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << refused.status.error_message();
+  EXPECT_TRUE(on_air.finish().status.ok());
+  EXPECT_TRUE(waiting.finish().status.ok());
 }
 
 TEST(Server, ABearerTokenIsRequiredWhenConfigured) {
