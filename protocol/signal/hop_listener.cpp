@@ -1,10 +1,12 @@
 #include "signal/hop_listener.h"
-#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "signal/peak_interpolation.h"
+#include "units/decibels.h"
 
 namespace dtmf::signal {
 
@@ -27,8 +29,6 @@ HopListener::HopListener(const LinkProfile& profile)
       presence_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.presence_db))),
       onset_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.onset_db))),
       gate_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.gate_db))),
-      rise_per_hop_(static_cast<float>(std::pow(
-          10.0, profile.hops.background_rise_db_per_s * profile.hops.hop_samples / profile.sample_rate_hz / 10.0))),
       lo_bin_([&] {
         int lo = std::numeric_limits<int>::max();
         for (const auto& chord : profile.hops.band_first_bin)
@@ -44,14 +44,16 @@ HopListener::HopListener(const LinkProfile& profile)
       }()),
       bins_(profile.hops.window_samples, lo_bin_, hi_bin_ - lo_bin_),
       window_(static_cast<std::size_t>(profile.hops.window_samples),
-              static_cast<std::size_t>(profile.hops.hop_samples)) {
+              static_cast<std::size_t>(profile.hops.hop_samples)),
+      background_(SteadyBackground::for_power(static_cast<std::size_t>(hi_bin_ - lo_bin_),
+                                              profile.hops.background_rise_db_per_s,
+                                              static_cast<double>(profile.sample_rate_hz) / profile.hops.hop_samples)) {
   if (profile.frame_format != FrameFormat::HoppedCommand || hops_.chords_per_frame != 2 ||
       hops_.chord_samples() % hop_ != 0) {
     throw std::invalid_argument("profile '" + profile.name +
                                 "' has no two-chord hopped plan with chords a whole number of hops long");
   }
   const auto bins = static_cast<std::size_t>(hi_bin_ - lo_bin_);
-  background_.assign(bins, std::numeric_limits<float>::max());
   ring_.resize(static_cast<std::size_t>(kMaxFrameChords * hops_per_chord_ + 1));
   for (Window& w : ring_) {
     w.power.assign(bins, 0.0f);
@@ -86,12 +88,8 @@ void HopListener::analyze_window(CandidateSink& sink) {
   newest_ = (newest_ + 1) % ring_.size();
   Window& now = ring_[newest_];
   bins_.analyze(window_.window(), now.power);
-  // A bin's background falls with its power at once and rises at most rise_per_hop_: a
-  // steady tone (a whine) becomes background within seconds, a chord's tone never does.
-  for (std::size_t i = 0; i < now.power.size(); ++i) {
-    background_[i] = std::min(now.power[i], background_[i] * rise_per_hop_);
-    now.excess[i] = now.power[i] - background_[i];
-  }
+  // A steady tone (a whine) becomes background within seconds, a chord's tone never does.
+  background_.remove_power(now.power, now.excess);
   for (int c = 0; c < 2; ++c) {
     for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
       // The band's best excess (a whine is background, not excess) over the mean of the
@@ -256,7 +254,7 @@ HopCandidate HopListener::make_candidate(int chords, int offset_ppm) {
       // The peak to a fraction of a bin, for offset tracking once the frame is known.
       const float a0 = std::sqrt(std::max(w.excess[bi], 0.0f));
       const float am = std::sqrt(std::max(w.excess[bi - 1], 0.0f)), ap = std::sqrt(std::max(w.excess[bi + 1], 0.0f));
-      c.peak_bins[t] = static_cast<float>(best_bin) + (ap > am ? ap / (a0 + ap + 1e-30f) : -am / (a0 + am + 1e-30f));
+      c.peak_bins[t] = static_cast<float>(best_bin) + rectangular_peak_offset(am, a0, ap);
     }
   }
   const double ms_per_sample = 1000.0 / sample_rate_hz_;

@@ -35,6 +35,7 @@
 #include "profile/link_profile.h"
 #include "signal/bin_power.h"
 #include "signal/sliding_window.h"
+#include "signal/steady_background.h"
 
 namespace dtmf::signal {
 
@@ -113,12 +114,11 @@ class HopListener {
   float presence_ratio_;
   float onset_ratio_;
   float gate_ratio_;
-  float rise_per_hop_;
   int lo_bin_;  // first bin analysed: the lowest band, less room for offsets
   int hi_bin_;
   BinPower bins_;
   SlidingWindow window_;
-  std::vector<float> background_;
+  SteadyBackground background_;
   std::vector<Window> ring_;  // the last kMaxFrameChords * hops_per_chord + 1 windows
   std::size_t newest_ = 0;
   long long windows_ = 0;

@@ -1,10 +1,11 @@
 #include "signal/hop_reply.h"
-#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "units/decibels.h"
 
 namespace dtmf::signal {
 
@@ -18,19 +19,19 @@ HopReplyListener::HopReplyListener(const LinkProfile& profile, int min_heard)
       sample_rate_hz_(profile.sample_rate_hz),
       presence_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.reply_presence_db))),
       onset_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.reply_onset_db))),
-      rise_per_hop_(static_cast<float>(units::power_ratio_from_db(
-          profile.hops.reply_background_rise_db_per_s * profile.hops.reply_hop_samples / profile.sample_rate_hz))),
       lo_bin_(profile.hops.reply_tone_bin.front().front() - kMarginBins),
       hops_per_chord_(profile.hops.reply_chord_samples() / profile.hops.reply_hop_samples),
       bins_(profile.hops.reply_window_samples, lo_bin_,
             profile.hops.reply_tone_bin.back().back() + kMarginBins + 1 - lo_bin_, Weighting::Hann),
       window_(static_cast<std::size_t>(profile.hops.reply_window_samples),
-              static_cast<std::size_t>(profile.hops.reply_hop_samples)) {
+              static_cast<std::size_t>(profile.hops.reply_hop_samples)),
+      background_(SteadyBackground::for_power(
+          static_cast<std::size_t>(bins_.bins()), profile.hops.reply_background_rise_db_per_s,
+          static_cast<double>(profile.sample_rate_hz) / profile.hops.reply_hop_samples)) {
   if (profile.hops.reply_chord_samples() % profile.hops.reply_hop_samples != 0) {
     throw std::invalid_argument("profile '" + profile.name + "': a reply chord must be a whole number of reply hops");
   }
   const auto bins = static_cast<std::size_t>(bins_.bins());
-  background_.assign(bins, std::numeric_limits<float>::max());
   power_ring_.assign(static_cast<std::size_t>(2 * hops_per_chord_ + 1), std::vector<float>(bins, 0.0f));
   excess_ring_ = power_ring_;
   heard_.reserve(64);  // a reading per window: 20 in a block of 4096 samples
@@ -74,10 +75,7 @@ void HopReplyListener::analyze_window() {
   std::vector<float>& power = power_ring_[newest_];
   std::vector<float>& excess = excess_ring_[newest_];
   bins_.analyze(window_.window(), power);
-  for (std::size_t i = 0; i < power.size(); ++i) {
-    background_[i] = std::min(power[i], background_[i] * rise_per_hop_);
-    excess[i] = power[i] - background_[i];
-  }
+  background_.remove_power(power, excess);
   ++windows_;
   if (windows_ <= 2 * hops_per_chord_) return;  // the stream is taken to be preceded by silence
   const std::size_t first =

@@ -26,6 +26,7 @@
 #include "reliability/reply_code.h"
 #include "signal/bin_power.h"
 #include "signal/sliding_window.h"
+#include "signal/steady_background.h"
 
 namespace dtmf::signal {
 
@@ -53,12 +54,11 @@ class HopReplyListener {
   int sample_rate_hz_;
   float presence_ratio_;
   float onset_ratio_;
-  float rise_per_hop_;
   int lo_bin_;
   int hops_per_chord_;
   BinPower bins_;
   SlidingWindow window_;
-  std::vector<float> background_;
+  SteadyBackground background_;
   std::vector<std::vector<float>> power_ring_;   // raw power of the last 2 * hops_per_chord_ + 1 windows
   std::vector<std::vector<float>> excess_ring_;  // ... and its excess over the background
   std::size_t newest_ = 0;

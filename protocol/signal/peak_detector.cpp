@@ -1,14 +1,12 @@
 #include "signal/peak_detector.h"
-#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace dtmf::signal {
+#include "signal/peak_interpolation.h"
+#include "units/decibels.h"
 
-namespace {
-constexpr double kHannScallopingGain = 1.178;  // +1.42 dB: a Hann window's worst-case loss, made good
-}  // namespace
+namespace dtmf::signal {
 
 double dbfs(double amplitude) { return units::db_from_amplitude_ratio(std::max(amplitude, 1e-12)); }
 double amplitude_from_dbfs(double level_dbfs) { return units::amplitude_ratio_from_db(level_dbfs); }
@@ -27,18 +25,10 @@ std::span<const Peak> PeakDetector::detect(std::span<const float> m) {
   candidates_.clear();
   for (std::size_t k = first_bin_; k <= last_bin_; ++k) {
     if (m[k] < gate_ || m[k] <= m[k - 1] || m[k] < m[k + 1]) continue;
-    const double a = std::log(std::max(m[k - 1], 1e-20f));
-    const double b = std::log(m[k]);
-    const double c = std::log(std::max(m[k + 1], 1e-20f));
-    const double denominator = a - 2 * b + c;
-    // Both clamped to what a Hann window can do: a tone lies within half a bin of its
-    // peak bin and reads at most 1.42 dB low there (its scalloping loss). Without the
-    // clamp, a neighbour near zero (a bin wholly taken off as steady background) threw
-    // the parabola and read a -25 dBFS peak as -3 dBFS.
-    const double delta = denominator < 0 ? std::clamp(0.5 * (a - c) / denominator, -0.5, 0.5) : 0.0;
-    const double level =
-        std::min(std::exp(b - 0.25 * (a - c) * delta), static_cast<double>(m[k]) * kHannScallopingGain);
-    candidates_.push_back(Peak{(static_cast<double>(k) + delta) * bin_hz_, level});
+    // Clamped to what a Hann window can do (peak_interpolation.h): without the clamp, a
+    // neighbour near zero threw the parabola and read a -25 dBFS peak as -3 dBFS.
+    const InterpolatedPeak peak = hann_peak(m[k - 1], m[k], m[k + 1]);
+    candidates_.push_back(Peak{(static_cast<double>(k) + peak.offset_bins) * bin_hz_, peak.magnitude});
   }
   const std::size_t keep = std::min(peak_count_, candidates_.size());
   std::partial_sort(candidates_.begin(), candidates_.begin() + static_cast<std::ptrdiff_t>(keep), candidates_.end(),
