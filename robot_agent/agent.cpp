@@ -90,10 +90,14 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
   row.event = link::event_name(r.event);
   row.reason = link::reason_name(r.refusal);
   row.authenticated = r.authenticated;
-  if (r.word) row.word = *r.word;
-  if (!r.state_after.empty()) row.command_state = r.state_after;
+  std::optional<command::Word> word;
+  if (r.seed_word) {
+    word = r.seed_word->word;
+    row.word = r.seed_word->word;
+    if (!r.seed_word->state_after.empty()) row.command_state = r.seed_word->state_after;
+  }
   HeardFrame heard{&profile,  r.start_ms,      r.heard_ms, r.bits, r.intact,    r.event,
-                   r.refusal, r.authenticated, r.counter,  r.word, std::nullopt};
+                   r.refusal, r.authenticated, r.counter,  word,   std::nullopt};
 
   const std::string bits = r.bits.bit_string(r.bit_count);
   const std::string number = r.counter    ? " counter " + std::to_string(*r.counter)
@@ -118,7 +122,7 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
     heard.command = r.command;
   }
   spdlog::info("t={:.3f}s {} frame {}{}{}{}: ACK ({}), {}", r.heard_ms / 1000.0, profile.name, bits, number,
-               r.word ? " word " + std::to_string(*r.word) : "", r.authenticated ? " authenticated" : "",
+               word ? " word " + std::to_string(*word) : "", r.authenticated ? " authenticated" : "",
                link::event_name(r.event), r.detail);
   store_.write(row);
   told(heard);

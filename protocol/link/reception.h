@@ -37,6 +37,13 @@ std::string_view event_name(ReceptionEvent event);
 // "", "authentication", "payload": the receptions table's `reason`.
 std::string_view reason_name(RefusalReason reason);
 
+// What only the seed's word frames carry: the 12-bit word, and the robot's word state
+// machine after it (empty when the word was not given to it: a refused frame).
+struct SeedWordReading {
+  command::Word word = 0;
+  std::string state_after;
+};
+
 struct Reception {
   double start_ms = 0;          // when the frame began sounding (within an analysis hop)
   double heard_ms = 0;          // when the verdict was reached: the robot's decision time
@@ -46,14 +53,13 @@ struct Reception {
   bool intact = false;      // passed the check (CRC)
   ReceptionEvent event = ReceptionEvent::Broken;
   RefusalReason refusal = RefusalReason::None;
-  bool authenticated = false;               // its MAC held under this robot's key
-  std::optional<std::uint8_t> sequence;     // numbered unauthenticated frames
-  std::optional<std::uint64_t> counter;     // authenticated frames: the counter completed
-  std::optional<command::Word> word;        // seed words: the intact frame's word
-  std::optional<command::Command> command;  // the command to execute now
-  std::string state_after;                  // seed words: the command state machine afterwards
-  std::string detail;                       // for people: what it did, or why it was refused
-  std::vector<double> tones_hz;             // the tones that carry `bits`, in order
+  bool authenticated = false;                // its MAC held under this robot's key
+  std::optional<std::uint8_t> sequence;      // numbered unauthenticated frames
+  std::optional<std::uint64_t> counter;      // authenticated frames: the counter completed
+  std::optional<SeedWordReading> seed_word;  // seed words only: the intact frame's word
+  std::optional<command::Command> command;   // the command to execute now
+  std::string detail;                        // for people: what it did, or why it was refused
+  std::vector<double> tones_hz;              // the tones that carry `bits`, in order
 
   // Answered with ACK: intact and not refused.
   bool acknowledged() const { return intact && event != ReceptionEvent::Refused; }

@@ -27,7 +27,9 @@ class SeedLink final : public Link {
   int answer_block_samples() const override;
   bool answers(const Answer& answer, const TransmitFrame& frame) const override;
 
- private:
+  // A planned frame as the sender sends it: bits, tones and the chord's audio. Public for
+  // tests that send a frame no sender plans (a word or tones corrupted on purpose) and lay
+  // it out with render(), the one renderer.
   TransmitFrame transmit_frame(const SeedPlannedFrame& planned) const;
 };
 

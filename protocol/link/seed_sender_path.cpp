@@ -1,7 +1,5 @@
 #include "link/seed_sender_path.h"
 
-#include <span>
-
 #include "command/word_codec.h"
 #include "signal/synthesizer.h"
 
@@ -21,17 +19,6 @@ std::vector<SeedPlannedFrame> plan_command(const LinkProfile& profile, const com
 
 double frame_start_ms(const LinkProfile& profile, std::size_t index) {
   return static_cast<double>(index) * (profile.timing.chord_ms + profile.timing.gap_ms);
-}
-
-std::vector<float> render_frames(const LinkProfile& profile, const std::vector<SeedPlannedFrame>& frames) {
-  const auto chord = static_cast<std::size_t>(profile.samples_for_ms(profile.timing.chord_ms));
-  const auto slot = static_cast<std::size_t>(profile.samples_for_ms(profile.timing.chord_ms + profile.timing.gap_ms));
-  std::vector<float> audio(slot * frames.size(), 0.0f);
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    signal::add_chord(std::span<float>(audio).subspan(i * slot, chord), frames[i].tones_hz,
-                      profile.tones.tone_amplitude, profile.tones.edge_ms, profile.sample_rate_hz);
-  }
-  return audio;
 }
 
 }  // namespace dtmf::link

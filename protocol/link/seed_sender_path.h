@@ -28,7 +28,4 @@ std::vector<SeedPlannedFrame> plan_command(const LinkProfile& profile, const com
 // Where each frame's chord starts in a rendered recording.
 double frame_start_ms(const LinkProfile& profile, std::size_t index);
 
-// The frames one after another: chord_ms of chord, then gap_ms of silence, each.
-std::vector<float> render_frames(const LinkProfile& profile, const std::vector<SeedPlannedFrame>& frames);
-
 }  // namespace dtmf::link

@@ -9,6 +9,7 @@
 #include "reliability/command_frame.h"
 #include "signal/hop_synthesizer.h"
 #include "signal/tone_listener.h"
+#include "support/seed_audio.h"
 
 using namespace dtmf;
 using namespace dtmf::agent;
@@ -105,7 +106,7 @@ TEST(Agent, DrivesForTheQuantisedDurationThenPublishesZero) {
   const LinkProfile& p = seed_profile();
   const command::DriveForDuration drive{50, 2};
   AgentRun run;
-  run_agent(link::render_frames(p, link::plan_command(p, drive)), run);
+  run_agent(test_support::seed_audio(p, link::plan_command(p, drive)), run);
   ASSERT_EQ(run.frames, 3u);
   ASSERT_EQ(run.replies.replies.size(), 3u);
   for (const auto& [reply, at] : run.replies.replies) EXPECT_EQ(reply, signal::Reply::Ack);
@@ -140,7 +141,7 @@ TEST(Agent, ACorruptedChordGetsANackAndNoMotion) {
   frames[2].frame ^= 0x0001;  // the parameter frame's CRC no longer fits
   frames[2].tones_hz = signal::chord_for(p.tones, frames[2].frame);
   AgentRun run;
-  run_agent(link::render_frames(p, frames), run);
+  run_agent(test_support::seed_audio(p, frames), run);
   ASSERT_EQ(run.replies.replies.size(), 3u);
   EXPECT_EQ(run.replies.replies[0].first, signal::Reply::Ack);
   EXPECT_EQ(run.replies.replies[1].first, signal::Reply::Ack);
@@ -151,7 +152,7 @@ TEST(Agent, ACorruptedChordGetsANackAndNoMotion) {
 TEST(Agent, TheReplyTimelinePutsEachChordWhereItsFrameWasHeard) {
   const LinkProfile& p = seed_profile();
   const std::string path = ::testing::TempDir() + "/acks-" + std::to_string(::getpid()) + ".wav";
-  const auto audio = link::render_frames(p, link::plan_command(p, command::Stop{}));
+  const auto audio = test_support::seed_audio(p, link::plan_command(p, command::Stop{}));
   {
     ReplyTimeline timeline(p, std::make_unique<physical::WavFileSink>(path, p.sample_rate_hz));
     timeline.play(answer(seed_profile(), true), 100);
@@ -184,7 +185,7 @@ TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) 
   };
   append(frame.audio, 500);
   append(frame.audio, 500);  // the sender did not hear the ACK: the same frame again
-  append(link::render_frames(seed, link::plan_command(seed, command::DriveForward{30})), 500);
+  append(test_support::seed_audio(seed, link::plan_command(seed, command::DriveForward{30})), 500);
 
   BothProfilesRun run = run_both_profiles(audio);
   EXPECT_EQ(run.block_samples, fast.hop_samples());
@@ -227,7 +228,7 @@ TEST(Agent, AFastFrameFailingWhileASeedFrameSoundsIsNotAnswered) {
   signal::HoppedSymbols hopped{};
   std::copy(symbols.begin(), symbols.end(), hopped.begin());
   const std::vector<float> damaged = signal::synthesize_hopped_frame(fast, hopped);
-  const auto seed_chord = link::render_frames(seed, {link::plan_command(seed, command::Reset{}).front()});
+  const auto seed_chord = test_support::seed_audio(seed, {link::plan_command(seed, command::Reset{}).front()});
 
   std::vector<float> audio(static_cast<std::size_t>(fast.samples_for_ms(4000)), 0.0f);
   const auto mix = [&](const std::vector<float>& sound, double at_ms) {

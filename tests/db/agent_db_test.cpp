@@ -6,6 +6,7 @@
 #include "physical/wav_file.h"
 #include "profile/link_profile.h"
 #include "support/run_command.h"
+#include "support/seed_audio.h"
 #include "temp_database.h"
 
 using namespace dtmf;
@@ -20,7 +21,7 @@ TEST(AgentDatabase, EveryReceptionIsLoggedWithItsVerdictAnswerAndEffect) {
   bad.tones_hz = signal::chord_for(p.tones, bad.frame);
   frames.push_back(bad);
   const std::string wav = ::testing::TempDir() + "/agent-db-" + std::to_string(::getpid()) + ".wav";
-  physical::write_wav_file(wav, link::render_frames(p, frames), p.sample_rate_hz);
+  physical::write_wav_file(wav, test_support::seed_audio(p, frames), p.sample_rate_hz);
 
   const auto r = test_support::run_command(std::string(DTMF_AGENT_PATH) + " --audio wav:" + wav +
                                            " --cmd-vel log --host robot-under-test --spill-file " + wav +

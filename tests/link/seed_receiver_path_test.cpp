@@ -6,6 +6,7 @@
 #include "link/seed_sender_path.h"
 #include "profile/link_profile.h"
 #include "support/listen.h"
+#include "support/seed_audio.h"
 
 using namespace dtmf;
 
@@ -37,7 +38,7 @@ TEST_P(SequenceAtDistance, AllFramesHeardOnceInOrderAndEveryCommandExecuted) {
   room.reverb.wet = 0.2;
   room.clock_offset_ppm = 50;
   const auto heard_audio =
-      test_support::through_channel(link::render_frames(p, frames), p.sample_rate_hz, GetParam(), room);
+      test_support::through_channel(test_support::seed_audio(p, frames), p.sample_rate_hz, GetParam(), room);
   const auto received = test_support::receive(p, heard_audio);
 
   ASSERT_EQ(received.size(), frames.size());
@@ -68,7 +69,7 @@ TEST(SeedReceiverPath, ACorruptedChordIsHeardButFailsTheCrcAndChangesNothing) {
   bad.frame ^= 0x0003;
   bad.tones_hz = signal::chord_for(p.tones, bad.frame);
   frames.push_back(bad);
-  const auto received = test_support::receive(p, link::render_frames(p, frames));
+  const auto received = test_support::receive(p, test_support::seed_audio(p, frames));
   ASSERT_EQ(received.size(), 3u);
   EXPECT_TRUE(received[1].crc_ok);
   EXPECT_FALSE(received[2].crc_ok);

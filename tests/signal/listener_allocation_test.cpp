@@ -20,6 +20,7 @@
 #include "signal/synthesizer.h"
 #include "signal/tone_listener.h"
 #include "sim/noise.h"
+#include "support/seed_audio.h"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -49,7 +50,7 @@ std::vector<float> busy_audio(const LinkProfile& profile) {
   for (const auto& command : command::seed_test_sequence()) {
     for (const auto& f : link::plan_command(profile, command)) frames.push_back(f);
   }
-  std::vector<float> audio = link::render_frames(profile, frames);
+  std::vector<float> audio = test_support::seed_audio(profile, frames);
   sim::NoiseSource noise(sim::parse_noise("pink", -40), profile.sample_rate_hz, 7);
   noise.add_to(audio);
   return audio;
