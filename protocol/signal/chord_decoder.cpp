@@ -1,9 +1,10 @@
 #include "signal/chord_decoder.h"
-#include "units/decibels.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+
+#include "units/decibels.h"
 
 namespace dtmf::signal {
 

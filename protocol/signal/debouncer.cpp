@@ -1,8 +1,9 @@
 #include "signal/debouncer.h"
-#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
+
+#include "units/decibels.h"
 
 namespace dtmf::signal {
 

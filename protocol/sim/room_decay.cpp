@@ -1,8 +1,9 @@
 #include "sim/room_decay.h"
-#include "units/decibels.h"
 
 #include <algorithm>
 #include <cmath>
+
+#include "units/decibels.h"
 
 namespace dtmf::sim {
 

@@ -1,7 +1,8 @@
 #include "sim/schroeder_reverb.h"
-#include "units/decibels.h"
 
 #include <cmath>
+
+#include "units/decibels.h"
 
 namespace dtmf::sim {
 

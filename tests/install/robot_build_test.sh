@@ -11,14 +11,16 @@ trap 'rm -rf "$build"' EXIT
 source "$src/scripts/lib/common.sh"
 cmake -S "$src" -B "$build" -G Ninja "${DTMF_ROBOT_CMAKE_OPTIONS[@]}" >"$build/configure.log" 2>&1 ||
   { tail -n 20 "$build/configure.log"; echo "FAIL: the robot build does not configure"; exit 1; }
-compiled=$(ninja -C "$build" -t targets all | grep -oE '[^ ]+\.(cpp|c)\.o' | sort -u)
+# Captured first: `ninja ... | grep -q` under pipefail fails when grep stops reading early.
+targets=$(ninja -C "$build" -t targets all)
+compiled=$(grep -oE '[^ ]+\.(cpp|c)\.o' <<<"$targets" | sort -u)
 failed=0
 check() { if ! eval "$1"; then echo "FAIL: $2"; failed=1; fi; }
 check '! grep -q "/sim/" <<<"$compiled"' "it compiles the simulator: $(grep /sim/ <<<"$compiled" | head -3 | tr '\n' ' ')"
 check '! grep -q "simulate_command" <<<"$compiled"' "dtmfctl simulate is built"
-check '! ninja -C "$build" -t targets all | grep -q "^bin/dtmf-room:"' "dtmf-room is built"
-check 'ninja -C "$build" -t targets all | grep -q "^bin/dtmf-agent:"' "dtmf-agent is not built"
-check 'ninja -C "$build" -t targets all | grep -q "^bin/dtmfctl:"' "dtmfctl is not built"
+check '! grep -q "^bin/dtmf-room:" <<<"$targets"' "dtmf-room is built"
+check 'grep -q "^bin/dtmf-agent:" <<<"$targets"' "dtmf-agent is not built"
+check 'grep -q "^bin/dtmfctl:" <<<"$targets"' "dtmfctl is not built"
 check 'grep -q "encode_command" <<<"$compiled" && grep -q "decode_command" <<<"$compiled"' \
   "dtmfctl lost encode or decode"
 check '! grep -q "server/" <<<"$compiled"' "the sender is built"
