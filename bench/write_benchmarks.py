@@ -26,6 +26,7 @@ from rooms_section import rooms_section  # noqa: E402
 from answers_section import answers_section  # noqa: E402
 from targets_section import targets_section  # noqa: E402
 from teleop_section import teleop_section  # noqa: E402
+from robot_section import robot_section  # noqa: E402
 
 BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "answers", "talkoff_speech", "talkoff_music",
            "talkoff_noise", "roundtrip", "roundtrip_room", "e2e", "e2e_room", "teleop"]
@@ -468,6 +469,7 @@ def main() -> int:
           f"| {d['frames_acked_first_attempt']} of {d['frames_first_attempt']} | {d['retransmissions']} |")
     w("")
     teleop_section(w, data, profiles, ok)
+    robot_section(w, args.directory)
     targets_section(w, data, profiles, ok, decoder_factor)
     with open(args.out, "w") as f:
         f.write("\n".join(out))

@@ -133,6 +133,27 @@ TEST_P(BenchSmokeProfile, DecoderIsFasterThanRealTime) {
   }
 }
 
+// The whole robot: every profile's receiver takes exactly its own frames from the same audio,
+// nothing from noise, and every profile's answer ear hears its own answers.
+TEST(BenchSmoke, ReceivePathHearsEveryProfilesFramesAndAnswersOnTheSameAudio) {
+  const auto doc = run(std::string(RECEIVE_PATH) + " --audio-s 3", "receive");
+  ASSERT_EQ(doc["signals"].size(), 4u) << doc.dump();
+  for (const auto& s : doc["signals"]) {
+    EXPECT_GT(s["realtime_factor"].get<double>(), 100.0) << s.dump();
+    ASSERT_GE(s["per_profile"].size(), 2u) << s.dump();
+    for (const auto& [profile, figures] : s["per_profile"].items()) {
+      if (s["signal"] == "answers") {
+        EXPECT_GE(figures["heard"], figures["expected"]) << profile << " " << s.dump();
+      } else {
+        EXPECT_EQ(figures["heard"], figures["expected"]) << profile << " " << s.dump();
+      }
+      if (s["signal"] != "noise") {
+        EXPECT_GT(figures["expected"].get<int>(), 0) << profile;
+      }
+    }
+  }
+}
+
 TEST_P(BenchSmokeProfile, RoundTripConfirmsEveryCommand) {
   const auto doc =
       run(std::string(ROUNDTRIP_PATH) + " --profile " + GetParam() + " --commands 4", "roundtrip-" + GetParam());

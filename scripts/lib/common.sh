@@ -14,6 +14,7 @@ DTMF_PACKAGES=(
   libfastrtps-dev fastddsgen  # tests/interop/fastdds: ROS 2 Jazzy's default middleware as the subscriber
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
   espeak-ng sox openssl
+  time  # scripts/bench: /usr/bin/time, the CPU time of a start-up
   libncurses-dev  # dtmfctl teleop: the full-screen terminal view
   tmux  # tests/e2e: drives dtmfctl teleop in a real terminal (send-keys, capture-pane)
   systemd  # systemd-analyze verify checks the units (tests/install)
