@@ -14,7 +14,7 @@ RECEIVE_TARGET = 5000  # × real time, one core, Release (issue 24)
 REASONS = {
     "robot":
         "every profile's receiver analyses every hop whether or not anything is there: `fast` one 1920-point FFT "
-        "per 10.25 ms hop (1.65 µs, measured plan) and `seed` one 2048-point spectrum per 5 ms hop; 5000 × leaves "
+        "per 10.25 ms hop (1.65 µs, measured plan) and `seed` one 4096-point spectrum per 50 ms hop; 5000 × leaves "
         "2.05 µs per 10.25 ms for both together, so the target needs receivers that skip their FFTs when nothing is "
         "there (a cheap pre-gate that never misses a frame a full receiver hears); not built yet",
     "ear":
@@ -67,8 +67,8 @@ def robot_section(w, directory):
         w("| path | signal | audio | CPU | × real time | heard |")
         w("|---|---|---|---|---|---|")
         for s in receive["signals"]:
-            w(f"| {s['path']} | {s['signal']} | {s['audio_s']:.0f} s | {s['cpu_s']:.3f} s "
-              f"| {s['realtime_factor']:,.0f} × | {_heard(s)} |".replace(",", " ", 1))
+            factor = f"{s['realtime_factor']:,.0f}".replace(",", " ")
+            w(f"| {s['path']} | {s['signal']} | {s['audio_s']:.0f} s | {s['cpu_s']:.3f} s | {factor} × | {_heard(s)} |")
     w("")
     w("`dtmf-agent` listening to silence (the PulseAudio air of `scripts/air`, every profile, no database, "
       "Release): its CPU share over the measured seconds and its peak resident memory (VmHWM).")
@@ -78,7 +78,7 @@ def robot_section(w, directory):
     else:
         w(f"CPU: **{100 * idle['cpu_share']:.2f} %** of one core over {idle['seconds']:.0f} s "
           f"({idle['cpu_s']:.2f} s of CPU); peak memory **{idle['peak_rss_kib'] / 1024:.1f} MiB** "
-          f"(VmHWM), of which FFTW's plans and buffers and the receivers' rings are a small part.")
+          f"(VmHWM).")
     w("")
     w("Start-up: the CPU time of `dtmfctl decode --profile fast` on a one-second recording, with FFTW's plans "
       "measured at start (no wisdom file) and imported from the wisdom file the first run saved "
