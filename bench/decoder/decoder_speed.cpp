@@ -13,11 +13,11 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
-#include <ctime>
 #include <random>
 
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
+#include "common/thread_cpu.h"
 #include "frames/frame_trials.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
@@ -31,12 +31,6 @@ namespace {
 constexpr std::size_t kBlockSamples = 1024;
 constexpr double kNoiseOnlyDbfs = -30;
 constexpr double kUnderFramesDbfs = -40;
-
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
-}
 
 std::vector<float> noise_only(const LinkProfile& profile, double audio_s) {
   std::vector<float> audio(static_cast<std::size_t>(audio_s * profile.sample_rate_hz), 0.0f);

@@ -19,11 +19,11 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <ctime>
 #include <memory>
 #include <random>
 
 #include "common/bench_report.h"
+#include "common/thread_cpu.h"
 #include "frames/frame_trials.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
@@ -36,12 +36,6 @@ namespace {
 
 constexpr double kNoiseOnlyDbfs = -30;
 constexpr double kUnderFramesDbfs = -40;
-
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
-}
 
 struct Signal {
   std::vector<float> audio;
