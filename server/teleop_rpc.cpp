@@ -116,8 +116,8 @@ grpc::Status TeleopService::Teleop(grpc::ServerContext* context,
     response.set_target_angular_radps(s.target_angular_radps);
     response.set_confirmed(s.confirmed.has_value());
     if (s.confirmed) {
-      response.set_confirmed_linear_mps(command::linear_mps(options_.robot, *s.confirmed));
-      response.set_confirmed_angular_radps(command::angular_radps(options_.robot, *s.confirmed));
+      response.set_confirmed_linear_mps(s.confirmed->linear_mps);
+      response.set_confirmed_angular_radps(s.confirmed->angular_radps);
     }
     response.set_response_time_ms(s.response_time_ms);
     response.set_link_quality(s.link_quality);

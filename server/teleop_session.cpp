@@ -5,14 +5,6 @@
 
 namespace dtmf::server {
 
-namespace {
-
-bool same(const command::Velocity& a, const command::Velocity& b) {
-  return a.linear_fraction == b.linear_fraction && a.angular_fraction == b.angular_fraction && a.lease_s == b.lease_s;
-}
-
-}  // namespace
-
 TeleopSession::TeleopSession(command::RobotModel model) : model_(std::move(model)) {}
 
 void TeleopSession::set_target(const command::Velocity& target, double now_s) {
@@ -43,7 +35,7 @@ void TeleopSession::halt(const std::string& why) {
 std::optional<command::Velocity> TeleopSession::frame_due(double now_s) {
   std::lock_guard lock(mutex_);
   if (in_flight_ || !target_ || ended_ || halted_ || now_s - heard_at_s_ > kClientSilence_s) return std::nullopt;
-  const bool changed = !last_sent_ || !same(*last_sent_, *target_);
+  const bool changed = !last_sent_ || *last_sent_ != *target_;
   const bool renewal_due = last_sent_ && now_s - sent_at_s_ >= last_sent_->lease_s / 2;
   if (!changed && !renewal_due && last_confirmed_) return std::nullopt;
   last_sent_ = target_;
@@ -79,7 +71,10 @@ TeleopStatus TeleopSession::status(double now_s) {
     s.target_linear_mps = command::linear_mps(model_, *target_);
     s.target_angular_radps = command::angular_radps(model_, *target_);
   }
-  s.confirmed = confirmed_;
+  if (confirmed_) {
+    s.confirmed =
+        TeleopStatus::Confirmed{command::linear_mps(model_, *confirmed_), command::angular_radps(model_, *confirmed_)};
+  }
   s.response_time_ms = response_time_ms_;
   s.frames_in_window = static_cast<int>(window_.size());
   const auto answered = std::count_if(window_.begin(), window_.end(), [](const auto& f) { return f.second; });
@@ -109,7 +104,7 @@ void TeleopSession::wait(double for_s) {
   std::unique_lock lock(mutex_);
   const auto target = target_;
   changed_.wait_for(lock, std::chrono::duration<double>(for_s),
-                    [&] { return ended_ || halted_ || (target_ && (!target || !same(*target, *target_))); });
+                    [&] { return ended_ || halted_ || (target_ && (!target || *target != *target_)); });
 }
 
 }  // namespace dtmf::server

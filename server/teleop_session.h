@@ -28,10 +28,15 @@ inline constexpr double kClientSilence_s = 1.0;
 // Link quality is counted over this much of the recent past.
 inline constexpr double kLinkWindow_s = 3.0;
 
+// Velocities in the robot's units, the target's and the confirmed one's alike.
 struct TeleopStatus {
+  struct Confirmed {
+    double linear_mps = 0;
+    double angular_radps = 0;
+  };
   double target_linear_mps = 0;
   double target_angular_radps = 0;
-  std::optional<command::Velocity> confirmed;  // as the robot executes it
+  std::optional<Confirmed> confirmed;  // as the robot executes it (the velocity its frame carried)
   double response_time_ms = 0;
   double link_quality = 0;  // answers heard per frame sent in the window
   int frames_in_window = 0;

@@ -52,6 +52,7 @@ struct Velocity {
   double linear_fraction = 0;   // -1..1 of the robot's top speed
   double angular_fraction = 0;  // -1..1 of its top turn rate
   double lease_s = 1.0;         // 0.3..2
+  bool operator==(const Velocity&) const = default;
 };
 
 using Command = std::variant<Reset, DriveForDuration, TurnForDuration, DriveForward, Turn, Stop, Velocity>;

@@ -77,7 +77,8 @@ TEST(TeleopSession, StatusReportsConfirmedVelocityLeaseLeftAndLinkQualityOverThe
   EXPECT_DOUBLE_EQ(status.target_linear_mps, 0.11);
   EXPECT_DOUBLE_EQ(status.target_angular_radps, -0.71);
   ASSERT_TRUE(status.confirmed);
-  EXPECT_EQ(status.confirmed->linear_fraction, 0.5);
+  EXPECT_DOUBLE_EQ(status.confirmed->linear_mps, 0.11);  // the same units as the target
+  EXPECT_DOUBLE_EQ(status.confirmed->angular_radps, -0.71);
   EXPECT_DOUBLE_EQ(status.response_time_ms, 113.0);
   EXPECT_DOUBLE_EQ(status.link_quality, 0.75);
   EXPECT_EQ(status.frames_in_window, 4);
