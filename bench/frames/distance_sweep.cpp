@@ -16,6 +16,7 @@
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "frames/sweep.h"
+#include "frames/sweep_flags.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
 #include "sim/acoustic_channel.h"
@@ -43,15 +44,7 @@ int main(int argc, char** argv) {
   app.add_option("--noise-dbfs", noise_dbfs, "background noise level, dBFS RMS")->capture_default_str();
   app.add_option("--rt60-s", rt60_s, "the room's reverberation time (0: none)")->capture_default_str();
   app.add_option("--wet", wet, "reverberant level against the direct sound")->capture_default_str();
-  app.add_option("--frames", options.frames, "frames per point")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--chunk-frames", options.chunk_frames, "frames per continuous stream")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  app.add_option("--block-samples", options.block_samples, "receiver feed size")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  app.add_option("--seed", options.seed, "random seed (frame contents and noise)")->capture_default_str();
-  app.add_option("--threads", options.threads, "worker threads")->capture_default_str()->check(CLI::PositiveNumber);
+  add_sweep_flags(app, options, "point", true);
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
   return program::run(
       [&] {

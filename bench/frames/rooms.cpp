@@ -23,6 +23,7 @@
 #include "common/bench_report.h"
 #include "frames/channel_case.h"
 #include "frames/sweep.h"
+#include "frames/sweep_flags.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
 #include "sim/acoustic_channel.h"
@@ -86,15 +87,10 @@ int main(int argc, char** argv) {
   app.add_option("--case", case_texts,
                  "NAME=FLAGS (dtmfctl simulate's channel flags); repeatable; default: the rooms table");
   app.add_option("--rirs", rirs, "where the measured rooms are")->capture_default_str();
-  app.add_option("--frames", options.frames, "frames per case")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--chunk-frames", options.chunk_frames, "frames per continuous stream")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  add_sweep_flags(app, options, "case", false);
   app.add_option("--lead-in-s", options.lead_in_s, "seconds of the channel alone before each stream's first frame")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--seed", options.seed, "random seed (frame contents and noise)")->capture_default_str();
-  app.add_option("--threads", options.threads, "worker threads")->capture_default_str()->check(CLI::PositiveNumber);
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
   return program::run(
       [&] {

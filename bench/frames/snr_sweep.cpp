@@ -19,6 +19,7 @@
 #include "common/bench_report.h"
 #include "common/gaussian.h"
 #include "frames/sweep.h"
+#include "frames/sweep_flags.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
 #include "units/decibels.h"
@@ -41,19 +42,11 @@ int main(int argc, char** argv) {
   app.add_option("--to-db", to_db, "highest SNR")->capture_default_str();
   app.add_option("--step-db", step_db, "SNR step")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--snr-db", snrs_db, "these SNRs instead of the range (repeatable)");
-  app.add_option("--frames", options.frames, "frames per point")->capture_default_str()->check(CLI::PositiveNumber);
+  add_sweep_flags(app, options, "point", true);
   app.add_option("--topup-frames", options.topup_frames, "frames at points near the thresholds")->capture_default_str();
   app.add_option("--topup-low", options.topup_low, "top up points with success at least this ...")
       ->capture_default_str();
   app.add_option("--topup-high", options.topup_high, "... and below this")->capture_default_str();
-  app.add_option("--chunk-frames", options.chunk_frames, "frames per continuous stream")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  app.add_option("--block-samples", options.block_samples, "receiver feed size")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  app.add_option("--seed", options.seed, "random seed (frame contents and noise)")->capture_default_str();
-  app.add_option("--threads", options.threads, "worker threads")->capture_default_str()->check(CLI::PositiveNumber);
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
   return program::run(
       [&] {

@@ -133,8 +133,8 @@ TEST_P(BenchSmokeProfile, DecoderIsFasterThanRealTime) {
   }
 }
 
-// The whole robot: every profile's receiver takes exactly its own frames from the same audio,
-// nothing from noise, and every profile's answer ear hears its own answers.
+// The whole robot: every profile's receiver takes its own frames from the same audio, nothing
+// from a few seconds of noise, and every profile's answer ear hears its own answers.
 TEST(BenchSmoke, ReceivePathHearsEveryProfilesFramesAndAnswersOnTheSameAudio) {
   const auto doc = run(std::string(RECEIVE_PATH) + " --audio-s 3", "receive");
   ASSERT_EQ(doc["signals"].size(), 4u) << doc.dump();
@@ -142,11 +142,9 @@ TEST(BenchSmoke, ReceivePathHearsEveryProfilesFramesAndAnswersOnTheSameAudio) {
     EXPECT_GT(s["realtime_factor"].get<double>(), 100.0) << s.dump();
     ASSERT_GE(s["per_profile"].size(), 2u) << s.dump();
     for (const auto& [profile, figures] : s["per_profile"].items()) {
-      if (s["signal"] == "answers") {
-        EXPECT_GE(figures["heard"], figures["expected"]) << profile << " " << s.dump();
-      } else {
-        EXPECT_EQ(figures["heard"], figures["expected"]) << profile << " " << s.dump();
-      }
+      // Its own, all of them; more (a frame read from another profile's chords, an answer
+      // heard in noise) is a finding the report shows, rare enough to see nothing in seconds.
+      EXPECT_EQ(figures["heard"], figures["expected"]) << profile << " " << s.dump();
       if (s["signal"] != "noise") {
         EXPECT_GT(figures["expected"].get<int>(), 0) << profile;
       }
