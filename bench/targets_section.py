@@ -27,10 +27,6 @@ REASONS = {
         "tones and keeps wrong ones (and none reaches the NACK threshold). Reading each symbol at its shifted "
         "frequency (a zero-padded FFT, or the window resampled by the offset) restored 4.9–7.6 dB and decoded "
         "that frame in a prototype; not built yet",
-    ("a whine 6 dB over a tone (< 1 % lost)", "seed"):
-        "a whine on the very bin of a tone: the background learns the whine's power, and the chord's tone adds to "
-        "it as a phasor, so the excess power is anything from −3 to +5 tone powers depending on the phase; a "
-        "background that tracks each bin's complex value would remove it",
     ("end to end through the seminar room both ways: net throughput", "fast"):
         "no retransmission is left to blame (0 in 200; the answers are heard in every room, see the answer "
         "path): a stop-and-wait sender puts one 27-bit command on air per round trip, frame 102.5 ms + the "

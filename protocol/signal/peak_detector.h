@@ -25,6 +25,9 @@ class PeakDetector {
 
   // The loudest peaks of `magnitudes`, loudest first; valid until the next call.
   std::span<const Peak> detect(std::span<const float> magnitudes);
+  // The bins detect() reads: the band-pass and one either side, [first, end).
+  std::size_t first_read_bin() const { return first_bin_ - 1; }
+  std::size_t end_read_bin() const { return last_bin_ + 2; }
 
  private:
   std::size_t first_bin_;

@@ -28,6 +28,7 @@ SpectrumAnalyzer::SpectrumAnalyzer(int fft_size, int sample_rate_hz)
   }
   amplitude_scale_ = static_cast<float>(2.0 / sum);
   magnitudes_.resize(static_cast<std::size_t>(fft_size / 2 + 1));
+  phasors_.resize(static_cast<std::size_t>(fft_size / 2 + 1));
 
   std::lock_guard lock(planner_mutex());
   input_ = fftwf_alloc_real(static_cast<std::size_t>(fft_size));
@@ -42,7 +43,7 @@ SpectrumAnalyzer::~SpectrumAnalyzer() {
   fftwf_free(output_);
 }
 
-std::span<const float> SpectrumAnalyzer::analyze(std::span<const float> window) {
+void SpectrumAnalyzer::transform(std::span<const float> window) {
   if (window.size() != static_cast<std::size_t>(fft_size_)) {
     throw std::invalid_argument("analysis window must hold " + std::to_string(fft_size_) + " samples, got " +
                                 std::to_string(window.size()));
@@ -50,11 +51,24 @@ std::span<const float> SpectrumAnalyzer::analyze(std::span<const float> window) 
   for (int i = 0; i < fft_size_; ++i)
     input_[i] = window[static_cast<std::size_t>(i)] * window_[static_cast<std::size_t>(i)];
   fftwf_execute(plan_);
+}
+
+std::span<const float> SpectrumAnalyzer::analyze(std::span<const float> window) {
+  transform(window);
   const auto* bins = static_cast<const fftwf_complex*>(output_);
   for (std::size_t k = 0; k < magnitudes_.size(); ++k) {
     magnitudes_[k] = std::hypot(bins[k][0], bins[k][1]) * amplitude_scale_;
   }
   return magnitudes_;
+}
+
+std::span<const std::complex<float>> SpectrumAnalyzer::analyze_phasors(std::span<const float> window) {
+  transform(window);
+  const auto* bins = static_cast<const fftwf_complex*>(output_);
+  for (std::size_t k = 0; k < phasors_.size(); ++k) {
+    phasors_[k] = std::complex<float>(bins[k][0], bins[k][1]) * amplitude_scale_;
+  }
+  return phasors_;
 }
 
 }  // namespace dtmf::signal

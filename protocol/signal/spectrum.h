@@ -3,9 +3,11 @@
 // A Hann window (sidelobes at -31 dB, so a loud tone does not bury its neighbours a few
 // bins away) is applied, a real-to-complex FFT is run with a plan made once per analyser,
 // and each bin's magnitude is scaled to the amplitude of the sine that would produce it
-// (a full-scale sine reads 1.0, i.e. 0 dBFS). Nothing is allocated per window.
+// (a full-scale sine reads 1.0, i.e. 0 dBFS). analyze_phasors() keeps each bin's phase too,
+// in the same scale. Nothing is allocated per window.
 #pragma once
 
+#include <complex>
 #include <mutex>
 #include <span>
 #include <vector>
@@ -28,6 +30,9 @@ class SpectrumAnalyzer {
   // `window` must hold fft_size() samples; returns fft_size()/2 + 1 sine amplitudes,
   // valid until the next call.
   std::span<const float> analyze(std::span<const float> window);
+  // The same bins as complex amplitudes (|phasor| is analyze()'s magnitude), valid until
+  // the next call.
+  std::span<const std::complex<float>> analyze_phasors(std::span<const float> window);
 
   int fft_size() const { return fft_size_; }
   double bin_hz() const { return static_cast<double>(sample_rate_hz_) / fft_size_; }
@@ -41,6 +46,9 @@ class SpectrumAnalyzer {
   void* output_;
   fftwf_plan_s* plan_;
   std::vector<float> magnitudes_;
+  std::vector<std::complex<float>> phasors_;
+
+  void transform(std::span<const float> window);
 };
 
 }  // namespace dtmf::signal

@@ -19,6 +19,11 @@ ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& det
                   static_cast<double>(profile.sample_rate_hz) / profile.hop_samples(),
                   static_cast<float>(amplitude_from_dbfs(detector.noise_gate_dbfs))),
       peaks_(detector, analyzer_.bin_hz(), static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1)),
+      // Only the bins the peak detector reads: the rest of the spectrum is never looked at.
+      phasors_(static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1), peaks_.first_read_bin(),
+               peaks_.end_read_bin(), detector.background_rise_db_per_s,
+               static_cast<double>(profile.sample_rate_hz) / profile.hop_samples(),
+               static_cast<float>(amplitude_from_dbfs(detector.noise_gate_dbfs))),
       decode_(std::move(decode)),
       debouncer_(for_symbols_of(profile.debounce, symbol_ms)),
       window_(static_cast<std::size_t>(profile.analysis.fft_size), static_cast<std::size_t>(profile.hop_samples())) {
@@ -29,6 +34,7 @@ ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& det
 void ToneListener::reset() {
   window_.clear();
   debouncer_.reset();
+  phasors_.reset();
   background_.reset();
   last_peaks_ = {};
 }
@@ -40,7 +46,7 @@ std::span<const Heard> ToneListener::feed(std::span<const float> samples) {
 }
 
 void ToneListener::analyze_window() {
-  last_peaks_ = peaks_.detect(background_.remove(analyzer_.analyze(window_.window())));
+  last_peaks_ = peaks_.detect(background_.remove(phasors_.remove(analyzer_.analyze_phasors(window_.window()))));
   const double end_ms = static_cast<double>(window_.samples_fed()) * 1000.0 / sample_rate_hz_;
   if (const auto pass = debouncer_.on_window(end_ms, decode_(last_peaks_))) {
     const double half_window_ms = 500.0 * fft_size_ / sample_rate_hz_;

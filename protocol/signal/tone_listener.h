@@ -1,7 +1,8 @@
 // Signal layer: the listening side put together — audio in, debounced symbols out.
 //
 //   samples -> sliding window (fft_size, hop = rate / analyses_per_s) -> spectrum
-//           -> less each bin's steady background -> band-pass, gate, N loudest peaks
+//           -> less each bin's steady phasor (a whine, phase and all) and then its steady
+//              background power (the floor) -> band-pass, gate, N loudest peaks
 //           -> chord or reply -> debouncer
 //
 // chord_listener() makes the robot's (command chords, robot detector), reply_listener()
@@ -23,6 +24,7 @@
 #include "signal/sliding_window.h"
 #include "signal/spectrum.h"
 #include "signal/steady_background.h"
+#include "signal/steady_phasors.h"
 #include "signal/tone_plan.h"
 
 namespace dtmf::signal {
@@ -57,6 +59,7 @@ class ToneListener {
   SpectrumAnalyzer analyzer_;
   SteadyBackground background_;
   PeakDetector peaks_;
+  SteadyPhasors phasors_;
   Decode decode_;
   Debouncer debouncer_;
   SlidingWindow window_;  // the latest fft_size samples, analysed every hop

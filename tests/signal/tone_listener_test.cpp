@@ -1,6 +1,9 @@
 // Signal layer: the listeners put together, on clean synthesized audio.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
+
 #include "profile/link_profile.h"
 #include "signal/synthesizer.h"
 #include "signal/tone_listener.h"
@@ -127,4 +130,28 @@ TEST(ChordListener, TheSameChordSentAgainAfterTheGapIsHeardTwice) {
   audio.insert(audio.end(), again.begin(), again.end());
   EXPECT_EQ(times_heard(p, audio, 0xB2DD), 2u);
   EXPECT_EQ(times_heard(p, through_the_seminar_room(p, audio), 0xB2DD), 2u);
+}
+
+// A fan whining 6 dB over a plan tone, on that tone's very frequency (5000 Hz: band 0, value
+// 3), for 8 s before a chord that uses the tone. Whatever the whine's phase against the
+// tone's, the chord is heard once and right: the listener takes the whine off phase and all
+// (signal/steady_phasors.h). With its power alone taken off, the tone's excess would be
+// anything from nothing to more than twice its power as the two phases turn.
+TEST(ChordListener, AChordIsHeardThroughAWhineOnItsOwnToneAtEveryPhase) {
+  const LinkProfile& p = seed_profile();
+  constexpr std::uint16_t kFrame = 0x3A5C;
+  const auto chord = synthesize_frame(p, kFrame);
+  for (int k = 0; k < 12; ++k) {
+    auto audio = with_silence(chord, p.samples_for_ms(8000), p.samples_for_ms(1000));
+    const double phase = 2 * std::numbers::pi * k / 12;
+    for (std::size_t i = 0; i < audio.size(); ++i) {
+      audio[i] += static_cast<float>(
+          2 * p.tones.tone_amplitude *
+          std::sin(2 * std::numbers::pi * 5000.0 * static_cast<double>(i) / p.sample_rate_hz + phase));
+    }
+    auto listener = chord_listener(p);
+    const auto heard = test_support::listen(listener, audio);
+    ASSERT_EQ(heard.size(), 1u) << "whine phase " << phase;
+    EXPECT_EQ(heard[0].symbol, kFrame) << "whine phase " << phase;
+  }
 }
