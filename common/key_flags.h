@@ -14,6 +14,7 @@
 #include "link/link.h"
 #include "security/counter_file.h"
 #include "security/link_key.h"
+#include "user_dirs.h"
 
 namespace dtmf::program {
 
@@ -23,11 +24,7 @@ struct KeyFlags {
 };
 
 // A user's own state directory: $XDG_STATE_HOME/dtmf-teleop, else ~/.local/state/dtmf-teleop.
-inline std::string default_user_state_dir() {
-  if (const char* state = std::getenv("XDG_STATE_HOME"); state && *state) return std::string(state) + "/dtmf-teleop";
-  if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.local/state/dtmf-teleop";
-  return ".dtmf-teleop-state";
-}
+inline std::string default_user_state_dir() { return user_state_dir().value_or(".dtmf-teleop-state"); }
 
 // --key FILE and --state-dir DIR, with their environment variables (PREFIX_KEY_FILE,
 // PREFIX_STATE_DIR) and the state directory's default.

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <pqxx/pqxx>
 
+#include "user_dirs.h"
+
 namespace dtmf::store {
 
 namespace {
@@ -29,13 +31,7 @@ std::string one_line(std::string text) {
 }  // namespace
 
 std::string default_spill_path(const std::string& program) {
-  std::string dir;
-  if (const char* state = std::getenv("XDG_STATE_HOME"); state && *state)
-    dir = std::string(state) + "/dtmf-teleop";
-  else if (const char* home = std::getenv("HOME"); home && *home)
-    dir = std::string(home) + "/.local/state/dtmf-teleop";
-  else
-    dir = "/tmp/dtmf-teleop-" + std::to_string(::getuid());
+  const std::string dir = program::user_state_dir().value_or("/tmp/dtmf-teleop-" + std::to_string(::getuid()));
   return dir + "/" + program + ".spill.jsonl";
 }
 
