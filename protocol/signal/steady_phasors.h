@@ -12,11 +12,11 @@
 //   - its steady phasor, learnt at `kLearnPerWindow` from those windows, and carried forward by
 //     the turn through windows that did not (a chord's tone, a click);
 // and hands on |X − predicted steady phasor| where that phasor stands well over the bin's
-// usual residual: a whine leaves nothing, a tone on its bin leaves the tone; elsewhere |X|. What counts as holding only the steady sound: a residual power within
-// `kSteadyRatio` of the bin's usual residual, which follows a fall at once and a rise only at
-// `rise_db_per_s` (as steady_background.h's background does): a whine that appears is learnt
-// within seconds, a chord of 0.8 s lifts it by 8 dB at most and is never learnt. A bin without a
-// steady tone learns the mean of its noise, near zero. Allocation-free after construction.
+// usual residual: a whine leaves nothing, a tone on its bin leaves the tone; elsewhere |X|. What counts as holding only
+// the steady sound: a residual power within `kSteadyRatio` of the bin's usual residual, which follows a fall at once
+// and a rise only at `rise_db_per_s` (as steady_background.h's background does): a whine that appears is learnt within
+// seconds, a chord of 0.8 s lifts it by 8 dB at most and is never learnt. A bin without a steady tone learns the mean
+// of its noise, near zero. Allocation-free after construction.
 #pragma once
 
 #include <complex>
