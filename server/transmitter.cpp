@@ -27,6 +27,11 @@ Transmitter::Transmitter(std::vector<std::unique_ptr<link::Link>> links, const L
     if (l->profile().sample_rate_hz == profile_.sample_rate_hz) links_.push_back(l.get());
   }
   link_for(profile_);  // the default profile must be among them
+  // The ears are built (their FFTs planned: a fast ear without FFTW wisdom measures for
+  // 0.1-0.3 s of CPU, seconds on a loaded machine) before anything can be sent: built in the
+  // listening thread, they came up after the first frames had gone out, and those frames'
+  // answers, heard while the ear caught up, came after their deadlines.
+  ears_ = std::make_unique<ReplyListeners>(links_);
   worker_ = std::thread([this] { run(); });
   listener_ = std::thread([this] { listen(); });
 }
@@ -114,7 +119,7 @@ void Transmitter::listen() {
     physical::raise_audio_thread_priority(&how);
     spdlog::info("audio threads: {}", how);
   }
-  ReplyListeners listener(links_);
+  ReplyListeners& listener = *ears_;
   std::vector<float> block(static_cast<std::size_t>(listener.block_samples()));
   double audio_ms = 0;
   while (true) {

@@ -114,6 +114,7 @@ class Transmitter {
   bool stopping_ = false;
   double channel_free_ms_ = 0;
 
+  std::unique_ptr<ReplyListeners> ears_;  // every link's answer ear, fed by listen() alone
   std::thread worker_;
   std::thread listener_;
 };
