@@ -51,10 +51,10 @@ REASONS = {
         "of 1 of 995 328, docs/security.md); the named ACKs "
         "of the unkeyed link, which need 9 of 12, are all heard",
     ("frame success at −10 dB SNR", "fast"):
-        "no lost frame was NACKed. The candidate gate now also opens on the mean score of all the frame's bands "
-        "(docs/protocol.md §10, gate_mean_db), which recovered what the count of loud bands per chord shut out "
-        "(at −12 dB 82.5 % of 4000 against 76.0 %; 82.7 % with no gate at all), so what is still lost is lost in "
-        "decoding: see −12 dB",
+        "no lost frame was NACKed. The candidate gate now also opens a chord on the mean score of its bands "
+        "(docs/protocol.md §10, gate_mean_db), which recovered most of what the count of loud bands shut out "
+        "(at −12 dB 80.1 % of 4000 against 76.0 %; 82.7 % with no gate at all), so what is still lost is lost "
+        "mostly in decoding: see −12 dB",
     ("frame success at −12 dB SNR (an aim)", "fast"):
         "lost in decoding, not at the gate: with the gate forced open, 82.7 % of 2000 (2026-11-26). At −12 dB a "
         "tone's bin stands 8.8 dB over the noise in it (−12 dB, −9.0 dB for eight tones sharing the signal, "

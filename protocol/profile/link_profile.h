@@ -102,11 +102,11 @@ struct HopLink {
   double tone_amplitude = 0;  // linear, per tone
   double gate_db = 0;  // a candidate when gate_bands of each chord's bands have a bin this far over the band's mean
   int gate_bands = 0;
-  double gate_mean_db = 0;    // ... or, with gate_bands - 2 of each chord's, when all its bands' scores average this
-  double presence_db = 0;     // a band is heard when its best bin stands this far over the band's median
-  double onset_db = 0;        // ... and rose this much since the window a chord earlier (no tail)
-  float clear_certainty = 0;  // a tone over its band's runner-up by this much is clearly heard:
-                              // a cluster that fails to decode NACKs only with 16 - max_erasures such
+  double gate_mean_db = 0;              // ... or gate_bands - 2 of them, when the chord's bands' scores average this
+  double presence_db = 0;               // a band is heard when its best bin stands this far over the band's median
+  double onset_db = 0;                  // ... and rose this much since the window a chord earlier (no tail)
+  float clear_certainty = 0;            // a tone over its band's runner-up by this much is clearly heard:
+                                        // a cluster that fails to decode NACKs only with 16 - max_erasures such
   double background_rise_db_per_s = 0;  // how fast a bin's steady background may rise (whines)
   int max_erasures = 0;                 // tones the decoder may erase (unheard, or least certain first)
   int sealed_max_erasures = 0;          // ... in an authenticated frame

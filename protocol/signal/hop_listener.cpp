@@ -152,26 +152,23 @@ void HopListener::offer_shape(int chords, CandidateSink& sink) {
 // bands loud and the next one's silent is a frame's edge, or the next frame's first chord.
 bool HopListener::gate(int chords) const {
   // Counted, not summed: two loud tones (a seed chord, a whistle) must not carry a chord
-  // whose other bands hold nothing.
-  bool every_chord_loud = true;
+  // whose other bands hold nothing. Judged chord by chord: a frame's two loud chords must not
+  // carry a third window that holds noise, or another frame's chord on the other bands.
   for (int c = 0; c < chords; ++c) {
     const Window& w = chord_window(chords, c);
     int loud = 0;
     for (int b = 0; b < HopLink::kBandsPerChord; ++b)
       loud += w.band_score[static_cast<std::size_t>(tone_index(band_set(c), b))] >= gate_ratio_ ? 1 : 0;
+    if (loud >= hops_.gate_bands) continue;
     if (loud < hops_.gate_bands - 2) return false;
-    every_chord_loud = every_chord_loud && loud >= hops_.gate_bands;
-  }
-  if (every_chord_loud) return true;
-  // A frame at low SNR lifts every band a little, and fades take a few of them under the
-  // count: the scores of all its bands, averaged in dB, still stand out where noise's do not.
-  float log2_sum = 0;
-  for (int c = 0; c < chords; ++c) {
-    const Window& w = chord_window(chords, c);
+    // A chord at low SNR lifts every band a little, and a fade or two takes a few under the
+    // count: its bands' scores, averaged in dB, still stand out where noise's do not.
+    float log2_sum = 0;
     for (int b = 0; b < HopLink::kBandsPerChord; ++b)
       log2_sum += std::log2(std::max(w.band_score[static_cast<std::size_t>(tone_index(band_set(c), b))], 1e-30f));
+    if (log2_sum < gate_mean_log2_ * HopLink::kBandsPerChord) return false;
   }
-  return log2_sum >= gate_mean_log2_ * static_cast<float>(chords * HopLink::kBandsPerChord);
+  return true;
 }
 
 // Every band's peak, to a fraction of a bin (a pure tone at p + d puts power in bins p and

@@ -6,8 +6,8 @@
 //           -> for each frame shape (two chords, or three for an authenticated frame): the
 //              window now (the last chord's bands) and the windows one and two chords earlier
 //              (the earlier chords' bands): a candidate when every chord's bands stand out
-//              (gate_bands of each chord's eight, or gate_bands - 2 and all the frame's bands'
-//              scores averaging gate_mean_db)
+//              (gate_bands of each chord's eight, or gate_bands - 2 of them with the chord's
+//              bands' scores averaging gate_mean_db)
 //           -> per frequency-offset hypothesis, eight tone readings per chord (symbol,
 //              certainty, heard) for the reliability layer's decoder
 //

@@ -11,15 +11,16 @@ namespace dtmf::signal {
 
 namespace {
 // The steady phasor moves a tenth of the way to each steady window's value: learnt within a
-// second at 20 windows a second, and a bin of plain noise keeps a mean a third of its noise
-// (its residual grows by a tenth of a dB).
+// second at 20 windows a second; a bin of plain noise keeps a mean about a quarter of its
+// noise's amplitude (never taken off: kTakenOffRatio).
 constexpr float kLearnPerWindow = 0.1f;
 // The turn per window is averaged over about 20 steady windows: a whine 40 dB over the
 // noise gets it right to a thousandth of a radian, so a whine twice a tone's amplitude,
 // carried forward through a 0.8 s chord (16 windows), leaves under a tenth of the tone.
 constexpr float kTurnPerWindow = 0.05f;
 // A window holds only its steady sound while its residual power is at most 6 dB over the
-// usual: noise exceeds that about 2 % of the time (it then waits a window); a tone does not.
+// usual: noise exceeds that now and then (such a window teaches nothing), a chord's tone
+// over a learnt whine always does.
 constexpr float kSteadyRatio = 4.0f;
 // A steady phasor is taken off only when its power is 10 dB over the usual residual: a bin of
 // noise learns a mean of about a third of its noise, and a tone at low SNR that passes for
