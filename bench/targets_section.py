@@ -51,18 +51,20 @@ REASONS = {
         "of 1 of 995 328, docs/security.md); the named ACKs "
         "of the unkeyed link, which need 9 of 12, are all heard",
     ("frame success at −10 dB SNR", "fast"):
-        "no lost frame was NACKed. The candidate gate now also opens a chord on the mean score of its bands "
-        "(docs/protocol.md §10, gate_mean_db), which recovered most of what the count of loud bands shut out "
-        "(at −12 dB 80.1 % of 4000 against 76.0 %; 82.7 % with no gate at all), so what is still lost is lost "
-        "mostly in decoding: see −12 dB",
+        "no lost frame was NACKed: all were lost at the candidate gate (5 of a chord's 8 bands with a best bin "
+        "7.5 dB over their median, docs/protocol.md §10), which passes about 999 frames in 1000 at −10 dB; a "
+        "lower gate would let noise through more often than its present once in 20 000 windows",
     ("frame success at −12 dB SNR (an aim)", "fast"):
-        "lost in decoding, not at the gate: with the gate forced open, 82.7 % of 2000 (2026-11-26). At −12 dB a "
-        "tone's bin stands 8.8 dB over the noise in it (−12 dB, −9.0 dB for eight tones sharing the signal, "
-        "+29.8 dB for 960 bins sharing the noise); 32-ary noncoherent detection then misreads 12.8 % of tones, "
-        "and a decoder that corrects 2 of 16 (RS(16, 10) keeping 2 parity symbols for detection) recovers 66.5 % "
-        "of frames in theory (82.7 % measured, with erasures); correcting all 4 would still give only 95.6 %. "
-        "99.9 % at −12 dB needs about 3 dB more than this hard-decision code gives: soft-decision decoding "
-        "(Chase or GMD over each band's runner-up tones) or more energy per tone. Not built",
+        "no lost frame was NACKed. With the candidate gate forced open, 82.7 % of 2000 instead of 75.5 % "
+        "(2026-11-26): the gate costs 7 points, decoding the rest. At −12 dB a tone's bin stands 8.8 dB over the "
+        "noise in it (−12 dB, −9.0 dB for eight tones sharing the signal, +29.8 dB for 960 bins sharing the "
+        "noise); 32-ary noncoherent detection then misreads 12.8 % of tones, and a decoder that corrects 2 of 16 "
+        "(RS(16, 10) keeping 2 parity symbols for detection) recovers 66.5 % of frames in theory (82.7 % "
+        "measured, with erasures); correcting all 4 would still give only 95.6 %. 99.9 % at −12 dB needs about "
+        "3 dB more than this hard-decision code gives: soft-decision decoding (Chase or GMD over each band's "
+        "runner-up tones) or more energy per tone. A gate that also passed a chord on its bands' mean score "
+        "won back 4 of the 7 points, but passed the seed's four-tone chords too and cost the robot three times "
+        "the CPU on frames: not kept",
     ("decoder speed, one core (noise / frames)", "fast"):
         "one 1920-point real FFT (FFTW, measured plan) takes 1.65 µs alone and 2.99 µs inside the receive loop on this CPU, and the receiver takes one every "
         "10.25 ms hop; 5000 × real time leaves 2.05 µs per hop, so the target needs a receiver that skips FFTs "

@@ -100,10 +100,6 @@ LinkProfile make_fast_profile() {
   h.tone_amplitude = 0.1;  // eight tones sum to at most 0.8 full scale
   h.gate_db = 7.5;         // noise bands pass 1 in 5, a frame's at -10 dB SNR 24 in 25
   h.gate_bands = 5;        // of 8: noise passes both chords 1 window in 20 000, a frame at -10 dB 999 in 1000
-  // ... or 3 of 8 and the chord's bands' scores averaging 8 dB (noise averages 6.2): white
-  // noise then makes 14 candidate windows an hour instead of 13, and -12 dB SNR frames are
-  // heard 80.1 % instead of 76.0 % of 4000 (82.7 % with no gate at all).
-  h.gate_mean_db = 8;
   h.presence_db = 6;
   h.onset_db = 3;
   h.clear_certainty = 3;  // 4.8 dB: a noise band's best beats its second by this 1 time in 30

@@ -102,7 +102,6 @@ struct HopLink {
   double tone_amplitude = 0;  // linear, per tone
   double gate_db = 0;  // a candidate when gate_bands of each chord's bands have a bin this far over the band's mean
   int gate_bands = 0;
-  double gate_mean_db = 0;              // ... or gate_bands - 2 of them, when the chord's bands' scores average this
   double presence_db = 0;               // a band is heard when its best bin stands this far over the band's median
   double onset_db = 0;                  // ... and rose this much since the window a chord earlier (no tail)
   float clear_certainty = 0;            // a tone over its band's runner-up by this much is clearly heard:

@@ -29,7 +29,6 @@ HopListener::HopListener(const LinkProfile& profile)
       presence_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.presence_db))),
       onset_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.onset_db))),
       gate_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.gate_db))),
-      gate_mean_log2_(static_cast<float>(std::log2(units::power_ratio_from_db(profile.hops.gate_mean_db)))),
       lo_bin_([&] {
         int lo = std::numeric_limits<int>::max();
         for (const auto& chord : profile.hops.band_first_bin)
@@ -152,21 +151,13 @@ void HopListener::offer_shape(int chords, CandidateSink& sink) {
 // bands loud and the next one's silent is a frame's edge, or the next frame's first chord.
 bool HopListener::gate(int chords) const {
   // Counted, not summed: two loud tones (a seed chord, a whistle) must not carry a chord
-  // whose other bands hold nothing. Judged chord by chord: a frame's two loud chords must not
-  // carry a third window that holds noise, or another frame's chord on the other bands.
+  // whose other bands hold nothing.
   for (int c = 0; c < chords; ++c) {
     const Window& w = chord_window(chords, c);
     int loud = 0;
     for (int b = 0; b < HopLink::kBandsPerChord; ++b)
       loud += w.band_score[static_cast<std::size_t>(tone_index(band_set(c), b))] >= gate_ratio_ ? 1 : 0;
-    if (loud >= hops_.gate_bands) continue;
-    if (loud < hops_.gate_bands - 2) return false;
-    // A chord at low SNR lifts every band a little, and a fade or two takes a few under the
-    // count: its bands' scores, averaged in dB, still stand out where noise's do not.
-    float log2_sum = 0;
-    for (int b = 0; b < HopLink::kBandsPerChord; ++b)
-      log2_sum += std::log2(std::max(w.band_score[static_cast<std::size_t>(tone_index(band_set(c), b))], 1e-30f));
-    if (log2_sum < gate_mean_log2_ * HopLink::kBandsPerChord) return false;
+    if (loud < hops_.gate_bands) return false;
   }
   return true;
 }

@@ -6,8 +6,6 @@
 //           -> for each frame shape (two chords, or three for an authenticated frame): the
 //              window now (the last chord's bands) and the windows one and two chords earlier
 //              (the earlier chords' bands): a candidate when every chord's bands stand out
-//              (gate_bands of each chord's eight, or gate_bands - 2 of them with the chord's
-//              bands' scores averaging gate_mean_db)
 //           -> per frequency-offset hypothesis, eight tone readings per chord (symbol,
 //              certainty, heard) for the reliability layer's decoder
 //
@@ -116,8 +114,7 @@ class HopListener {
   float presence_ratio_;
   float onset_ratio_;
   float gate_ratio_;
-  float gate_mean_log2_;  // gate_mean_db as log2 of a power ratio
-  int lo_bin_;            // first bin analysed: the lowest band, less room for offsets
+  int lo_bin_;  // first bin analysed: the lowest band, less room for offsets
   int hi_bin_;
   BinPower bins_;
   SlidingWindow window_;
