@@ -68,13 +68,12 @@ std::span<const float> SteadyPhasors::remove(std::span<const std::complex<float>
     const float p_im = b.steady_re * u_im + b.steady_im * u_re;
     const float r_re = x_re - p_re, r_im = x_im - p_im;
     const float power = r_re * r_re + r_im * r_im;
+    const float usual = std::max(b.usual, floor_power_);
     // Only a steady sound well over the residual is taken off: a bin of noise, or a faint
     // tone partly learnt, reads as it is.
     const float predicted_power = p_re * p_re + p_im * p_im;
-    residual_[k] = predicted_power > kTakenOffRatio * std::max(b.usual, floor_power_)
-                       ? std::sqrt(power)
-                       : std::sqrt(x_re * x_re + x_im * x_im);
-    const bool steady = power <= kSteadyRatio * std::max(b.usual, floor_power_);
+    residual_[k] = predicted_power > kTakenOffRatio * usual ? std::sqrt(power) : std::sqrt(x_re * x_re + x_im * x_im);
+    const bool steady = power <= kSteadyRatio * usual;
     if (steady) {
       b.steady_re = p_re + kLearnPerWindow * r_re;
       b.steady_im = p_im + kLearnPerWindow * r_im;
@@ -90,7 +89,7 @@ std::span<const float> SteadyPhasors::remove(std::span<const std::complex<float>
     }
     // A fall at once, so that chords repeated every second cannot ratchet it up to their
     // tones' power (a mean would fall back only a little in each gap).
-    b.usual = std::min(power, std::max(b.usual, floor_power_) * rise_per_window_);
+    b.usual = std::min(power, usual * rise_per_window_);
     b.last_steady = steady;
     b.last_re = x_re;
     b.last_im = x_im;
