@@ -10,9 +10,9 @@ const ReedSolomon& frame_code() {
 std::optional<DecodedFrame> decode_frame(std::span<const SymbolReading, kCodeSymbols> readings, int max_erasures) {
   std::array<std::uint8_t, kCodeDataSymbols> data{};
   std::optional<CommandFrame> frame;
-  const auto decoded =
-      decode_symbols(readings, frame_code(), max_erasures, kCodeReserveSymbols, data,
-                     [&](std::span<const std::uint8_t> d) { return (frame = unpack(data_bits(d))).has_value(); });
+  const auto decoded = decode_symbols(
+      readings, frame_code(), max_erasures, kCodeReserveSymbols, data,
+      [&](std::span<const std::uint8_t> d, DecodedSymbols) { return (frame = unpack(data_bits(d))).has_value(); });
   if (!decoded) return std::nullopt;
   return DecodedFrame{*frame, data_bits(data), decoded->erasures, decoded->errors};
 }

@@ -6,6 +6,10 @@ namespace {
 constexpr int kSymbolBits = 5;
 constexpr int kCheckedBits = kSealedFrameBits - kSealedCheckBits;  // 72
 constexpr WideBits mask(int bits) { return (WideBits{1} << bits) - 1; }
+// Whether a decode left the parity a refusal needs for detection (sealed_frame.h).
+constexpr bool kept_for_refusal(DecodedSymbols how) {
+  return 2 * how.errors + how.erasures <= kSealedSymbols - kSealedDataSymbols - kSealedRefusalReserveSymbols;
+}
 }  // namespace
 
 std::uint8_t crc8_autosar(WideBits bits, int width) {
@@ -78,12 +82,14 @@ SealedDecode decode_sealed(std::span<const SymbolReading, kSealedSymbols> readin
   std::optional<SealedFrame> frame;
   SealedDecode result;
   const auto decoded = decode_symbols(readings, sealed_code(), max_erasures, kSealedReserveSymbols, data,
-                                      [&](std::span<const std::uint8_t> d) {
+                                      [&](std::span<const std::uint8_t> d, DecodedSymbols how) {
                                         const FrameBits bits = sealed_data_bits(d);
                                         frame = unpack_sealed(bits);
                                         if (!frame) return false;
                                         if (authentic(bits)) return true;
-                                        if (!result.intact) result.intact = DecodedSealed{*frame, bits, 0, 0};
+                                        if (!result.intact && kept_for_refusal(how)) {
+                                          result.intact = DecodedSealed{*frame, bits, how.erasures, how.errors};
+                                        }
                                         return false;
                                       });
   if (decoded) result.authentic = DecodedSealed{*frame, sealed_data_bits(data), decoded->erasures, decoded->errors};

@@ -14,6 +14,12 @@
 // Decoding (symbol_decoder.h) keeps one of the eight parity symbols for detection (the
 // 50-bit frame keeps two of its six, its CRC-16 being all that stands behind the code): the
 // MAC stands behind this one, so the code may correct more (2 errors + erasures <= 7).
+// A frame that is refused has no MAC behind it, only the CRC-8: a decode counts as an intact
+// frame to refuse only while the code kept four parity symbols for detection (2 errors +
+// erasures <= 4). Noise decoded at the limit turns into some codeword one time in 32 and
+// passes the CRC one time in 256, a refusal (a NACK from the robot) in every ~8000 tries of a
+// window of noise; with four kept it is 2^-20 x 2^-8 a try, below the 50-bit frame's false
+// accept (2^-10 x 2^-16). Worse-damaged frames that fail their MAC are NACKed as damaged.
 // Pure logic: no I/O, no clock.
 #pragma once
 
@@ -37,6 +43,7 @@ inline constexpr int kSealedMacBits = 32;
 inline constexpr int kSealedCounterLowBits = 9;
 inline constexpr int kSealedSyncCounterBits = 36;
 inline constexpr int kSealedReserveSymbols = 1;
+inline constexpr int kSealedRefusalReserveSymbols = 4;  // kept when only the CRC stands behind a decode
 
 enum class SealedForm : std::uint8_t { Command = 0, Sync = 1 };
 
@@ -74,7 +81,7 @@ struct DecodedSealed {
 using SealedCheck = std::function<bool(const FrameBits& bits)>;
 struct SealedDecode {
   std::optional<DecodedSealed> authentic;  // the first decode whose CRC and `authentic` hold
-  std::optional<DecodedSealed> intact;     // else the first whose CRC holds (forged, or under another key)
+  std::optional<DecodedSealed> intact;     // else the first whose CRC holds with 4 parity kept (forged, other key)
 };
 SealedDecode decode_sealed(std::span<const SymbolReading, kSealedSymbols> readings, int max_erasures,
                            const SealedCheck& authentic);

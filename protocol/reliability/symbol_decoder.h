@@ -43,8 +43,9 @@ struct DecodedSymbols {
 
 inline constexpr int kMaxCodeSymbols = 32;
 
-// `check(data)` says whether the data symbols decoded are a frame; the data of the first that
-// is stays in `data`.
+// `check(data, how)` says whether the data symbols decoded are a frame (`how`: the erasures
+// and corrections it took, which leave 2 * errors + erasures of the parity spent); the data
+// of the first that is stays in `data`.
 template <typename Check>
 std::optional<DecodedSymbols> decode_symbols(std::span<const SymbolReading> readings, const ReedSolomon& code,
                                              int max_erasures, int reserve, std::span<std::uint8_t> data,
@@ -78,7 +79,9 @@ std::optional<DecodedSymbols> decode_symbols(std::span<const SymbolReading> read
     const auto errors =
         code.decode(std::span<const std::uint8_t>(received.data(), n),
                     std::span<const int>(order.data(), static_cast<std::size_t>(erased)), data, reserve);
-    if (errors && check(std::span<const std::uint8_t>(data))) return DecodedSymbols{erased, *errors};
+    if (!errors) return std::nullopt;
+    const DecodedSymbols how{erased, *errors};
+    if (check(std::span<const std::uint8_t>(data), how)) return how;
     return std::nullopt;
   };
   if (unheard <= limit) {
