@@ -37,7 +37,7 @@ template <std::size_t N>
 std::array<reliability::SymbolReading, N> readings_of(const signal::HopCandidate& c) {
   std::array<reliability::SymbolReading, N> r{};
   for (std::size_t t = 0; t < N; ++t) {
-    r[t] = {c.tones[t].symbol, c.tones[t].certainty, c.tones[t].heard, c.tones[t].risen};
+    r[t] = {c.tones[t].symbol, c.tones[t].certainty, c.tones[t].heard, c.tones[t].risen, c.tones[t].runner_up};
   }
   return r;
 }
@@ -51,13 +51,14 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
   last_candidate_ms_ = c.heard_ms;
   std::optional<reliability::FrameBits> bits;
   if (c.chords == 2) {
-    if (const auto d = reliability::decode_frame(readings_of<reliability::kCodeSymbols>(c), hops_.max_erasures)) {
+    if (const auto d = reliability::decode_frame(readings_of<reliability::kCodeSymbols>(c), hops_.max_erasures,
+                                                 hops_.chase_tones)) {
       bits = d->bits;
       listener_.confirm(c, reliability::encode_symbols(d->bits));
     }
   } else {
-    const auto d =
-        reliability::decode_sealed(readings_of<reliability::kSealedSymbols>(c), hops_.sealed_max_erasures, budgeted_);
+    const auto d = reliability::decode_sealed(readings_of<reliability::kSealedSymbols>(c), hops_.sealed_max_erasures,
+                                              budgeted_, hops_.chase_tones);
     if (d.authentic) {
       bits = d.authentic->bits;
       listener_.confirm(c, reliability::encode_sealed_symbols(d.authentic->bits));

@@ -106,6 +106,9 @@ LinkProfile make_fast_profile() {
   h.background_rise_db_per_s = 10;
   h.max_erasures = 4;         // RS(16, 10) keeps 2 of its 6 parity symbols for detection
   h.sealed_max_erasures = 7;  // RS(24, 16) keeps 1 of its 8
+  // A candidate the erasures did not decode gets 2^6 - 1 more tries. At -12 dB (5-of-8 gate)
+  // none 75.5 %, 4 tones 84.0 %, 6 tones 85.9 %, 8 tones 86.5 % of 2000 frames.
+  h.chase_tones = 6;
   h.max_offset_ppm = 3000;
   // One verdict per frame: an accept holds its frame's later windows (7 hops); failed
   // candidates less than a chord and a hop apart are one cluster (the first two chords of an

@@ -109,6 +109,7 @@ struct HopLink {
   double background_rise_db_per_s = 0;  // how fast a bin's steady background may rise (whines)
   int max_erasures = 0;                 // tones the decoder may erase (unheard, or least certain first)
   int sealed_max_erasures = 0;          // ... in an authenticated frame
+  int chase_tones = 0;                  // then the least certain tones swapped for their runner-ups
   int max_offset_ppm = 0;               // the frequency offsets (clocks, Doppler) searched for
   // One verdict per frame (reliability/frame_gate.h), in analysis hops.
   double lockout_hops = 0;

@@ -7,11 +7,12 @@ const ReedSolomon& frame_code() {
   return code;
 }
 
-std::optional<DecodedFrame> decode_frame(std::span<const SymbolReading, kCodeSymbols> readings, int max_erasures) {
+std::optional<DecodedFrame> decode_frame(std::span<const SymbolReading, kCodeSymbols> readings, int max_erasures,
+                                         int chase_tones) {
   std::array<std::uint8_t, kCodeDataSymbols> data{};
   std::optional<CommandFrame> frame;
-  const auto decoded = decode_symbols(
-      readings, frame_code(), max_erasures, kCodeReserveSymbols, data,
+  const auto decoded = chase_symbols(
+      readings, frame_code(), max_erasures, kCodeReserveSymbols, chase_tones, data,
       [&](std::span<const std::uint8_t> d, DecodedSymbols) { return (frame = unpack(data_bits(d))).has_value(); });
   if (!decoded) return std::nullopt;
   return DecodedFrame{*frame, data_bits(data), decoded->erasures, decoded->errors};

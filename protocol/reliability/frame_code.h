@@ -28,7 +28,8 @@ struct DecodedFrame {
   int errors = 0;          // symbols corrected beyond those
 };
 
-std::optional<DecodedFrame> decode_frame(std::span<const SymbolReading, kCodeSymbols> readings, int max_erasures);
+std::optional<DecodedFrame> decode_frame(std::span<const SymbolReading, kCodeSymbols> readings, int max_erasures,
+                                         int chase_tones = 0);
 // The hard decision's data symbols as 50 bits, for logs of a frame that did not decode.
 std::uint64_t read_bits(std::span<const SymbolReading, kCodeSymbols> readings);
 

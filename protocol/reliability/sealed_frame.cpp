@@ -77,21 +77,21 @@ FrameBits sealed_data_bits(std::span<const std::uint8_t> data_symbols) {
 }
 
 SealedDecode decode_sealed(std::span<const SymbolReading, kSealedSymbols> readings, int max_erasures,
-                           const SealedCheck& authentic) {
+                           const SealedCheck& authentic, int chase_tones) {
   std::array<std::uint8_t, kSealedDataSymbols> data{};
   std::optional<SealedFrame> frame;
   SealedDecode result;
-  const auto decoded = decode_symbols(readings, sealed_code(), max_erasures, kSealedReserveSymbols, data,
-                                      [&](std::span<const std::uint8_t> d, DecodedSymbols how) {
-                                        const FrameBits bits = sealed_data_bits(d);
-                                        frame = unpack_sealed(bits);
-                                        if (!frame) return false;
-                                        if (authentic(bits)) return true;
-                                        if (!result.intact && kept_for_refusal(how)) {
-                                          result.intact = DecodedSealed{*frame, bits, how.erasures, how.errors};
-                                        }
-                                        return false;
-                                      });
+  const auto decoded = chase_symbols(readings, sealed_code(), max_erasures, kSealedReserveSymbols, chase_tones, data,
+                                     [&](std::span<const std::uint8_t> d, DecodedSymbols how) {
+                                       const FrameBits bits = sealed_data_bits(d);
+                                       frame = unpack_sealed(bits);
+                                       if (!frame) return false;
+                                       if (authentic(bits)) return true;
+                                       if (!result.intact && kept_for_refusal(how)) {
+                                         result.intact = DecodedSealed{*frame, bits, how.erasures, how.errors};
+                                       }
+                                       return false;
+                                     });
   if (decoded) result.authentic = DecodedSealed{*frame, sealed_data_bits(data), decoded->erasures, decoded->errors};
   return result;
 }

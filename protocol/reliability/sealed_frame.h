@@ -84,7 +84,7 @@ struct SealedDecode {
   std::optional<DecodedSealed> intact;     // else the first whose CRC holds with 4 parity kept (forged, other key)
 };
 SealedDecode decode_sealed(std::span<const SymbolReading, kSealedSymbols> readings, int max_erasures,
-                           const SealedCheck& authentic);
+                           const SealedCheck& authentic, int chase_tones = 0);
 // The hard decision's data symbols, for logs of a frame that did not decode.
 FrameBits read_sealed_bits(std::span<const SymbolReading, kSealedSymbols> readings);
 

@@ -34,6 +34,7 @@ struct SymbolReading {
   float certainty = 1;      // its power over the runner-up's (>= 1)
   bool heard = true;        // false: erase it
   bool risen = true;        // false: it did not start with its chord (a tail): never trusted
+  int runner_up = -1;       // the band's second strongest tone, when the listener knows it
 };
 
 struct DecodedSymbols {
@@ -92,6 +93,56 @@ std::optional<DecodedSymbols> decode_symbols(std::span<const SymbolReading> read
   }
   for (int erased = limit; erased >= 0; erased -= 2) {
     if (const auto d = attempt(erased)) return d;
+  }
+  return std::nullopt;
+}
+
+// Chase's second algorithm after the erasures: the `doubted` least certain heard symbols are
+// swapped for their bands' runner-ups in every combination, each decoded with the unheard
+// erased. A misread tone is most often its band's runner-up, and a swap that is right costs no
+// parity where an erasure costs one. Each attempt is one more chance for noise to pass `check`:
+// the caller's reserve and CRC bound what that costs (docs/security.md).
+template <typename Check>
+std::optional<DecodedSymbols> chase_symbols(std::span<const SymbolReading> readings, const ReedSolomon& code,
+                                            int max_erasures, int reserve, int doubted, std::span<std::uint8_t> data,
+                                            Check&& check) {
+  if (const auto d = decode_symbols(readings, code, max_erasures, reserve, data, check)) return d;
+  const std::size_t n = readings.size();
+  std::array<std::uint8_t, kMaxCodeSymbols> received{};
+  std::array<int, kMaxCodeSymbols> erasures{};
+  std::array<int, kMaxCodeSymbols> swaps{};
+  int unheard = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    received[i] = readings[i].symbol;
+    if (!readings[i].heard || !readings[i].risen) erasures[static_cast<std::size_t>(unheard++)] = static_cast<int>(i);
+  }
+  const int erased = std::min(unheard, std::min(max_erasures, code.parity() - reserve));
+  // The heard symbols that have a runner-up, least certain first (an insertion sort: it
+  // allocates nothing); the first `doubted` are swapped.
+  int eligible = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& r = readings[i];
+    if (!r.heard || !r.risen || r.runner_up < 0) continue;
+    int j = eligible++;
+    for (; j > 0 && r.certainty < readings[static_cast<std::size_t>(swaps[static_cast<std::size_t>(j - 1)])].certainty;
+         --j) {
+      swaps[static_cast<std::size_t>(j)] = swaps[static_cast<std::size_t>(j - 1)];
+    }
+    swaps[static_cast<std::size_t>(j)] = static_cast<int>(i);
+  }
+  const int swappable = std::min(eligible, doubted);
+  for (unsigned mask = 1; mask < (1u << swappable); ++mask) {
+    for (int k = 0; k < swappable; ++k) {
+      const auto& r = readings[static_cast<std::size_t>(swaps[static_cast<std::size_t>(k)])];
+      received[static_cast<std::size_t>(swaps[static_cast<std::size_t>(k)])] =
+          (mask >> k) & 1u ? static_cast<std::uint8_t>(r.runner_up) : r.symbol;
+    }
+    const auto errors =
+        code.decode(std::span<const std::uint8_t>(received.data(), n),
+                    std::span<const int>(erasures.data(), static_cast<std::size_t>(erased)), data, reserve);
+    if (!errors) continue;
+    const DecodedSymbols how{erased, *errors};
+    if (check(std::span<const std::uint8_t>(data), how)) return how;
   }
   return std::nullopt;
 }

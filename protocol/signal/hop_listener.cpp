@@ -248,6 +248,7 @@ HopCandidate HopListener::make_candidate(int chords, int offset_ppm) {
       const auto bi = static_cast<std::size_t>(best_bin - lo_bin_);
       ToneReading& r = c.tones[t];
       r.symbol = static_cast<std::uint8_t>(best);
+      r.runner_up = second_best;
       r.certainty = runner > 0 ? top / runner : 1e9f;
       r.risen = w.power[bi] > onset_ratio_ * before.power[bi];
       r.heard = top > presence_ratio_ * median && r.risen;

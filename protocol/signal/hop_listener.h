@@ -47,6 +47,7 @@ struct ToneReading {
   float certainty = 1;      // its power over the runner-up's (>= 1)
   bool heard = true;        // false: no tone stood out there, or it did not rise with the chord
   bool risen = true;        // it rose with the chord (a tail, or a steady sound, does not)
+  int runner_up = -1;       // the band's second strongest tone
 };
 
 struct HopCandidate {

@@ -99,16 +99,41 @@ TEST(FrameCode, ErasesTheLeastCertainTonesFirst) {
   EXPECT_FALSE(decode_frame(doubted_right, 4));
 }
 
+// Three tones misread, barely over their bands' runner-ups, which were the tones sent, and a
+// fourth misread with confidence: erasing the three leaves no parity to correct the fourth,
+// but swapping them for their runner-ups (Chase) costs no parity at all.
+TEST(FrameCode, SwappingDoubtedTonesForTheirRunnerUpsCorrectsWhatErasingCannot) {
+  const CommandFrame f{0, 9, 0x2abcdef};
+  const CodeSymbols clean = encode_symbols(pack(f));
+  auto r = readings_of(clean);
+  for (std::size_t i : {1u, 4u, 8u}) {
+    r[i].symbol = static_cast<std::uint8_t>((clean[i] + 7) % 32);
+    r[i].certainty = 1.2f;
+    r[i].runner_up = clean[i];
+  }
+  r[12].symbol = static_cast<std::uint8_t>((clean[12] + 3) % 32);
+  for (auto& s : r) {
+    if (s.runner_up < 0) s.runner_up = (s.symbol + 1) % 32;
+  }
+  EXPECT_FALSE(decode_frame(r, 4, 0)) << "erasures alone";
+  const auto chased = decode_frame(r, 4, 4);
+  ASSERT_TRUE(chased);
+  EXPECT_EQ(chased->frame, f);
+  EXPECT_LE(chased->errors, 2);  // the fourth, and a swap that was not needed
+}
+
 // Noise read as sixteen random tones: with two parity symbols kept and the CRC, not one of a
-// 300 000 random words decodes (each would be a wrong accept).
+// 300 000 random words decodes (each would be a wrong accept), the runner-up swaps included.
 TEST(FrameCode, RandomTonesNeverDecode) {
   std::mt19937 rng(9);
   int decoded = 0;
   for (int trial = 0; trial < 300000; ++trial) {
     std::array<SymbolReading, kCodeSymbols> r{};
-    for (auto& s : r)
+    for (auto& s : r) {
       s = {static_cast<std::uint8_t>(rng() & 31), 1.0f + static_cast<float>(rng() % 100) / 10.0f, rng() % 8 != 0};
-    decoded += decode_frame(r, 4) ? 1 : 0;
+      s.runner_up = static_cast<int>(rng() & 31);
+    }
+    decoded += decode_frame(r, 4, 4) ? 1 : 0;
   }
   EXPECT_EQ(decoded, 0);
 }
