@@ -145,7 +145,7 @@ void HopListener::offer_shape(int chords, CandidateSink& sink) {
   sink.none_taken(*first_candidate);
 }
 
-// Most of each chord's eight bands stand out of their own means: a frame, or something loud
+// Half or more of each chord's eight bands stand out of their own means: a frame, or something loud
 // and tonal enough in every band set to be worth decoding. A noise band scores 6.2 dB on
 // average (1.5 dB spread), a frame's at -10 dB SNR about 12. Every chord must: one chord's
 // bands loud and the next one's silent is a frame's edge, or the next frame's first chord.
