@@ -33,11 +33,16 @@ std::span<const HeardHopFrame> HopFramePath::feed(std::span<const float> samples
 
 namespace {
 
+// A runner-up goes to the decoder only where it came within `clear_certainty` of the tone
+// read: one beaten by more is seldom the tone sent, and swapping it would only cost tries (the
+// windows between two clean frames read as one frame, every tone clear and the word wrong).
 template <std::size_t N>
-std::array<reliability::SymbolReading, N> readings_of(const signal::HopCandidate& c) {
+std::array<reliability::SymbolReading, N> readings_of(const signal::HopCandidate& c, float clear_certainty) {
   std::array<reliability::SymbolReading, N> r{};
   for (std::size_t t = 0; t < N; ++t) {
-    r[t] = {c.tones[t].symbol, c.tones[t].certainty, c.tones[t].heard, c.tones[t].risen, c.tones[t].runner_up};
+    const auto& tone = c.tones[t];
+    r[t] = {tone.symbol, tone.certainty, tone.heard, tone.risen,
+            tone.certainty < clear_certainty ? tone.runner_up : -1};
   }
   return r;
 }
@@ -51,14 +56,17 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
   last_candidate_ms_ = c.heard_ms;
   std::optional<reliability::FrameBits> bits;
   if (c.chords == 2) {
-    if (const auto d = reliability::decode_frame(readings_of<reliability::kCodeSymbols>(c), hops_.max_erasures,
-                                                 hops_.chase_tones)) {
+    if (const auto d = reliability::decode_frame(readings_of<reliability::kCodeSymbols>(c, hops_.clear_certainty),
+                                                 hops_.max_erasures, hops_.chase_tones)) {
       bits = d->bits;
       listener_.confirm(c, reliability::encode_symbols(d->bits));
     }
   } else {
-    const auto d = reliability::decode_sealed(readings_of<reliability::kSealedSymbols>(c), hops_.sealed_max_erasures,
-                                              budgeted_, hops_.chase_tones);
+    const auto d = reliability::decode_sealed(readings_of<reliability::kSealedSymbols>(c, hops_.clear_certainty),
+                                              hops_.sealed_max_erasures, budgeted_,
+                                              // Without a key nothing sealed is authentic: runner-up swaps could
+                                              // find nothing the robot may take (a refusal keeps more parity).
+                                              authentic_ ? hops_.chase_tones : 0);
     if (d.authentic) {
       bits = d.authentic->bits;
       listener_.confirm(c, reliability::encode_sealed_symbols(d.authentic->bits));
@@ -101,8 +109,10 @@ void HopFramePath::none_taken(const signal::HopCandidate& first) {
   }
   if (clear < static_cast<int>(first.tone_count()) - max_erasures) return;
   const reliability::FrameBits read =
-      first.chords == 2 ? reliability::FrameBits(reliability::read_bits(readings_of<reliability::kCodeSymbols>(first)))
-                        : reliability::read_sealed_bits(readings_of<reliability::kSealedSymbols>(first));
+      first.chords == 2
+          ? reliability::FrameBits(
+                reliability::read_bits(readings_of<reliability::kCodeSymbols>(first, hops_.clear_certainty)))
+          : reliability::read_sealed_bits(readings_of<reliability::kSealedSymbols>(first, hops_.clear_certainty));
   if (const auto verdict = gate_.on_candidate(first.start_ms, first.heard_ms, false, {first.chords, read})) {
     deliver(*verdict, first.offset_ppm);
   }
@@ -116,6 +126,7 @@ bool HopFramePath::rose_with_its_chords(const signal::HopCandidate& c) const {
 }
 
 bool HopFramePath::checked_authentic(const reliability::FrameBits& bits) {
+  if (!authentic_) return false;
   for (int i = 0; i < checks_; ++i) {
     if (checked_[static_cast<std::size_t>(i)].first == bits) return checked_[static_cast<std::size_t>(i)].second;
   }

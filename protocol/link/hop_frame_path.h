@@ -46,7 +46,7 @@ inline constexpr int kMacChecksPerFrame = 4;
 class HopFramePath final : private signal::CandidateSink {
  public:
   // `authentic`: whether an 80-bit frame whose CRC holds is authentic (its MAC holds): the
-  // robot's admission says, and decoding goes on past a frame it would refuse.
+  // robot's admission says, and decoding goes on past a frame it would refuse. Empty: no key.
   HopFramePath(const LinkProfile& profile, reliability::SealedCheck authentic);
   std::span<const HeardHopFrame> feed(std::span<const float> samples);
 
