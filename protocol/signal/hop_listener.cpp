@@ -115,7 +115,7 @@ void HopListener::analyze_window(CandidateSink& sink) {
   analysed_until_ms_ = 1000.0 * static_cast<double>(window_.samples_fed()) / sample_rate_hz_;
   if (analysed_until_ms_ < hold_until_ms_) return;
   for (int chords = 2; chords <= kMaxFrameChords; ++chords) {
-    if (windows_ > chords * hops_per_chord_) offer_shape(chords, sink);
+    if (windows_ > (chords - 1) * hops_per_chord_) offer_shape(chords, sink);
   }
 }
 

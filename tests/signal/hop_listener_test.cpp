@@ -79,6 +79,22 @@ TEST(HopListener, EveryToneOfEveryBandIsReadBackAtAnyAlignment) {
   }
 }
 
+// A listener that starts as a frame starts (an agent restarted mid-run) takes what came before
+// as silence: the frame's first window is read, not only the late ones that straddle its end.
+TEST(HopListener, AFrameFromTheVeryFirstSampleIsRead) {
+  signal::HoppedSymbols sent{};
+  for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((7 * t + 3) % 32);
+  signal::HopListener listener(p);
+  const auto got = candidates(with_silence(signal::synthesize_hopped_frame(p, sent), 0, 6000), listener);
+  std::vector<signal::HopCandidate> at_start;
+  std::copy_if(got.begin(), got.end(), std::back_inserter(at_start),
+               [](const signal::HopCandidate& c) { return c.chords == 2 && c.start_ms < 12.0; });
+  ASSERT_FALSE(at_start.empty()) << "no candidate begins with the frame";
+  const auto [right, heard] = best_reading(at_start, sent);
+  EXPECT_EQ(right, 16);
+  EXPECT_EQ(heard, 16);
+}
+
 TEST(HopListener, NoiseAloneSeldomMakesACandidate) {
   std::vector<float> noise(static_cast<std::size_t>(p.sample_rate_hz) * 20);
   std::mt19937 rng(3);
