@@ -34,10 +34,11 @@ class FastReceiver final : public FrameReceiver {
  public:
   FastReceiver(const LinkProfile& profile, const LinkOptions& options)
       : admission_(profile, options),
-        path_(profile, options.key ? reliability::SealedCheck([this](const reliability::FrameBits& bits) {
-                return admission_.authentic(bits);
-              })
-                                   : reliability::SealedCheck()) {}
+        path_(profile,
+              options.key ? reliability::SealedCheck(
+                                [this](const reliability::FrameBits& bits) { return admission_.authentic(bits); })
+                          : reliability::SealedCheck(),
+              !options.key || options.accept_unauthenticated) {}
   std::span<const Reception> feed(std::span<const float> samples) override {
     receptions_.clear();
     for (const HeardHopFrame& heard : path_.feed(samples)) {

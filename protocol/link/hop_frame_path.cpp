@@ -8,9 +8,10 @@
 
 namespace dtmf::link {
 
-HopFramePath::HopFramePath(const LinkProfile& profile, reliability::SealedCheck authentic)
+HopFramePath::HopFramePath(const LinkProfile& profile, reliability::SealedCheck authentic, bool plain_taken)
     : hops_(profile.hops),
       authentic_(std::move(authentic)),
+      plain_chase_tones_(plain_taken ? profile.hops.chase_tones : 0),
       budgeted_([this](const reliability::FrameBits& bits) { return checked_authentic(bits); }),
       listener_(profile),
       // Candidates of one frame come from its inner window and a hop or two either side:
@@ -57,7 +58,7 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
   std::optional<reliability::FrameBits> bits;
   if (c.chords == 2) {
     if (const auto d = reliability::decode_frame(readings_of<reliability::kCodeSymbols>(c, hops_.clear_certainty),
-                                                 hops_.max_erasures, hops_.chase_tones)) {
+                                                 hops_.max_erasures, plain_chase_tones_)) {
       bits = d->bits;
       listener_.confirm(c, reliability::encode_symbols(d->bits));
     }

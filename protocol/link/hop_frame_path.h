@@ -47,7 +47,10 @@ class HopFramePath final : private signal::CandidateSink {
  public:
   // `authentic`: whether an 80-bit frame whose CRC holds is authentic (its MAC holds): the
   // robot's admission says, and decoding goes on past a frame it would refuse. Empty: no key.
-  HopFramePath(const LinkProfile& profile, reliability::SealedCheck authentic);
+  // `plain_taken`: whether the robot may take a two-chord (unauthenticated) frame at all; a
+  // robot that refuses them tries no runner-up swaps on them (they could only find a frame to
+  // refuse, whose lockout would hide the authenticated frame its chords belong to).
+  HopFramePath(const LinkProfile& profile, reliability::SealedCheck authentic, bool plain_taken = true);
   std::span<const HeardHopFrame> feed(std::span<const float> samples);
 
  private:
@@ -60,6 +63,7 @@ class HopFramePath final : private signal::CandidateSink {
 
   const HopLink& hops_;
   reliability::SealedCheck authentic_;
+  int plain_chase_tones_;              // the profile's chase_tones, or 0 where plain frames are refused
   reliability::SealedCheck budgeted_;  // authentic_ within the per-frame budget
   std::array<std::pair<reliability::FrameBits, bool>, kMacChecksPerFrame> checked_{};
   int checks_ = 0;

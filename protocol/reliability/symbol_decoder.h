@@ -100,8 +100,8 @@ std::optional<DecodedSymbols> decode_symbols(std::span<const SymbolReading> read
 // Chase's second algorithm after the erasures: the `doubted` least certain heard symbols are
 // swapped for their bands' runner-ups in every combination, each decoded with the unheard
 // erased. A misread tone is most often its band's runner-up, and a swap that is right costs no
-// parity where an erasure costs one. Each attempt is one more chance for noise to pass `check`:
-// the caller's reserve and CRC bound what that costs (docs/security.md).
+// parity where an erasure costs one. Each attempt is one more chance for noise to pass `check`,
+// so each keeps one parity symbol more than `reserve` for detection (docs/protocol.md, `chase_tones`).
 template <typename Check>
 std::optional<DecodedSymbols> chase_symbols(std::span<const SymbolReading> readings, const ReedSolomon& code,
                                             int max_erasures, int reserve, int doubted, std::span<std::uint8_t> data,
@@ -116,7 +116,10 @@ std::optional<DecodedSymbols> chase_symbols(std::span<const SymbolReading> readi
     received[i] = readings[i].symbol;
     if (!readings[i].heard || !readings[i].risen) erasures[static_cast<std::size_t>(unheard++)] = static_cast<int>(i);
   }
-  const int erased = std::min(unheard, std::min(max_erasures, code.parity() - reserve));
+  // Every swapped try is one more chance for noise to pass `check`: each keeps one more
+  // parity symbol for detection than the plain tries, 32 times fewer such chances a try.
+  const int swap_reserve = reserve + 1;
+  const int erased = std::min(unheard, std::min(max_erasures, code.parity() - swap_reserve));
   // The heard symbols that have a runner-up, least certain first (an insertion sort: it
   // allocates nothing); the first `doubted` are swapped.
   int eligible = 0;
@@ -139,7 +142,7 @@ std::optional<DecodedSymbols> chase_symbols(std::span<const SymbolReading> readi
     }
     const auto errors =
         code.decode(std::span<const std::uint8_t>(received.data(), n),
-                    std::span<const int>(erasures.data(), static_cast<std::size_t>(erased)), data, reserve);
+                    std::span<const int>(erasures.data(), static_cast<std::size_t>(erased)), data, swap_reserve);
     if (!errors) continue;
     const DecodedSymbols how{erased, *errors};
     if (check(std::span<const std::uint8_t>(data), how)) return how;
