@@ -18,15 +18,6 @@ FAST_BOTH = ("fast", "fast+key")
 # Why a target is missed: (target key, profile) -> reason. Checked against the figures of
 # scripts/bench on 2026-11-24 and, for the answer-path and end-to-end rows, 2026-11-25.
 REASONS = {
-    ("clock offset ±2000 ppm (< 0.1 % lost)", "fast"):
-        "confirmed frame by frame (2026-11-26, the one loss in 1000 of the seminar room at −2000 ppm): the frame "
-        "became a candidate in 11 windows and failed Reed–Solomon decoding in all 33 tries, 4 tones one bin off "
-        "from the room's fades; the offset is why it could not be corrected: with a tone 0.25–0.75 bin off "
-        "centre the listener sums two bins per symbol, the neighbouring symbol shares the strongest one, and the "
-        "median certainty of correct tones falls from 4.8–7.6 dB to 1.1–1.5 dB, so the decoder erases right "
-        "tones and keeps wrong ones (and none reaches the NACK threshold). Reading each symbol at its shifted "
-        "frequency (a zero-padded FFT, or the window resampled by the offset) restored 4.9–7.6 dB and decoded "
-        "that frame in a prototype; not built yet",
     ("end to end through the seminar room both ways: net throughput", "fast"):
         "no retransmission is left to blame (0 in 200; the answers are heard in every room, see the answer "
         "path): a stop-and-wait sender puts one 27-bit command on air per round trip, frame 102.5 ms + the "
@@ -44,31 +35,28 @@ REASONS = {
         "decide on the first two chords (RS(24,16) with the third chord's eight symbols erased leaves no "
         "parity, so only the CRC-8 and the MAC would stand behind it) or a shorter answer",
     ("answer path: answers heard, every room, own frames +20 dB or not", "fast+key"):
-        "only in the smoking room, 0.5–0.9 % of the tagged ACKs: in every window of those answers one of "
+        "only in the smoking room, 0.5–1.1 % of the tagged ACKs: in every window of those answers one of "
         "the twelve tones reads wrong (the tone of the answer before, or the first chord ringing into the "
         "second), and a tagged ACK is taken only with 11 tones heard and none wrong. Taking one wrong tone "
         "would make a forged answer about 10 times likelier per guess (31 tag patterns of 2 985 984 instead "
         "of 1 of 995 328, docs/security.md); the named ACKs "
         "of the unkeyed link, which need 9 of 12, are all heard",
-    ("frame success at −10 dB SNR", "fast"):
-        "no lost frame was NACKed: all were lost at the candidate gate (5 of a chord's 8 bands with a best bin "
-        "7.5 dB over their median, docs/protocol.md §10), which passes about 999 frames in 1000 at −10 dB; a "
-        "lower gate would let noise through more often than its present once in 20 000 windows",
     ("frame success at −12 dB SNR (an aim)", "fast"):
-        "no lost frame was NACKed. With the candidate gate forced open, 82.7 % of 2000 instead of 75.5 % "
-        "(2026-11-26): the gate costs 7 points, decoding the rest. At −12 dB a tone's bin stands 8.8 dB over the "
-        "noise in it (−12 dB, −9.0 dB for eight tones sharing the signal, +29.8 dB for 960 bins sharing the "
-        "noise); 32-ary noncoherent detection then misreads 12.8 % of tones, and a decoder that corrects 2 of 16 "
-        "(RS(16, 10) keeping 2 parity symbols for detection) recovers 66.5 % of frames in theory (82.7 % "
-        "measured, with erasures); correcting all 4 would still give only 95.6 %. 99.9 % at −12 dB needs about "
-        "3 dB more than this hard-decision code gives: soft-decision decoding (Chase or GMD over each band's "
-        "runner-up tones) or more energy per tone. A gate that also passed a chord on its bands' mean score "
-        "won back 4 of the 7 points, but passed the seed's four-tone chords too and cost the robot three times "
-        "the CPU on frames: not kept",
+        "no lost frame was NACKed. Runner-up swaps (Chase over the 6 least certain tones, 63 more tries of a "
+        "failed candidate) and a 4-of-8 gate took it from 75.5 % (2026-11-26) to 88.7 % of 10 000 (2026-11-27); "
+        "with swaps keeping 2 parity symbols for detection, as plain tries do, 92.2 %, and with the gate open as "
+        "well 94.0 %, but every swapped try is a chance for noise to pass the CRC-16, and with 2 kept the "
+        "garbled windows around every frame made a wrong accept 14 times likelier (docs/protocol.md, "
+        "`chase_tones`): they keep 3. At −12 dB a tone's bin stands 8.8 dB over the noise in it (−12 dB, −9.0 dB "
+        "for eight tones sharing the signal, +29.8 dB for 960 bins sharing the noise); 32-ary noncoherent "
+        "detection misreads 12.8 % of tones. 99.9 % needs about 2–3 dB more: decoding that weighs every tone's "
+        "soft value over the whole code (ordered statistics over the bins' likelihoods) with a longer check "
+        "behind it than the CRC-16, or more energy per tone (longer chords: 1 dB per 26 %)",
     ("decoder speed, one core (noise / frames)", "fast"):
         "one 1920-point real FFT (FFTW, measured plan) takes 1.65 µs alone and 2.99 µs inside the receive loop on this CPU, and the receiver takes one every "
         "10.25 ms hop; 5000 × real time leaves 2.05 µs per hop, so the target needs a receiver that skips FFTs "
-        "(a cheap pre-gate), not tuning",
+        "(a cheap pre-gate), not tuning. On frames the runner-up swaps on the windows around each frame cost "
+        "more (back-to-back frames: 1 814 × before them)",
 }
 
 
