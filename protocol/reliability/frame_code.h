@@ -1,6 +1,7 @@
 // Reliability layer: the fast frame's code, RS(16, 10) over GF(32) (command_frame.h), decoded
 // from tones read with unequal certainty (symbol_decoder.h): unheard tones erased first, then
-// the least certain, up to `max_erasures`; the first decode whose CRC-16 holds is the frame.
+// the least certain, up to `max_erasures`, then (`chase_tones` > 0) the least certain tones
+// swapped for their runner-ups; the first decode whose CRC-16 holds is the frame.
 // Two of the six parity symbols are kept for detection (2 * errors + erasures <= 4).
 // Pure logic: no I/O, no clock.
 #pragma once

@@ -83,6 +83,8 @@ struct SealedDecode {
   std::optional<DecodedSealed> authentic;  // the first decode whose CRC and `authentic` hold
   std::optional<DecodedSealed> intact;     // else the first whose CRC holds with 4 parity kept (forged, other key)
 };
+// `chase_tones`: as many least certain tones tried with their runner-ups once the erasures
+// found nothing authentic (symbol_decoder.h).
 SealedDecode decode_sealed(std::span<const SymbolReading, kSealedSymbols> readings, int max_erasures,
                            const SealedCheck& authentic, int chase_tones = 0);
 // The hard decision's data symbols, for logs of a frame that did not decode.

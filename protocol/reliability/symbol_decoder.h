@@ -14,8 +14,9 @@
 // reads every symbol right and rises nowhere: the receive path keeps it from passing as the
 // frame again, link/hop_frame_path.h.) The
 // code keeps `reserve` parity symbols for detection (2 * errors + erasures <= parity -
-// reserve): pushed to its limit, it turns noise into some codeword. Pure logic; allocates
-// nothing (it runs in the robot's receive path).
+// reserve): pushed to its limit, it turns noise into some codeword. chase_symbols() goes on
+// where that fails, swapping the least certain tones for their bands' runner-ups. Pure logic;
+// allocates nothing (it runs in the robot's receive path).
 #pragma once
 
 #include <algorithm>
@@ -116,9 +117,8 @@ std::optional<DecodedSymbols> chase_symbols(std::span<const SymbolReading> readi
     received[i] = readings[i].symbol;
     if (!readings[i].heard || !readings[i].risen) erasures[static_cast<std::size_t>(unheard++)] = static_cast<int>(i);
   }
-  // Every swapped try is one more chance for noise to pass `check`: each keeps one more
-  // parity symbol for detection than the plain tries, 32 times fewer such chances a try.
-  const int swap_reserve = reserve + 1;
+  const int swap_reserve = reserve + 1;  // over GF(32): 32 times fewer chances for noise a try
+  // (More unheard than may be erased: the first of them are, the rest stay as read.)
   const int erased = std::min(unheard, std::min(max_erasures, code.parity() - swap_reserve));
   // The heard symbols that have a runner-up, least certain first (an insertion sort: it
   // allocates nothing); the first `doubted` are swapped.
