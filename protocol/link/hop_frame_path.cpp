@@ -12,6 +12,9 @@ HopFramePath::HopFramePath(const LinkProfile& profile, reliability::SealedCheck 
     : hops_(profile.hops),
       authentic_(std::move(authentic)),
       plain_chase_tones_(plain_taken ? profile.hops.chase_tones : 0),
+      // Without a key nothing sealed is authentic: runner-up swaps could find nothing the
+      // robot may take (a refusal keeps more parity).
+      sealed_chase_tones_(authentic_ ? profile.hops.chase_tones : 0),
       budgeted_([this](const reliability::FrameBits& bits) { return checked_authentic(bits); }),
       listener_(profile),
       // Candidates of one frame come from its inner window and a hop or two either side:
@@ -64,10 +67,7 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
     }
   } else {
     const auto d = reliability::decode_sealed(readings_of<reliability::kSealedSymbols>(c, hops_.clear_certainty),
-                                              hops_.sealed_max_erasures, budgeted_,
-                                              // Without a key nothing sealed is authentic: runner-up swaps could
-                                              // find nothing the robot may take (a refusal keeps more parity).
-                                              authentic_ ? hops_.chase_tones : 0);
+                                              hops_.sealed_max_erasures, budgeted_, sealed_chase_tones_);
     if (d.authentic) {
       bits = d.authentic->bits;
       listener_.confirm(c, reliability::encode_sealed_symbols(d.authentic->bits));

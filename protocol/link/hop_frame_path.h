@@ -64,6 +64,7 @@ class HopFramePath final : private signal::CandidateSink {
   const HopLink& hops_;
   reliability::SealedCheck authentic_;
   int plain_chase_tones_;              // the profile's chase_tones, or 0 where plain frames are refused
+  int sealed_chase_tones_;             // the profile's chase_tones, or 0 without a key
   reliability::SealedCheck budgeted_;  // authentic_ within the per-frame budget
   std::array<std::pair<reliability::FrameBits, bool>, kMacChecksPerFrame> checked_{};
   int checks_ = 0;
