@@ -38,19 +38,18 @@ class SteadyPhasors {
   void reset();
 
  private:
-  // Plain floats: std::complex's operators check for infinities on every product.
-  struct Bin {
-    float steady_re = 0, steady_im = 0;  // the steady sound's phasor in the window before
-    float turn_re = 0, turn_im = 0;      // mean of X(t) conj(X(t - 1)) over steady windows
-    float last_re = 0, last_im = 0;      // X(t - 1)
-    float usual = 0;                     // the residual's usual power
-    bool last_steady = false;            // the window before held only its steady sound
-  };
+  // One array per quantity (plain floats, not std::complex, whose operators check for
+  // infinities on every product), so that the bins run side by side in SIMD lanes.
   bool enabled_;
   std::size_t first_bin_;
   float rise_per_window_;  // power factor
   float floor_power_;
-  std::vector<Bin> bins_;
+  std::vector<float> steady_re_, steady_im_;  // the steady sound's phasor in the window before
+  std::vector<float> turn_re_, turn_im_;      // mean of X(t) conj(X(t - 1)) over steady windows
+  std::vector<float> last_re_, last_im_;      // X(t - 1)
+  std::vector<float> usual_;                  // the residual's usual power
+  std::vector<float> last_steady_;            // 1 where the window before held only its steady sound
+  std::vector<float> now_re_, now_im_;        // X(t), scratch
   std::vector<float> residual_;
 };
 
