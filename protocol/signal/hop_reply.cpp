@@ -59,14 +59,14 @@ int HopReplyListener::read_band(const std::vector<float>& excess, const std::vec
   }
   if (best < 0) return -1;
   // The band's floor: the median of the raw power of its bins, from its first tone to its
-  // last (the tones and the bins between them).
+  // last (the tones and the bins between them). The tone stands over it when more than half
+  // of those bins lie under best / presence: counted, which needs neither a copy nor a
+  // partial sort (presence_ratio_ · v grows with v, so the bins counted are the smallest).
   const auto from = static_cast<std::size_t>(tone_bins.front() - lo_bin_);
   const auto to = static_cast<std::size_t>(tone_bins.back() + 1 - lo_bin_);
-  const std::size_t n = to - from;
-  std::copy(power.begin() + static_cast<long>(from), power.begin() + static_cast<long>(to), scratch_.begin());
-  std::nth_element(scratch_.data(), scratch_.data() + n / 2, scratch_.data() + n);
-  const float median = scratch_[n / 2];
-  return best_excess > presence_ratio_ * median ? best : -1;
+  std::size_t under = 0;
+  for (std::size_t i = from; i < to; ++i) under += presence_ratio_ * power[i] < best_excess ? 1 : 0;
+  return under > (to - from) / 2 ? best : -1;
 }
 
 void HopReplyListener::analyze_window() {

@@ -18,7 +18,6 @@
 // fed. Feeding allocates nothing.
 #pragma once
 
-#include <array>
 #include <span>
 #include <vector>
 
@@ -63,7 +62,6 @@ class HopReplyListener {
   std::vector<std::vector<float>> excess_ring_;  // ... and its excess over the background
   std::size_t newest_ = 0;
   long long windows_ = 0;
-  std::array<float, 16> scratch_{};
   std::vector<HeardReading> heard_;
 };
 
