@@ -25,14 +25,40 @@ double plan_tone_hz(const TonePlan& plan, const PlanTone& tone) {
   return plan.band_low_hz[static_cast<std::size_t>(tone.band)] + tone.nibble * plan.step_hz;
 }
 
+// Each peak's bands within reach under any offset up to `max_offset_ppm` (bit b for band b;
+// 1 Hz of slack beside the rounding of f / scale): the offset search tries only those, 61
+// offsets a window, where trying all four bands cost the seed receiver a third of its time.
+// Peaks past the first kReachPeaks (more than any detector keeps) try every band.
+constexpr std::size_t kReachPeaks = 32;
+constexpr unsigned kAllBands = 0xF;
+using PeakReach = std::array<unsigned, kReachPeaks>;
+
+PeakReach reach_of(const TonePlan& plan, std::span<const Peak> peaks, const DetectorParams& rules) {
+  PeakReach reach{};
+  const double widest = rules.max_offset_ppm * 1e-6;
+  for (std::size_t i = 0; i < std::min(peaks.size(), kReachPeaks); ++i) {
+    const double hz = peaks[i].frequency_hz;
+    reach[i] = bands_within_reach(plan, hz / (1.0 + widest) - 1.0, hz / (1.0 - widest) + 1.0, rules.tone_tolerance_hz);
+  }
+  return reach;
+}
+
 // How well the peaks, read through `scale`, sit on plan tones: each matching peak counts
-// its amplitude, less the further it lies from its tone.
-double plan_fit(const TonePlan& plan, std::span<const Peak> peaks, double scale, double tolerance_hz) {
+// its amplitude, less the further it lies from its tone. The tone is match_plan_tone's (the
+// first band's that matches), sought only in the bands within the peak's reach.
+double plan_fit(const TonePlan& plan, std::span<const Peak> peaks, const PeakReach& reach, double scale,
+                double tolerance_hz) {
   double fit = 0;
-  for (const Peak& peak : peaks) {
-    const double hz = peak.frequency_hz / scale;
-    if (const auto tone = match_plan_tone(plan, hz, tolerance_hz)) {
-      fit += peak.amplitude * (1.0 - std::abs(hz - plan_tone_hz(plan, *tone)) / tolerance_hz);
+  for (std::size_t i = 0; i < peaks.size(); ++i) {
+    const unsigned bands = i < kReachPeaks ? reach[i] : kAllBands;
+    if (bands == 0) continue;
+    const double hz = peaks[i].frequency_hz / scale;
+    for (int band = 0; band < 4; ++band) {
+      if ((bands & (1u << band)) == 0) continue;
+      if (const auto tone = match_band_tone(plan, band, hz, tolerance_hz)) {
+        fit += peaks[i].amplitude * (1.0 - std::abs(hz - plan_tone_hz(plan, *tone)) / tolerance_hz);
+        break;
+      }
     }
   }
   return fit;
@@ -40,12 +66,13 @@ double plan_fit(const TonePlan& plan, std::span<const Peak> peaks, double scale,
 
 // The offset in ppm (0, +step, -step, +2 step, ...: the smallest wins a tie) under which
 // the peaks fit the plan best.
-double common_offset_ppm(const TonePlan& plan, std::span<const Peak> peaks, const DetectorParams& rules) {
+double common_offset_ppm(const TonePlan& plan, std::span<const Peak> peaks, const PeakReach& reach,
+                         const DetectorParams& rules) {
   double best_ppm = 0;
-  double best_fit = plan_fit(plan, peaks, 1.0, rules.tone_tolerance_hz);
+  double best_fit = plan_fit(plan, peaks, reach, 1.0, rules.tone_tolerance_hz);
   for (double ppm = kOffsetStepPpm; ppm <= rules.max_offset_ppm; ppm += kOffsetStepPpm) {
     for (const double signed_ppm : {ppm, -ppm}) {
-      const double fit = plan_fit(plan, peaks, 1.0 + signed_ppm * 1e-6, rules.tone_tolerance_hz);
+      const double fit = plan_fit(plan, peaks, reach, 1.0 + signed_ppm * 1e-6, rules.tone_tolerance_hz);
       if (fit > best_fit) {
         best_fit = fit;
         best_ppm = signed_ppm;
@@ -58,7 +85,12 @@ double common_offset_ppm(const TonePlan& plan, std::span<const Peak> peaks, cons
 }  // namespace
 
 std::optional<ChordMatch> decode_chord(const TonePlan& plan, std::span<const Peak> peaks, const DetectorParams& rules) {
-  const double offset_ppm = rules.max_offset_ppm > 0 ? common_offset_ppm(plan, peaks, rules) : 0.0;
+  const PeakReach reach = reach_of(plan, peaks, rules);
+  // A band no peak can reach under any offset stays without a tone under every one.
+  unsigned reached = peaks.size() > kReachPeaks ? kAllBands : 0;
+  for (std::size_t i = 0; i < std::min(peaks.size(), kReachPeaks); ++i) reached |= reach[i];
+  if (reached != kAllBands) return std::nullopt;
+  const double offset_ppm = rules.max_offset_ppm > 0 ? common_offset_ppm(plan, peaks, reach, rules) : 0.0;
   const double scale = 1.0 + offset_ppm * 1e-6;
   const double ratio = units::amplitude_ratio_from_db(-rules.dominance_db);
   std::array<int, 4> nibble{-1, -1, -1, -1};

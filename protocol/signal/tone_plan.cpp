@@ -25,16 +25,29 @@ std::uint16_t frame_for(const TonePlan& plan, const Chord& chord) {
   return frame;
 }
 
+std::optional<PlanTone> match_band_tone(const TonePlan& plan, int band, double frequency_hz, double tolerance_hz) {
+  const double offset = frequency_hz - plan.band_low_hz[static_cast<std::size_t>(band)];
+  const long nibble = std::lround(offset / plan.step_hz);
+  if (nibble < 0 || nibble >= plan.tones_per_band) return std::nullopt;
+  if (std::abs(offset - nibble * plan.step_hz) > tolerance_hz) return std::nullopt;
+  return PlanTone{band, static_cast<int>(nibble)};
+}
+
 std::optional<PlanTone> match_plan_tone(const TonePlan& plan, double frequency_hz, double tolerance_hz) {
   for (int band = 0; band < 4; ++band) {
-    const double offset = frequency_hz - plan.band_low_hz[static_cast<std::size_t>(band)];
-    const long nibble = std::lround(offset / plan.step_hz);
-    if (nibble < 0 || nibble >= plan.tones_per_band) continue;
-    if (std::abs(offset - nibble * plan.step_hz) <= tolerance_hz) {
-      return PlanTone{band, static_cast<int>(nibble)};
-    }
+    if (const auto tone = match_band_tone(plan, band, frequency_hz, tolerance_hz)) return tone;
   }
   return std::nullopt;
+}
+
+unsigned bands_within_reach(const TonePlan& plan, double low_hz, double high_hz, double tolerance_hz) {
+  unsigned bands = 0;
+  for (int band = 0; band < 4; ++band) {
+    const double lowest = plan.band_low_hz[static_cast<std::size_t>(band)];
+    const double highest = lowest + (plan.tones_per_band - 1) * plan.step_hz;
+    if (high_hz + tolerance_hz >= lowest && low_hz - tolerance_hz <= highest) bands |= 1u << band;
+  }
+  return bands;
 }
 
 const std::array<double, 2>& reply_tones(const TonePlan& plan, Reply reply) {

@@ -48,6 +48,33 @@ TEST(TonePlan, PeaksMatchPlanTonesOnlyWithinTolerance) {
   EXPECT_FALSE(match_plan_tone(plan, 16500, 25));  // above the plan
 }
 
+TEST(TonePlan, BandsWithinReachHoldEveryBandThatMatchesInTheRange) {
+  const TonePlan& plan = seed_profile().tones;
+  EXPECT_EQ(bands_within_reach(plan, 8000, 8100, 25), 0b0010u);
+  EXPECT_EQ(bands_within_reach(plan, 6990, 7480, 25), 0b0011u);  // 7000 + 25 and 7500 - 25 both in reach
+  EXPECT_EQ(bands_within_reach(plan, 7030, 7470, 25), 0u);       // wholly between bands 0 and 1
+  EXPECT_EQ(bands_within_reach(plan, 3000, 4470, 25), 0u);
+  EXPECT_EQ(bands_within_reach(plan, 4000, 17000, 25), 0b1111u);
+  // The superset the offset search relies on: a band that matches any frequency of the range
+  // is within reach (ranges as wide as 3000 ppm of offset, and narrower).
+  for (double low = 4000; low < 17000; low += 7.3) {
+    for (const double width : {0.0, 2.0, 30.0, 100.0}) {
+      const unsigned reach = bands_within_reach(plan, low, low + width, 25);
+      for (double hz = low; hz <= low + width; hz += 0.5) {
+        for (int band = 0; band < 4; ++band) {
+          if (match_band_tone(plan, band, hz, 25)) {
+            ASSERT_TRUE(reach & (1u << band)) << hz << " Hz matches band " << band << " outside its reach";
+          }
+        }
+        const auto tone = match_plan_tone(plan, hz, 25);
+        if (tone) {
+          EXPECT_EQ(tone->nibble, match_band_tone(plan, tone->band, hz, 25)->nibble);
+        }
+      }
+    }
+  }
+}
+
 TEST(TonePlan, RepliesUseTheSeedsTwoToneChords) {
   const TonePlan& plan = seed_profile().tones;
   EXPECT_EQ(reply_tones(plan, Reply::Ack), (std::array<double, 2>{2500, 3500}));
