@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "signal/over_median.h"
 #include "signal/peak_interpolation.h"
 #include "units/decibels.h"
 
@@ -242,16 +243,14 @@ HopCandidate HopListener::make_candidate(int chords, int offset_ppm) {
       }
       const float top = scratch_[static_cast<std::size_t>(best)];
       const float runner = scratch_[static_cast<std::size_t>(second_best)];
-      // The band's floor: the median of its raw power (the excess is zero at many bins).
-      std::nth_element(floor_.begin(), floor_.begin() + static_cast<std::ptrdiff_t>(floor_.size() / 2), floor_.end());
-      const float median = floor_[floor_.size() / 2];
       const auto bi = static_cast<std::size_t>(best_bin - lo_bin_);
       ToneReading& r = c.tones[t];
       r.symbol = static_cast<std::uint8_t>(best);
       r.runner_up = second_best;
       r.certainty = runner > 0 ? top / runner : 1e9f;
       r.risen = w.power[bi] > onset_ratio_ * before.power[bi];
-      r.heard = top > presence_ratio_ * median && r.risen;
+      // Heard: over the band's floor, the median of its raw power (the excess is zero at many bins).
+      r.heard = over_median(floor_, top, presence_ratio_) && r.risen;
       // The peak to a fraction of a bin, for offset tracking once the frame is known.
       const float a0 = std::sqrt(std::max(w.excess[bi], 0.0f));
       const float am = std::sqrt(std::max(w.excess[bi - 1], 0.0f)), ap = std::sqrt(std::max(w.excess[bi + 1], 0.0f));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "signal/over_median.h"
 #include "units/decibels.h"
 
 namespace dtmf::signal {
@@ -59,14 +60,10 @@ int HopReplyListener::read_band(const std::vector<float>& excess, const std::vec
   }
   if (best < 0) return -1;
   // The band's floor: the median of the raw power of its bins, from its first tone to its
-  // last (the tones and the bins between them). The tone stands over it when more than half
-  // of those bins lie under best / presence: counted, which needs neither a copy nor a
-  // partial sort (presence_ratio_ · v grows with v, so the bins counted are the smallest).
+  // last (the tones and the bins between them).
   const auto from = static_cast<std::size_t>(tone_bins.front() - lo_bin_);
   const auto to = static_cast<std::size_t>(tone_bins.back() + 1 - lo_bin_);
-  std::size_t under = 0;
-  for (std::size_t i = from; i < to; ++i) under += presence_ratio_ * power[i] < best_excess ? 1 : 0;
-  return under > (to - from) / 2 ? best : -1;
+  return over_median(std::span<const float>(power).subspan(from, to - from), best_excess, presence_ratio_) ? best : -1;
 }
 
 void HopReplyListener::analyze_window() {
