@@ -151,6 +151,27 @@ TEST(ServerTeleop, BadTargetsAndTheSeedProfileAreInvalidArguments) {
   EXPECT_TRUE(system.words_heard().empty()) << "nothing went out under the seed profile";
 }
 
+// A joystick sends a target on every move, faster than frames go on air: the server keeps
+// the newest, and the robot ends at the last one. The client's writes from its caller's
+// thread meet its own 100 ms repeats here, a dozen times a second (one Write at a time on a
+// gRPC stream; two at once aborted dtmf-bench-teleop).
+TEST(ServerTeleop, AFloodOfTargetsDrivesTheNewestAndTheStreamEndsCleanly) {
+  LiveSystem system;
+  auto stub = system.client();
+  TeleopClient teleop(*stub, 0, 0, 1.0);
+  int sent = 0;
+  for (const auto end = Clock::now() + 1500ms; Clock::now() < end; ++sent) teleop.target(0.001 * (sent % 100), 0);
+  ASSERT_GT(sent, 1000) << "the flood must outnumber the frames by far";
+  teleop.target(0.08, -0.3);
+  ASSERT_TRUE(teleop.confirmed(0.08, -0.3, 3s)) << "the newest target was never confirmed";
+  std::this_thread::sleep_for(200ms);
+  EXPECT_NEAR(system.last_velocity().linear_mps, 0.08, 0.0002);
+  EXPECT_NEAR(system.last_velocity().angular_rps, -0.3, 0.012);
+  EXPECT_TRUE(teleop.close().ok());
+  // Frames went out one at a time, each for the newest target then: a few per 100 ms, not one per message.
+  EXPECT_LT(teleop.responses().size(), static_cast<std::size_t>(sent) / 10);
+}
+
 TEST(ServerTeleop, ACancelledStreamStopsTheRobotWithinTheLease) {
   LiveSystem system;
   auto stub = system.client();

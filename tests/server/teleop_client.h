@@ -1,7 +1,9 @@
 // Test and benchmark helper: a Teleop client as dtmfctl teleop is one. It opens the
 // bidirectional stream with a target, sends each new target at once and repeats the current
 // one every 100 ms from its own thread, and keeps every status the server sends (read on a
-// second thread) for the caller to wait for and inspect.
+// second thread) for the caller to wait for and inspect. A gRPC stream takes one Write at a
+// time: the caller's and the repeater's take turns (two at once is API misuse, and gRPC
+// aborts the process: GRPC_CALL_ERROR_TOO_MANY_OPERATIONS, which crashed dtmf-bench-teleop).
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -44,7 +46,7 @@ class TeleopClient {
         if (closing_) break;
         const v1::TeleopRequest again = last_;
         lock.unlock();
-        const bool ok = stream_->Write(again);
+        const bool ok = write(again);
         lock.lock();
         if (!ok) break;
       }
@@ -68,7 +70,7 @@ class TeleopClient {
       last_ = r;
       last_.clear_options();
     }
-    stream_->Write(r);
+    write(r);
   }
 
   // Waits for a status whose confirmed velocity is (linear, angular), within the payload's steps.
@@ -94,7 +96,10 @@ class TeleopClient {
       changed_.notify_all();
     }
     repeater_.join();
-    stream_->WritesDone();
+    {
+      std::lock_guard lock(write_mutex_);
+      stream_->WritesDone();
+    }
     return finish();
   }
   void cancel() { context_.TryCancel(); }
@@ -115,10 +120,16 @@ class TeleopClient {
   }
 
  private:
+  bool write(const v1::TeleopRequest& r) {
+    std::lock_guard lock(write_mutex_);
+    return stream_->Write(r);
+  }
+
   double lease_s_;
   grpc::ClientContext context_;
   std::unique_ptr<grpc::ClientReaderWriter<v1::TeleopRequest, v1::TeleopResponse>> stream_;
   std::mutex mutex_;
+  std::mutex write_mutex_;  // one Write (or WritesDone) on the stream at a time
   std::condition_variable changed_;
   std::vector<v1::TeleopResponse> responses_;
   v1::TeleopRequest last_;
