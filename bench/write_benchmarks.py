@@ -30,14 +30,40 @@ from robot_section import robot_section  # noqa: E402
 
 BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "answers", "talkoff_speech", "talkoff_music",
            "talkoff_noise", "roundtrip", "roundtrip_room", "e2e", "e2e_room", "teleop"]
+# Run only where they apply (dtmf-bench-lost: hopped frames without a key): listed under "not run" only when they failed.
+OPTIONAL_BENCHES = ["lost"]
 TALKOFF = [("speech", "speech (espeak-ng)"), ("music", "music-like (sox synth)"), ("noise", "noise (white, pink, brown)")]
+
+
+def lost_section(w, profile, d):
+    """Why frames are lost at one SNR, frame by frame (dtmf-bench-lost)."""
+    lost = d["frames"] - d["accepted"]
+    read = lost - d["lost_no_reading"]
+    misread = d["misread_tones"]
+
+    def pct(n, of):
+        return f"{100 * n / of:.0f} %" if of else "–"
+
+    def count(n):
+        return f"{n:,}".replace(",", " ")
+    snr = f"{d['snr_db']:g}".replace("-", "−")
+    at_most = 100 * (d["accepted"] + d["oracle_erasure_decodes"]) / d["frames"]
+    w(f"`{profile}` at {snr} dB, frame by frame (`dtmf-bench-lost`: {count(d['frames'])} frames, each alone in its "
+      f"noise): {100 * d['success_rate']:.2f} % accepted. Of the {count(lost)} lost, {count(d['lost_no_reading'])} "
+      f"never made a reading at the gate and {count(read)} were read with errors: {count(misread)} heard tones "
+      f"misread besides the unheard; the tone sent was the band's runner-up for "
+      f"{pct(d['misread_runner_up_right'], misread)} of them (what the runner-up swaps can mend) and "
+      f"{pct(d['misread_among_doubted'], misread)} were among the 6 least certain. An oracle erasing exactly the "
+      f"misread and unheard tones, 2 parity symbols kept, would decode {count(d['oracle_erasure_decodes'])} of them: "
+      f"{at_most:.2f} % at most from these readings.")
+    w("")
 
 
 def load(directory, profiles):
     data = {}
     for p in profiles:
         data[p] = {}
-        for b in BENCHES:
+        for b in BENCHES + OPTIONAL_BENCHES:
             path = os.path.join(directory, p, b + ".json")
             err = os.path.join(directory, p, b + ".error")
             if os.path.exists(path):
@@ -313,6 +339,7 @@ def main() -> int:
     w("")
     for p in profiles:
         missing = [b for b in BENCHES if not ok(data[p][b])]
+        missing += [b for b in OPTIONAL_BENCHES if data[p][b].get("error", "not run") != "not run"]
         if missing:
             w(f"`{p}`: not run — " + "; ".join(f"{b}: {data[p][b]['error']}" for b in missing) + ".")
             w("")
@@ -379,6 +406,9 @@ def main() -> int:
               f"topped up to {d['topup_frames']:,}: {', '.join(f'{x:g}' for x in topped) or 'none'} dB.".replace(",", " ")
               .replace("-", "−"))
             w("")
+    for p in profiles:
+        if ok(data[p].get("lost")):
+            lost_section(w, p, data[p]["lost"])
 
     w("## Frame success against distance")
     w("")

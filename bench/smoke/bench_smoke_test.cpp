@@ -135,6 +135,35 @@ TEST_P(BenchSmokeProfile, DecoderIsFasterThanRealTime) {
 
 // The whole robot: every profile's receiver takes its own frames from the same audio, nothing
 // from a few seconds of noise, and every profile's answer ear hears its own answers.
+TEST(BenchSmoke, LostFramesAreTakenApartToTheGateOrTheirTones) {
+  const auto clean = run(std::string(LOST_PATH) + " --snr-db 10 --frames 10", "lost-clean");
+  EXPECT_EQ(clean["accepted"], 10);
+  EXPECT_EQ(clean["lost_no_reading"], 0);
+  EXPECT_TRUE(clean["lost_by_misread_and_unheard"].empty());
+  const auto drowned = run(std::string(LOST_PATH) + " --snr-db -30 --frames 5", "lost-drowned");
+  EXPECT_EQ(drowned["accepted"], 0);
+  EXPECT_EQ(drowned["lost_no_reading"], 5) << "at -30 dB no frame passes the gate";
+  // Near the cliff: every lost frame is put down to the gate or to its tones, and the
+  // misread tones are counted once each by certainty rank.
+  const auto faint = run(std::string(LOST_PATH) + " --snr-db -13 --frames 60", "lost-faint");
+  std::uint64_t read_lost = 0, misread = 0;
+  for (const auto& row : faint["lost_by_misread_and_unheard"]) {
+    read_lost += row["frames"].get<std::uint64_t>();
+    misread += row["frames"].get<std::uint64_t>() * row["misread"].get<std::uint64_t>();
+  }
+  const auto frames = faint["frames"].get<std::uint64_t>(), accepted = faint["accepted"].get<std::uint64_t>();
+  EXPECT_GT(accepted, 0u);
+  EXPECT_LT(accepted, frames);
+  EXPECT_EQ(accepted + faint["lost_no_reading"].get<std::uint64_t>() + read_lost, frames);
+  EXPECT_EQ(faint["misread_tones"].get<std::uint64_t>(), misread);
+  std::uint64_t by_rank = 0;
+  for (const auto& n : faint["misread_by_certainty_rank"]) by_rank += n.get<std::uint64_t>();
+  EXPECT_EQ(by_rank, misread);
+  EXPECT_LE(faint["oracle_erasure_decodes"].get<std::uint64_t>(), read_lost);
+  // Only hopped frames can be taken apart.
+  EXPECT_NE(std::system((std::string(LOST_PATH) + " --profile seed --frames 1 2> /dev/null").c_str()), 0);
+}
+
 TEST(BenchSmoke, ReceivePathHearsEveryProfilesFramesAndAnswersOnTheSameAudio) {
   const auto doc = run(std::string(RECEIVE_PATH) + " --audio-s 3", "receive");
   ASSERT_EQ(doc["signals"].size(), 4u) << doc.dump();
