@@ -53,8 +53,9 @@ def lost_section(w, profile, d):
       f"never made a reading at the gate and {count(read)} were read with errors: {count(misread)} heard tones "
       f"misread besides the unheard; the tone sent was the band's runner-up for "
       f"{pct(d['misread_runner_up_right'], misread)} of them (what the runner-up swaps can mend) and "
-      f"{pct(d['misread_among_doubted'], misread)} were among the 6 least certain. An oracle erasing exactly the "
-      f"misread and unheard tones, 2 parity symbols kept, would decode {count(d['oracle_erasure_decodes'])} of them: "
+      f"{pct(d['misread_among_doubted'], misread)} were among the {d['doubted_tones']} least certain. An oracle "
+      f"erasing exactly the misread and unheard tones, at most {d['oracle_max_erasures']} as the plain tries, would "
+      f"decode {count(d['oracle_erasure_decodes'])} of them: "
       f"{at_most:.2f} % at most from these readings.")
     w("")
 

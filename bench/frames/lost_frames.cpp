@@ -8,8 +8,8 @@
 //   - the gate: no two-chord reading began within a hop of it;
 //   - its tones: e heard tones misread, s unheard; of the misread ones, how many had the sent
 //     tone as their band's runner-up (what the Chase swaps can mend) and how many were among
-//     the 6 least certain heard tones; and whether an oracle that erased exactly the misread
-//     and unheard tones, keeping 2 parity symbols as the plain tries do (e + s ≤ 4), would
+//     the profile's `chase_tones` least certain heard tones; and whether an oracle that erased
+//     exactly the misread and unheard tones, no more than the plain tries may (e + s ≤ 4), would
 //     have decoded it: the most any erasure decoder could win back from these readings.
 // Only profiles with hopped frames (`fast`); prints a summary, --json writes it.
 #include <CLI/CLI.hpp>
@@ -34,12 +34,12 @@ using namespace dtmf::bench;
 
 namespace {
 
-constexpr int kCodeTones = 16;                 // a two-chord frame's tones
-constexpr int kDoubted = 6;                    // HopLink::chase_tones
-constexpr int kIdealErasures = 4;              // 6 parity symbols less the 2 a plain try keeps
-constexpr double kLeadMs = 300, kNearMs = 12;  // silence around the frame; "near its start": about a hop
+constexpr int kCodeTones = reliability::kCodeSymbols;  // a two-chord frame's tones
+constexpr double kLeadMs = 300;                        // the noise alone before and after the frame
 
 struct Autopsy {
+  int doubted = 0;       // the profile's chase_tones: the least certain tones the swaps try
+  int max_erasures = 0;  // the profile's: all its parity but the symbols a plain try keeps
   std::uint64_t frames = 0, accepted = 0, no_reading = 0;
   std::map<std::pair<int, int>, std::uint64_t> by_misread_unheard;
   std::uint64_t misread = 0, runner_up_right = 0, among_doubted = 0, oracle_decodes = 0;
@@ -61,12 +61,12 @@ struct Autopsy {
       if (c.tones[t].symbol == sent[t]) continue;
       ++wrong;
       ++misread_by_rank[rank];
-      among_doubted += rank < kDoubted ? 1 : 0;
+      among_doubted += static_cast<int>(rank) < doubted ? 1 : 0;
       runner_up_right += c.tones[t].runner_up == sent[t] ? 1 : 0;
     }
     misread += wrong;
     ++by_misread_unheard[{wrong, unheard}];
-    oracle_decodes += wrong + unheard <= kIdealErasures ? 1 : 0;
+    oracle_decodes += wrong + unheard <= max_erasures ? 1 : 0;
   }
 };
 
@@ -110,6 +110,10 @@ int main(int argc, char** argv) {
         std::mt19937_64 rng(seed);
         GaussianNoise noise(seed);
         Autopsy a;
+        a.doubted = profile.hops.chase_tones;
+        a.max_erasures = profile.hops.max_erasures;
+        // "Near its start": within a hop (the listener's start estimates lie on its hop grid), and 2 ms.
+        const double near_ms = 1000.0 * profile.hops.hop_samples / profile.sample_rate_hz + 2;
         for (std::size_t i = 0; i < frames; ++i) {
           const link::TransmitFrame frame = trials.random_frame(rng);
           std::vector<float> stream(lead + frame.audio.size() + lead, 0.0f);
@@ -127,7 +131,7 @@ int main(int argc, char** argv) {
           const auto sent = reliability::encode_symbols(frame.bits.low64());
           const signal::HopCandidate* best = nullptr;
           for (const auto& c : listener.feed(stream)) {
-            if (c.chords != 2 || std::abs(c.start_ms - kLeadMs) > kNearMs) continue;
+            if (c.chords != 2 || std::abs(c.start_ms - kLeadMs) > near_ms) continue;
             if (!best || errors_of(c, sent) < errors_of(*best, sent)) best = &c;
           }
           if (best)
@@ -147,11 +151,13 @@ int main(int argc, char** argv) {
             "their misread heard tones: %llu; the runner-up was the tone sent for %.0f %%, %.0f %% were among the "
             "%d least certain\n",
             static_cast<unsigned long long>(a.misread), pct(a.runner_up_right, a.misread),
-            pct(a.among_doubted, a.misread), kDoubted);
+            pct(a.among_doubted, a.misread), a.doubted);
         std::printf(
-            "an oracle erasing exactly the misread and unheard tones (2 parity kept) would decode %llu of them: "
+            "an oracle erasing exactly the misread and unheard tones (at most %d, as the plain tries) would decode "
+            "%llu of them: "
             "%.2f %% at most\n",
-            static_cast<unsigned long long>(a.oracle_decodes), pct(a.accepted + a.oracle_decodes, a.frames));
+            a.max_erasures, static_cast<unsigned long long>(a.oracle_decodes),
+            pct(a.accepted + a.oracle_decodes, a.frames));
         nlohmann::json by = nlohmann::json::array();
         for (const auto& [es, n] : a.by_misread_unheard)
           by.push_back({{"misread", es.first}, {"unheard", es.second}, {"frames", n}});
@@ -168,6 +174,8 @@ int main(int argc, char** argv) {
                                {"misread_runner_up_right", a.runner_up_right},
                                {"misread_among_doubted", a.among_doubted},
                                {"misread_by_certainty_rank", a.misread_by_rank},
+                               {"doubted_tones", a.doubted},
+                               {"oracle_max_erasures", a.max_erasures},
                                {"oracle_erasure_decodes", a.oracle_decodes}});
         return 0;
       },
