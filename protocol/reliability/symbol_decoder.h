@@ -45,6 +45,18 @@ struct DecodedSymbols {
 
 inline constexpr int kMaxCodeSymbols = 32;
 
+// Sorts symbol indices by `before`: an insertion sort, stable, and unlike std::stable_sort
+// it allocates nothing (both decoders below run in the robot's receive path).
+template <typename Before>
+void sort_symbols(std::span<int> indices, Before&& before) {
+  for (std::size_t i = 1; i < indices.size(); ++i) {
+    const int v = indices[i];
+    std::size_t j = i;
+    for (; j > 0 && before(v, indices[j - 1]); --j) indices[j] = indices[j - 1];
+    indices[j] = v;
+  }
+}
+
 // `check(data, how)` says whether the data symbols decoded are a frame (`how`: the erasures
 // and corrections it took, which leave 2 * errors + erasures of the parity spent); the data
 // of the first that is stays in `data`.
@@ -56,21 +68,14 @@ std::optional<DecodedSymbols> decode_symbols(std::span<const SymbolReading> read
   std::array<std::uint8_t, kMaxCodeSymbols> received{};
   std::array<int, kMaxCodeSymbols> order{};
   std::iota(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n), 0);
-  // Unheard tones first, then the heard ones from the least certain. An insertion sort:
-  // stable, and unlike std::stable_sort it allocates nothing.
-  const auto before = [&](int a, int b) {
+  // Unheard tones first, then the heard ones from the least certain.
+  sort_symbols(std::span<int>(order.data(), n), [&](int a, int b) {
     const auto& x = readings[static_cast<std::size_t>(a)];
     const auto& y = readings[static_cast<std::size_t>(b)];
     if (x.risen != y.risen) return !x.risen;
     if (x.heard != y.heard) return !x.heard;
     return x.certainty < y.certainty;
-  };
-  for (std::size_t i = 1; i < n; ++i) {
-    const int v = order[i];
-    std::size_t j = i;
-    for (; j > 0 && before(v, order[j - 1]); --j) order[j] = order[j - 1];
-    order[j] = v;
-  }
+  });
   int unheard = 0;
   for (std::size_t i = 0; i < n; ++i) {
     received[i] = readings[i].symbol;
@@ -120,19 +125,15 @@ std::optional<DecodedSymbols> chase_symbols(std::span<const SymbolReading> readi
   const int swap_reserve = reserve + 1;  // over GF(32): 32 times fewer chances for noise a try
   // (More unheard than may be erased: the first of them are, the rest stay as read.)
   const int erased = std::min(unheard, std::min(max_erasures, code.parity() - swap_reserve));
-  // The heard symbols that have a runner-up, least certain first (an insertion sort: it
-  // allocates nothing); the first `doubted` are swapped.
+  // The heard symbols that have a runner-up, least certain first; the first `doubted` are swapped.
   int eligible = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const auto& r = readings[i];
-    if (!r.heard || !r.risen || r.runner_up < 0) continue;
-    int j = eligible++;
-    for (; j > 0 && r.certainty < readings[static_cast<std::size_t>(swaps[static_cast<std::size_t>(j - 1)])].certainty;
-         --j) {
-      swaps[static_cast<std::size_t>(j)] = swaps[static_cast<std::size_t>(j - 1)];
-    }
-    swaps[static_cast<std::size_t>(j)] = static_cast<int>(i);
+    if (r.heard && r.risen && r.runner_up >= 0) swaps[static_cast<std::size_t>(eligible++)] = static_cast<int>(i);
   }
+  sort_symbols(std::span<int>(swaps.data(), static_cast<std::size_t>(eligible)), [&](int a, int b) {
+    return readings[static_cast<std::size_t>(a)].certainty < readings[static_cast<std::size_t>(b)].certainty;
+  });
   const int swappable = std::min(eligible, doubted);
   for (unsigned mask = 1; mask < (1u << swappable); ++mask) {
     for (int k = 0; k < swappable; ++k) {
