@@ -1,5 +1,6 @@
 #include "link/hop_frame_path.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "reliability/command_frame.h"
@@ -11,6 +12,7 @@ namespace dtmf::link {
 HopFramePath::HopFramePath(const LinkProfile& profile, reliability::SealedCheck authentic, bool plain_taken)
     : hops_(profile.hops),
       authentic_(std::move(authentic)),
+      plain_taken_(plain_taken),
       plain_chase_tones_(plain_taken ? profile.hops.chase_tones : 0),
       // Without a key nothing sealed is authentic: runner-up swaps could find nothing the
       // robot may take (a refusal keeps more parity).
@@ -57,7 +59,8 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
   if (const auto nack = gate_.on_time(c.heard_ms)) deliver(*nack, 0);
   // Candidates a cluster's gap apart belong to different frames: each its own budget.
   if (c.heard_ms - last_candidate_ms_ > hops_.cluster_gap_hops * listener_.hop_ms()) checks_ = 0;
-  last_candidate_ms_ = c.heard_ms;
+  // (A whole-chord re-read comes a few hops after its window: it belongs to the same run.)
+  last_candidate_ms_ = std::max(last_candidate_ms_, c.heard_ms);
   std::optional<reliability::FrameBits> bits;
   if (c.chords == 2) {
     if (const auto d = reliability::decode_frame(readings_of<reliability::kCodeSymbols>(c, hops_.clear_certainty),
@@ -98,8 +101,11 @@ bool HopFramePath::shadow_of_accepted(const signal::HopCandidate& c) const {
   return c.start_ms > last_start_ms_ - slack_ms && c.start_ms < last_end_ms_ - slack_ms;
 }
 
-void HopFramePath::none_taken(const signal::HopCandidate& first) {
-  if (shadow_of_accepted(first)) return;
+bool HopFramePath::none_taken(const signal::HopCandidate& first) {
+  if (shadow_of_accepted(first)) return false;
+  // Read again over whole chords only a shape the robot may take: without a key a sealed
+  // frame could only be refused, and a robot refusing plain frames takes no two-chord one.
+  const bool worth_rereading = first.chords == 2 ? plain_taken_ : static_cast<bool>(authentic_);
   // (A cluster already holding an intact frame ends with it whatever this candidate adds.)
   // Only what sounded like a frame — as many tones heard clearly as decoding needs — and still
   // did not decode is a damaged frame to NACK: a seed chord or a whistle that passed the gate is not.
@@ -108,7 +114,7 @@ void HopFramePath::none_taken(const signal::HopCandidate& first) {
   for (std::size_t t = 0; t < first.tone_count(); ++t) {
     clear += first.tones[t].heard && first.tones[t].certainty >= hops_.clear_certainty ? 1 : 0;
   }
-  if (clear < static_cast<int>(first.tone_count()) - max_erasures) return;
+  if (clear < static_cast<int>(first.tone_count()) - max_erasures) return worth_rereading;
   const reliability::FrameBits read =
       first.chords == 2
           ? reliability::FrameBits(
@@ -117,6 +123,7 @@ void HopFramePath::none_taken(const signal::HopCandidate& first) {
   if (const auto verdict = gate_.on_candidate(first.start_ms, first.heard_ms, false, {first.chords, read})) {
     deliver(*verdict, first.offset_ppm);
   }
+  return worth_rereading;
 }
 
 // Most of the candidate's tones rose with their chords (more than the code may erase did not).

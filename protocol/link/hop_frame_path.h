@@ -55,7 +55,7 @@ class HopFramePath final : private signal::CandidateSink {
 
  private:
   bool take(const signal::HopCandidate& candidate) override;
-  void none_taken(const signal::HopCandidate& first) override;
+  bool none_taken(const signal::HopCandidate& first) override;
   void deliver(const reliability::Verdict& verdict, int offset_ppm);
   bool checked_authentic(const reliability::FrameBits& bits);
   bool rose_with_its_chords(const signal::HopCandidate& c) const;
@@ -63,6 +63,7 @@ class HopFramePath final : private signal::CandidateSink {
 
   const HopLink& hops_;
   reliability::SealedCheck authentic_;
+  bool plain_taken_;
   int plain_chase_tones_;              // the profile's chase_tones, or 0 where plain frames are refused
   int sealed_chase_tones_;             // the profile's chase_tones, or 0 without a key
   reliability::SealedCheck budgeted_;  // authentic_ within the per-frame budget

@@ -111,6 +111,12 @@ struct HopLink {
   int sealed_max_erasures = 0;          // ... in an authenticated frame
   int chase_tones = 0;                  // then the least certain tones swapped for their runner-ups
   int max_offset_ppm = 0;               // the frequency offsets (clocks, Doppler) searched for
+  // A candidate no hypothesis decoded, and no frame taken within this many hops after it, is
+  // read again over each chord's whole steady part (signal/whole_chord_reader.h); 0: never.
+  int reread_delay_hops = 0;
+  int reread_step_samples = 0;  // the step of the search for where the chords' steady parts begin
+  int reread_gate_bands = 0;    // a window short of the gate with this many loud bands in every chord
+                                // (and half of all) is re-read without the grid's tries
   // One verdict per frame (reliability/frame_gate.h), in analysis hops.
   double lockout_hops = 0;
   double cluster_gap_hops = 0;

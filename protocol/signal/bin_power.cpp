@@ -13,7 +13,7 @@
 
 namespace dtmf::signal {
 
-BinPower::BinPower(int window_samples, int first_bin, int bins, Weighting weighting)
+BinPower::BinPower(int window_samples, int first_bin, int bins, Weighting weighting, Planning planning)
     : window_samples_(window_samples), first_bin_(first_bin), bins_(bins) {
   if (first_bin < 1 || bins < 1 || first_bin + bins > window_samples / 2) {
     throw std::invalid_argument("bins " + std::to_string(first_bin) + ".." + std::to_string(first_bin + bins) +
@@ -36,6 +36,10 @@ BinPower::BinPower(int window_samples, int first_bin, int bins, Weighting weight
     return fftwf_plan_dft_r2c_1d(window_samples, input_, static_cast<fftwf_complex*>(output_),
                                  flags | FFTW_PRESERVE_INPUT);
   };
+  if (planning == Planning::Estimated) {
+    plan_ = plan(FFTW_ESTIMATE);
+    return;
+  }
   plan_ = plan(FFTW_MEASURE | FFTW_WISDOM_ONLY);
   if (!plan_) {
     plan_ = plan(FFTW_MEASURE);

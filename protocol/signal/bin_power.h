@@ -18,11 +18,15 @@ struct fftwf_plan_s;
 namespace dtmf::signal {
 
 enum class Weighting { Rectangular, Hann };
+// Measured: the fastest plan FFTW finds (kept in its wisdom, fft_wisdom.h), for windows read
+// every hop. Estimated: planned at once, for transforms run only now and then.
+enum class Planning { Measured, Estimated };
 
 class BinPower {
  public:
   // Bins [first_bin, first_bin + bins) of a window of `window_samples`.
-  BinPower(int window_samples, int first_bin, int bins, Weighting weighting = Weighting::Rectangular);
+  BinPower(int window_samples, int first_bin, int bins, Weighting weighting = Weighting::Rectangular,
+           Planning planning = Planning::Measured);
   ~BinPower();
   BinPower(const BinPower&) = delete;
   BinPower& operator=(const BinPower&) = delete;

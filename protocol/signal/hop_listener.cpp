@@ -48,15 +48,21 @@ HopListener::HopListener(const LinkProfile& profile)
               static_cast<std::size_t>(profile.hops.hop_samples)),
       background_(SteadyBackground::for_power(static_cast<std::size_t>(hi_bin_ - lo_bin_),
                                               profile.hops.background_rise_db_per_s,
-                                              static_cast<double>(profile.sample_rate_hz) / profile.hops.hop_samples)) {
+                                              static_cast<double>(profile.sample_rate_hz) / profile.hops.hop_samples)),
+      reread_(profile.hops, lo_bin_, hi_bin_ - lo_bin_, kMaxFrameChords) {
   if (profile.frame_format != FrameFormat::HoppedCommand || hops_.chords_per_frame != 2 ||
       hops_.chord_samples() % hop_ != 0) {
     throw std::invalid_argument("profile '" + profile.name +
                                 "' has no two-chord hopped plan with chords a whole number of hops long");
   }
   const auto bins = static_cast<std::size_t>(hi_bin_ - lo_bin_);
-  ring_.resize(static_cast<std::size_t>(kMaxFrameChords * hops_per_chord_ + 1));
+  // A frame of the most chords and the window a chord before it, for as long as a re-read waits.
+  ring_.resize(static_cast<std::size_t>(kMaxFrameChords * hops_per_chord_ + 1 + hops_.reread_delay_hops));
   for (Window& w : ring_) {
+    w.power.assign(bins, 0.0f);
+    w.excess.assign(bins, 0.0f);
+  }
+  for (ChordPowers& w : reread_windows_) {
     w.power.assign(bins, 0.0f);
     w.excess.assign(bins, 0.0f);
   }
@@ -74,7 +80,7 @@ std::span<const HopCandidate> HopListener::feed(std::span<const float> samples) 
       found.push_back(c);
       return false;
     }
-    void none_taken(const HopCandidate&) override {}
+    bool none_taken(const HopCandidate&) override { return true; }
   } collect(found_);
   found_.clear();
   feed(samples, collect);
@@ -89,6 +95,7 @@ void HopListener::analyze_window(CandidateSink& sink) {
   newest_ = (newest_ + 1) % ring_.size();
   Window& now = ring_[newest_];
   bins_.analyze(window_.window(), now.power);
+  if (hops_.reread_delay_hops > 0) reread_.push(window_.window().last(static_cast<std::size_t>(hop_)));
   // A steady tone (a whine) becomes background within seconds, a chord's tone never does.
   background_.remove_power(now.power, now.excess);
   for (int c = 0; c < 2; ++c) {
@@ -114,6 +121,7 @@ void HopListener::analyze_window(CandidateSink& sink) {
   }
   ++windows_;
   analysed_until_ms_ = 1000.0 * static_cast<double>(window_.samples_fed()) / sample_rate_hz_;
+  if (pending_count_ > 0) reread_pending(sink);
   if (analysed_until_ms_ < hold_until_ms_) return;
   for (int chords = 2; chords <= kMaxFrameChords; ++chords) {
     if (windows_ > (chords - 1) * hops_per_chord_) offer_shape(chords, sink);
@@ -126,7 +134,15 @@ const HopListener::Window& HopListener::chord_window(int chords, int c) const {
 }
 
 void HopListener::offer_shape(int chords, CandidateSink& sink) {
-  if (!gate(chords)) return;
+  const Gate passed = gate(chords);
+  if (passed == Gate::Closed) return;
+  if (passed == Gate::RereadOnly) {
+    // Too weak for the grid's readings to decode, maybe not for the whole chords: the sink
+    // sees the reading (as a failed window) and says whether to read it again.
+    const HopCandidate c = make_candidate(chords, tracked_ppm_.value_or(0));
+    if (sink.none_taken(c)) keep_for_reread(c);
+    return;
+  }
   std::array<int, 3> tried{};
   int count = 0;
   std::optional<HopCandidate> first_candidate;
@@ -138,29 +154,81 @@ void HopListener::offer_shape(int chords, CandidateSink& sink) {
     tried[static_cast<std::size_t>(count++)] = ppm;
     const HopCandidate c = make_candidate(chords, ppm);
     if (!first_candidate) first_candidate = c;
-    return sink.take(c);
+    if (!sink.take(c)) return false;
+    taken_at_sample_ = window_.samples_fed();
+    return true;
   };
   if (tracked_ppm_ && offer(*tracked_ppm_)) return;
   if (offer(0)) return;
   if (offer(blind_offset_ppm(chords))) return;
-  sink.none_taken(*first_candidate);
+  if (sink.none_taken(*first_candidate)) keep_for_reread(*first_candidate);
+}
+
+void HopListener::keep_for_reread(const HopCandidate& first) {
+  if (hops_.reread_delay_hops > 0 && pending_count_ < pending_.size())
+    pending_[pending_count_++] = {first.chords, window_.samples_fed(), first.heard_ms, first.start_ms};
+}
+
+// Pending windows whose delay has passed with no frame taken meanwhile are read again over
+// each chord's whole steady part; a window that a frame was taken in or after is dropped (the
+// frame was its own, or holds the windows after it).
+void HopListener::reread_pending(CandidateSink& sink) {
+  const long long now = window_.samples_fed();
+  const long long delay = static_cast<long long>(hops_.reread_delay_hops) * hop_;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < pending_count_; ++i) {
+    const Pending p = pending_[i];
+    if (taken_at_sample_ >= p.end_sample) continue;
+    if (now - p.end_sample < delay) {
+      pending_[kept++] = p;
+      continue;
+    }
+    // The grid window a chord before the frame's first, as its readings had it.
+    const auto back = static_cast<std::size_t>((now - p.end_sample) / hop_ + p.chords * hops_per_chord_);
+    if (back >= ring_.size()) continue;
+    const Window& before = ring_[(newest_ + ring_.size() - back) % ring_.size()];
+    const auto ppm =
+        reread_.read(now - p.end_sample, p.chords, background_.background_power(), before.power,
+                     std::span<ChordPowers>(reread_windows_).first(static_cast<std::size_t>(p.chords + 1)));
+    if (!ppm) continue;
+    std::array<const ChordPowers*, kMaxFrameChords + 1> windows{};
+    for (int c = 0; c <= p.chords; ++c)
+      windows[static_cast<std::size_t>(c)] = &reread_windows_[static_cast<std::size_t>(c)];
+    // The reader read every bin at the offset already.
+    HopCandidate c = read_candidate(p.chords, 0, std::span(windows).first(static_cast<std::size_t>(p.chords + 1)));
+    c.whole_chords = true;
+    c.offset_ppm = *ppm;
+    for (std::size_t t = 0; t < c.tone_count(); ++t) c.peak_bins[t] *= static_cast<float>(1.0 + *ppm * 1e-6);
+    c.heard_ms = p.heard_ms;
+    c.start_ms = p.start_ms;
+    if (sink.take(c)) taken_at_sample_ = now;
+  }
+  pending_count_ = kept;
 }
 
 // Half or more of each chord's eight bands stand out of their own means: a frame, or something loud
 // and tonal enough in every band set to be worth decoding. A noise band scores 6.2 dB on
 // average (1.5 dB spread), a frame's at -10 dB SNR about 12. Every chord must: one chord's
 // bands loud and the next one's silent is a frame's edge, or the next frame's first chord.
-bool HopListener::gate(int chords) const {
+// Short of that, but with `reread_gate_bands` in every chord and half of all the bands, a
+// window is only worth a whole-chord re-read: at -12 dB a frame's weaker chord misses the gate
+// by a band in 1 % of frames, and the grid's readings of such a window seldom decode.
+HopListener::Gate HopListener::gate(int chords) const {
   // Counted, not summed: two loud tones (a seed chord, a whistle) must not carry a chord
   // whose other bands hold nothing.
+  int weakest = HopLink::kBandsPerChord, total = 0;
   for (int c = 0; c < chords; ++c) {
     const Window& w = chord_window(chords, c);
     int loud = 0;
     for (int b = 0; b < HopLink::kBandsPerChord; ++b)
       loud += w.band_score[static_cast<std::size_t>(tone_index(band_set(c), b))] >= gate_ratio_ ? 1 : 0;
-    if (loud < hops_.gate_bands) return false;
+    weakest = std::min(weakest, loud);
+    total += loud;
   }
-  return true;
+  if (weakest >= hops_.gate_bands) return Gate::Open;
+  const bool reread = hops_.reread_delay_hops > 0 && weakest >= hops_.reread_gate_bands &&
+                      total >= chords * HopLink::kBandsPerChord / 2;
+  return reread ? Gate::RereadOnly : Gate::Closed;
 }
 
 // Every band's peak, to a fraction of a bin (a pure tone at p + d puts power in bins p and
@@ -205,13 +273,29 @@ int HopListener::blind_offset_ppm(int chords) const {
 }
 
 HopCandidate HopListener::make_candidate(int chords, int offset_ppm) {
+  std::array<const ChordPowers*, kMaxFrameChords + 1> windows{};
+  for (int chord = -1; chord < chords; ++chord)
+    windows[static_cast<std::size_t>(chord + 1)] = &chord_window(chords, chord);
+  HopCandidate c = read_candidate(chords, offset_ppm, std::span(windows).first(static_cast<std::size_t>(chords + 1)));
+  const double ms_per_sample = 1000.0 / sample_rate_hz_;
+  c.heard_ms = analysed_until_ms_;
+  // The first chord's window started chords - 1 chords and one window before now; the chord
+  // itself began an edge (and up to a hop) before that window.
+  c.start_ms =
+      c.heard_ms -
+      ((chords - 1) * hops_.chord_samples() + hops_.window_samples + hops_.edge_samples + hop_ / 2.0) * ms_per_sample;
+  return c;
+}
+
+HopCandidate HopListener::read_candidate(int chords, int offset_ppm,
+                                         std::span<const ChordPowers* const> windows) const {
   HopCandidate c;
   c.chords = chords;
   c.offset_ppm = offset_ppm;
   const double scale = 1.0 + offset_ppm * 1e-6;
   for (int chord = 0; chord < chords; ++chord) {
-    const Window& w = chord_window(chords, chord);
-    const Window& before = chord_window(chords, chord - 1);
+    const ChordPowers& w = *windows[static_cast<std::size_t>(chord + 1)];
+    const ChordPowers& before = *windows[static_cast<std::size_t>(chord)];
     const auto set = static_cast<std::size_t>(band_set(chord));
     for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
       const std::size_t t = static_cast<std::size_t>(tone_index(chord, b));
@@ -257,13 +341,6 @@ HopCandidate HopListener::make_candidate(int chords, int offset_ppm) {
       c.peak_bins[t] = static_cast<float>(best_bin) + rectangular_peak_offset(am, a0, ap);
     }
   }
-  const double ms_per_sample = 1000.0 / sample_rate_hz_;
-  c.heard_ms = analysed_until_ms_;
-  // The first chord's window started chords - 1 chords and one window before now; the chord
-  // itself began an edge (and up to a hop) before that window.
-  c.start_ms =
-      c.heard_ms -
-      ((chords - 1) * hops_.chord_samples() + hops_.window_samples + hops_.edge_samples + hop_ / 2.0) * ms_per_sample;
   return c;
 }
 

@@ -22,7 +22,11 @@
 // hypothesis's shifted bins — the offset tracked from the frames decoded before (confirm()), no offset, and an estimate
 // from this candidate's own fractional peak positions — in that order, each built only when the one before did not
 // decode (a sink says so), since most frames decode at the first. While the sink holds the listener (after an accept,
-// the frame's later windows), no candidates are built at all. Times are milliseconds since the first sample fed; the
+// the frame's later windows), no candidates are built at all. A window none of whose hypotheses
+// was taken, when no frame was taken either in the `reread_delay_hops` windows after it (a
+// window a hop early fails where the next one decodes), is read once more over each chord's
+// whole steady part, its start and offset searched afresh (whole_chord_reader.h): 1 dB more per
+// tone, for the frames the grid's windows hear too weakly. Times are milliseconds since the first sample fed; the
 // stream is taken to be preceded by silence. Once constructed, feeding allocates nothing.
 #pragma once
 
@@ -36,6 +40,7 @@
 #include "signal/bin_power.h"
 #include "signal/sliding_window.h"
 #include "signal/steady_background.h"
+#include "signal/whole_chord_reader.h"
 
 namespace dtmf::signal {
 
@@ -55,6 +60,7 @@ struct HopCandidate {
   double start_ms = 0;                              // when the first chord began (within a hop)
   double heard_ms = 0;                              // end of the window inside the last chord
   int offset_ppm = 0;                               // the frequency offset these readings assume
+  bool whole_chords = false;                        // read again over each chord's whole steady part
   std::array<ToneReading, kMaxFrameTones> tones{};  // first chord's bands, then the next chord's
   std::array<float, kMaxFrameTones> peak_bins{};    // each band's peak, in fractional bins (offset tracking)
   std::size_t tone_count() const { return static_cast<std::size_t>(chords * HopLink::kBandsPerChord); }
@@ -66,8 +72,9 @@ class CandidateSink {
   virtual ~CandidateSink() = default;
   // True when the candidate is taken (its frame decoded): no further hypothesis is built.
   virtual bool take(const HopCandidate& candidate) = 0;
-  // No hypothesis of the window was taken; `first` is the first of them.
-  virtual void none_taken(const HopCandidate& first) = 0;
+  // No hypothesis of the window was taken; `first` is the first of them. True when the
+  // window is worth a whole-chord re-read (a frame the sink could take may be in it).
+  virtual bool none_taken(const HopCandidate& first) = 0;
 };
 
 class HopListener {
@@ -90,9 +97,8 @@ class HopListener {
   double hop_ms() const { return 1000.0 * hop_ / sample_rate_hz_; }
 
  private:
-  struct Window {
-    std::vector<float> power;   // raw |X|^2 of bins [lo_bin_, hi_bin_)
-    std::vector<float> excess;  // power over the background
+  // power: raw |X|^2 of bins [lo_bin_, hi_bin_); excess: power over the background.
+  struct Window : ChordPowers {
     // The band's best excess over its mean power, band set s, band b at [s * 8 + b].
     std::array<float, 2 * HopLink::kBandsPerChord> band_score{};
   };
@@ -101,8 +107,21 @@ class HopListener {
   void offer_shape(int chords, CandidateSink& sink);
   // The window inside chord c of a frame of `chords` ending now; c = -1: one chord before it.
   const Window& chord_window(int chords, int c) const;
-  bool gate(int chords) const;
+  enum class Gate { Closed, RereadOnly, Open };
+  Gate gate(int chords) const;
+  void keep_for_reread(const HopCandidate& first);
   HopCandidate make_candidate(int chords, int offset_ppm);
+  // Readings of a frame of `chords` from windows[c + 1] for chord c (windows[0]: a chord
+  // before the frame), taken at the bins of `offset_ppm`.
+  HopCandidate read_candidate(int chords, int offset_ppm, std::span<const ChordPowers* const> windows) const;
+  // A window none of whose hypotheses was taken, kept for a whole-chord re-read.
+  struct Pending {
+    int chords = 2;
+    long long end_sample = 0;  // its window's end
+    double heard_ms = 0;
+    double start_ms = 0;
+  };
+  void reread_pending(CandidateSink& sink);
   int blind_offset_ppm(int chords) const;
   // chord c of a frame, band b -> index into its tones; the band set chord c sounds on
   static int tone_index(int chord, int band) { return chord * HopLink::kBandsPerChord + band; }
@@ -120,15 +139,20 @@ class HopListener {
   BinPower bins_;
   SlidingWindow window_;
   SteadyBackground background_;
-  std::vector<Window> ring_;  // the last kMaxFrameChords * hops_per_chord + 1 windows
+  std::vector<Window> ring_;  // the last kMaxFrameChords * hops_per_chord + 1 + reread_delay_hops windows
   std::size_t newest_ = 0;
   long long windows_ = 0;
   double analysed_until_ms_ = 0;
   std::optional<int> tracked_ppm_;
   double hold_until_ms_ = -1e300;
   std::vector<HopCandidate> found_;
-  std::vector<float> scratch_;  // a band's tones' excess (readings)
-  std::vector<float> floor_;    // ... and their raw power (the floor)
+  WholeChordReader reread_;
+  std::array<ChordPowers, kMaxFrameChords + 1> reread_windows_;
+  std::array<Pending, 8> pending_{};  // two shapes a window: the newest and the delay's windows
+  std::size_t pending_count_ = 0;
+  long long taken_at_sample_ = -1;      // the end of the latest window a candidate was taken in
+  mutable std::vector<float> scratch_;  // a band's tones' excess (readings)
+  mutable std::vector<float> floor_;    // ... and their raw power (the floor)
 };
 
 }  // namespace dtmf::signal

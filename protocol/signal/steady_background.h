@@ -30,6 +30,8 @@ class SteadyBackground {
   std::span<const float> remove(std::span<const float> magnitudes);
   // Writes each bin's excess power over its background to `excess` (as many as `powers`).
   void remove_power(std::span<const float> powers, std::span<float> excess);
+  // Each bin's background power now.
+  std::span<const float> background_power() const { return background_; }
   void reset();
 
  private:

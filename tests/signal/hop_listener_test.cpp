@@ -102,8 +102,12 @@ TEST(HopListener, NoiseAloneSeldomMakesACandidate) {
   for (float& s : noise) s = gauss(rng);
   signal::HopListener listener(p);
   const auto got = candidates(noise, listener);
+  const auto rereads = std::count_if(got.begin(), got.end(), [](const auto& c) { return c.whole_chords; });
   // 20 s is about 1950 windows; each gated window costs a decode, so the gate must hold.
-  EXPECT_LE(got.size(), 6u);
+  EXPECT_LE(got.size() - static_cast<std::size_t>(rereads), 6u);
+  // Failed windows, and windows short of the gate by a band, are read again over whole
+  // chords (about 0.15 ms each): white noise passes for that about once in 200 windows.
+  EXPECT_LE(rereads, 12);
 }
 
 // A chord whose tones carry on into the next chord's time is no frame's first chord: its
@@ -285,6 +289,66 @@ TEST(ReplyCode, NoReplyToneIsASeedAnswerTone) {
     for (int bin : band) {
       for (double seed_hz : {2000.0, 2500.0, 3000.0, 3500.0}) EXPECT_NE(bin * bin_hz, seed_hz);
       EXPECT_LT(bin * bin_hz, 3500.0) << "the top reply tone stays well below the frames' 4 kHz";
+    }
+  }
+}
+
+namespace {
+// A two-chord frame with chord one's tones in only `bands` of its eight bands (tones on grid
+// bins, each chord faded in and out over the plan's edges), in light white noise.
+std::vector<float> frame_with_bands_missing(const signal::HoppedSymbols& sent, int bands, unsigned seed) {
+  const auto chord = static_cast<std::size_t>(p.hops.chord_samples());
+  std::vector<float> audio(3000 + 2 * chord + 9000, 0.0f);
+  for (int c = 0; c < 2; ++c) {
+    for (int b = 0; b < (c == 0 ? 8 : bands); ++b) {
+      const int bin = p.hops.band_first_bin[static_cast<std::size_t>(c)][static_cast<std::size_t>(b)] +
+                      sent[static_cast<std::size_t>(c * 8 + b)];
+      for (std::size_t i = 0; i < chord; ++i) {
+        const std::size_t near = std::min(i, chord - 1 - i);
+        const double fade =
+            near < static_cast<std::size_t>(p.hops.edge_samples)
+                ? 0.5 - 0.5 * std::cos(std::numbers::pi * (static_cast<double>(near) + 0.5) / p.hops.edge_samples)
+                : 1.0;
+        audio[3000 + static_cast<std::size_t>(c) * chord + i] += static_cast<float>(
+            p.hops.tone_amplitude * fade *
+            std::sin(2 * std::numbers::pi * bin * static_cast<double>(i) / p.hops.window_samples + b));
+      }
+    }
+  }
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  for (float& s : audio) s += noise(rng);
+  return audio;
+}
+}  // namespace
+
+// At the frame's own alignment (the grid window wholly inside each chord), three loud bands in
+// chord one (and half of all bands loud) are short of the gate: the grid's readings are not
+// decoded, but the window is read again over whole chords, as a frame at -12 dB whose weaker
+// chord missed the gate by a band is. Two loud bands make nothing there. (Windows astride the
+// chords' edges spread every tone over all bands and pass either way: not looked at here.)
+TEST(HopListener, AWindowABandShortOfTheGateIsOnlyReadAgainOverWholeChords) {
+  signal::HoppedSymbols sent{};
+  for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((13 * t + 2) % 32);
+  const double aligned_ms = (3000.0 + 2 * p.hops.chord_samples() - p.hops.hop_samples) / 48.0;
+  for (const int bands : {3, 2}) {
+    signal::HopListener listener(p);
+    const auto got = candidates(frame_with_bands_missing(sent, bands, 5), listener);
+    int grid = 0, whole = 0, best_right = 0;
+    for (const auto& c : got) {
+      if (c.chords != 2 || std::abs(c.heard_ms - aligned_ms) > 3) continue;
+      (c.whole_chords ? whole : grid) += 1;
+      int right = 0;
+      for (int t = 0; t < 8 + bands; ++t)
+        right += c.tones[static_cast<std::size_t>(t)].symbol == sent[static_cast<std::size_t>(t)];
+      if (c.whole_chords) best_right = std::max(best_right, right);
+    }
+    EXPECT_EQ(grid, 0) << bands << " loud bands in chord one";
+    if (bands == 3) {
+      EXPECT_EQ(whole, 1);
+      EXPECT_EQ(best_right, 11) << "every tone sent, read over whole chords";
+    } else {
+      EXPECT_EQ(whole, 0);
     }
   }
 }

@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <new>
+#include <random>
 
 #include "command/test_sequence.h"
 #include "link/frame_admission.h"
@@ -15,6 +17,7 @@
 #include "link/seed_sender_path.h"
 #include "profile/link_profile.h"
 #include "reliability/reply_code.h"
+#include "signal/hop_listener.h"
 #include "signal/hop_reply.h"
 #include "signal/hop_synthesizer.h"
 #include "signal/synthesizer.h"
@@ -150,4 +153,40 @@ TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFram
     EXPECT_EQ(frames, sent) << "block " << block;
     EXPECT_GE(answers, 17u) << "block " << block;  // a reply's readings: one per window that hears it
   }
+}
+
+// Frames at -12 dB SNR: most windows around them fail, and are read again over whole chords
+// (signal/whole_chord_reader.h) from the listener's history, in its own buffers.
+TEST(ListenerAllocation, WholeChordRereadsAllocateNothing) {
+  const LinkProfile& profile = fast_profile();
+  const auto plain = link::make_link(profile);
+  std::vector<float> audio(9600, 0.0f);
+  double power = 0;
+  std::size_t frame_samples = 0;
+  for (unsigned i = 0; i < 40; ++i) {
+    const auto f = plain->random_frame(900 + i);
+    for (const float s : f.audio) power += static_cast<double>(s) * s;
+    frame_samples += f.audio.size();
+    audio.insert(audio.end(), f.audio.begin(), f.audio.end());
+    audio.resize(audio.size() + 4800, 0.0f);
+  }
+  std::mt19937 rng(4);
+  std::normal_distribution<float> noise(0.0f,
+                                        static_cast<float>(std::sqrt(power / frame_samples * std::pow(10.0, 1.2))));
+  for (float& s : audio) s += noise(rng);
+  // Takes nothing and asks for every re-read: the listener's whole work on each window.
+  struct Count final : signal::CandidateSink {
+    std::size_t grid = 0, whole = 0;
+    bool take(const signal::HopCandidate& c) override {
+      ++(c.whole_chords ? whole : grid);
+      return false;
+    }
+    bool none_taken(const signal::HopCandidate&) override { return true; }
+  } count;
+  signal::HopListener listener(profile);
+  const long before = g_allocations.load();
+  for (std::size_t at = 0; at < audio.size(); at += 480)
+    listener.feed(std::span<const float>(audio).subspan(at, std::min<std::size_t>(480, audio.size() - at)), count);
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GE(count.whole, 40u) << "re-reads ran";
 }
