@@ -1,7 +1,8 @@
 // The fast profile's receive path through the signal and reliability layers, for frames of
 // both shapes: two chords (50 bits, unauthenticated) and three (80 bits, authenticated).
 //
-//   audio -> HopListener (candidates of either shape: tone readings per frequency-offset hypothesis)
+//   audio -> HopListener (candidates of either shape: tone readings per frequency-offset hypothesis,
+//            and a failed window's whole-chord re-read when this path says it could use one)
 //         -> Reed-Solomon + CRC (reliability/frame_code.h, reliability/sealed_frame.h), hypotheses in order
 //         -> FrameGate (one verdict per frame, whatever its shape: accepted once, or one NACK
 //            for a failed cluster; the first two chords of an authenticated frame fail as a

@@ -22,12 +22,15 @@
 // hypothesis's shifted bins — the offset tracked from the frames decoded before (confirm()), no offset, and an estimate
 // from this candidate's own fractional peak positions — in that order, each built only when the one before did not
 // decode (a sink says so), since most frames decode at the first. While the sink holds the listener (after an accept,
-// the frame's later windows), no candidates are built at all. A window none of whose hypotheses
-// was taken, when no frame was taken either in the `reread_delay_hops` windows after it (a
-// window a hop early fails where the next one decodes), is read once more over each chord's
-// whole steady part, its start and offset searched afresh (whole_chord_reader.h): 1 dB more per
-// tone, for the frames the grid's windows hear too weakly. Times are milliseconds since the first sample fed; the
-// stream is taken to be preceded by silence. Once constructed, feeding allocates nothing.
+// the frame's later windows), no candidates are built at all.
+// A window none of whose hypotheses was taken (or one a band short of the gate:
+// `reread_gate_bands`), when the sink asks for it and no frame was taken in the
+// `reread_delay_hops` windows after it (a window a hop early fails where the next one decodes),
+// is read once more over each chord's whole steady part, its start and offset searched afresh
+// (whole_chord_reader.h): 1 dB more per tone, for the frames the grid's windows hear too
+// weakly. It goes to the sink as one more candidate (`whole_chords`), with the times of its
+// window. Times are milliseconds since the first sample fed; the stream is taken to be
+// preceded by silence. Once constructed, feeding allocates nothing.
 #pragma once
 
 #include <array>

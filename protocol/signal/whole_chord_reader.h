@@ -69,6 +69,8 @@ class WholeChordReader {
   void add_steady(long long start, std::span<float> padded) const;
   // The reading FFT's powers of the steady part starting at sample `start`.
   void transform(long long start, std::span<float> power);
+  // The reading FFT's bin for grid bin `bin` at `step` = 4 (1 + offset) quarter bins a bin.
+  std::size_t padded_bin(int bin, float step) const;
   // Grid bin `bin` at the offset `scale` (1 + offset) from the reading FFT's powers, in grid units.
   float grid_power(std::span<const float> power, int bin, double scale) const;
   // The sum over a chord's bands of their strongest tone's power at the offset.
