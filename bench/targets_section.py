@@ -42,18 +42,18 @@ REASONS = {
         "of 1 of 995 328, docs/security.md); the named ACKs "
         "of the unkeyed link, which need 9 of 12, are all heard",
     ("frame success at −12 dB SNR (an aim)", "fast"):
-        "no lost frame was NACKed. Runner-up swaps (Chase over the 6 least certain tones, 63 more tries of a "
-        "failed candidate) and a 4-of-8 gate took it from 75.5 % (2026-11-26) to 88.7 % of 10 000 (2026-11-27); "
-        "with swaps keeping 2 parity symbols for detection, as plain tries do, 92.2 %, and with the gate open as "
-        "well 94.0 %, but every swapped try is a chance for noise to pass the CRC-16, and with 2 kept the "
-        "garbled windows around every frame made a wrong accept 14 times likelier (docs/protocol.md, "
-        "`chase_tones`): they keep 3. At −12 dB a tone's bin stands 8.8 dB over the noise in it (−12 dB, −9.0 dB "
-        "for eight tones sharing the signal, +29.8 dB for 960 bins sharing the noise); 32-ary noncoherent "
-        "detection misreads 12.8 % of tones. Frame by frame (`dtmf-bench-lost`, under the SNR sweep): about 1 % of "
-        "the frames never pass the gate, the rest are lost to their tones, and even an oracle that erased exactly "
-        "the misread and unheard tones (2 parity symbols kept) would decode under 3 in 5 of those: about 95 % at most, from the same "
-        "readings. 99.9 % needs about 2–3 dB more, which only the code or the sound can give: more parity (a "
-        "longer frame), or more energy per tone (longer chords: 1 dB per 26 %)",
+        "no lost frame was NACKed. Three steps took it from 75.5 % (2026-11-26): runner-up swaps and a 4-of-8 "
+        "gate (88.7 % of 10 000), then whole-chord re-reads (2026-11-27, docs/protocol.md `reread_delay_hops`): "
+        "a window that failed is read again over its chords' whole 2412 samples instead of the grid's 1920, "
+        "1 dB more per tone (at −12 dB a tone's bin stood 8.8 dB over the noise in it, and 32-ary noncoherent "
+        "detection misread 12.8 % of tones; now about 7 %), and a window a band short of the gate is re-read "
+        "too. Frame by frame (`dtmf-bench-lost`, under the SNR sweep) the frames still lost are lost to their "
+        "tones, and an oracle erasing exactly the misread and unheard tones of their best reading would win "
+        "back only about half of them: the decoder is near what these readings allow. −11 dB now gives 99.9 %; "
+        "the last 0.5–1 dB at −12 dB must come from the code or the sound (more parity: a longer frame; or "
+        "longer chords: 1 dB per 26 %), or from a decoder that spends more of the parity without making a "
+        "wrong accept likelier (swaps keeping 2 parity symbols took 88.7 → 92.2 % before the re-reads, but made "
+        "a wrong accept 14 times likelier)",
     ("decoder speed, one core (noise / frames)", "fast"):
         "one 1920-point real FFT (FFTW, measured plan) takes 1.65 µs of the 2.05 µs per 10.25 ms hop that "
         "5000 × leaves, and the receiver takes one every hop; the bins' background, the band scores and the "
@@ -61,7 +61,8 @@ REASONS = {
         "(the whole robot's row gives the arithmetic). On frames, each frame's neighbouring windows pass the "
         "gate, fail plain decoding and get the runner-up swaps, up to 63 more decodes under each of 3 offset "
         "hypotheses (1 814 × before the swaps); deferring the swaps until a cluster ends without an accept "
-        "would win part of that back, not built",
+        "would win part of that back, not built. A window that fails is also read again over whole chords "
+        "(about 0.15 ms) two hops later unless a frame was taken meanwhile",
 }
 
 

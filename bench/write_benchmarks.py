@@ -50,7 +50,8 @@ def lost_section(w, profile, d):
     at_most = 100 * (d["accepted"] + d["oracle_erasure_decodes"]) / d["frames"]
     w(f"`{profile}` at {snr} dB, frame by frame (`dtmf-bench-lost`: {count(d['frames'])} frames, each alone in its "
       f"noise): {100 * d['success_rate']:.2f} % accepted. Of the {count(lost)} lost, {count(d['lost_no_reading'])} "
-      f"never made a reading at the gate and {count(read)} were read with errors: {count(misread)} heard tones "
+      f"never made a reading at the gate and {count(read)} were read with errors (the best of the grid's readings "
+      f"and the whole-chord re-reads): {count(misread)} heard tones "
       f"misread besides the unheard; the tone sent was the band's runner-up for "
       f"{pct(d['misread_runner_up_right'], misread)} of them (what the runner-up swaps can mend) and "
       f"{pct(d['misread_among_doubted'], misread)} were among the {d['doubted_tones']} least certain. An oracle "

@@ -3,8 +3,9 @@
 // Each random frame sounds alone in a stream (300 ms of the noise before and after it) at one
 // SNR, defined as dtmf-bench-snr defines it; the robot's receiver (a fresh one per frame) says
 // whether it was accepted. For every lost frame the listener's readings are taken apart
-// against the symbols sent: the two-chord reading near its start (any offset hypothesis) that
-// holds the fewest errors counts (2 × misread + unheard), and the frame is put down to
+// against the symbols sent: the two-chord reading near its start (any offset hypothesis, or a
+// whole-chord re-read) that holds the fewest errors counts (2 × misread + unheard), and the
+// frame is put down to
 //   - the gate: no two-chord reading began within a hop of it;
 //   - its tones: e heard tones misread, s unheard; of the misread ones, how many had the sent
 //     tone as their band's runner-up (what the Chase swaps can mend) and how many were among
