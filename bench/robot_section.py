@@ -21,9 +21,10 @@ REASONS = {
         "FFTs when nothing is there, and none can without losing frames it hears today: at −12 dB a frame adds "
         "11 % to the power of its band (4–17.5 kHz), and one 40 ms window's noise power there spreads by 4.3 % "
         "(one σ over 540 bins), so a skip rule that misses no such frame (3.7 σ) skips about 7 % of noise windows. "
-        "The whole-chord re-reads (2026-11-27: −12 dB 87.9 → 98.5 %) cost about 0.15 ms per window that fails, "
-        "about one every 200 windows of white noise and one a frame that follows a gap (the window astride its "
-        "first chord's start); on frames that is a few hundred × of the figure",
+        "The whole-chord re-reads (2026-11-27: −12 dB 87.9 → 98.5 %) cost about 0.12 ms each: one every 270 "
+        "windows of white noise, about one in ten `fast` frames that follow a gap (the window astride the first "
+        "chord's start), and about two a second of `seed` chords, whose edges pass the fast gate; on the mixed "
+        "frames of this row that is about a third of the CPU",
     "ear":
         "as for the robot, the FFTs alone: `fast`'s answer ear takes one 1536-point Hann FFT per 4.25 ms hop "
         "(1.25 µs: 3.0 µs per 10.25 ms) and the seed's a 4096-point spectrum per 50 ms (0.96 µs per 10.25 ms), "
