@@ -103,7 +103,8 @@ TEST_P(WholeChordReaderOffset, FindsTheChordsAndTheOffsetAndReadsEveryTone) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Ppm, WholeChordReaderOffset, ::testing::Values(-3000.0, -1200.0, 0.0, 2000.0));
+INSTANTIATE_TEST_SUITE_P(Ppm, WholeChordReaderOffset,
+                         ::testing::Values(-3000.0, -1200.0, -600.0, 0.0, 400.0, 700.0, 2000.0));
 
 // 1 dB more per tone: at -12 dB SNR the grid's window inside each chord misreads 12.8 % of
 // tones (32-ary noncoherent detection at 8.8 dB per bin), the whole chord about 6 % with its
