@@ -7,12 +7,14 @@
 // its bin, and at -12 dB SNR that halves the tones misread (32-ary noncoherent detection:
 // 12.8 % -> 6.0 %). Two things the grid knows only roughly are searched for:
 //   - where the chords' steady parts begin: the grid window lies somewhere inside its chord,
-//     so over that hop, in steps of `reread_step_samples`, for the most power in the bands'
-//     strongest tones;
-//   - the frequency offset (clocks, Doppler): over the whole ±max_offset_ppm in steps of
-//     kOffsetStepPpm, the same way. Over 50 ms a tone read 6 Hz off loses 1.5 dB, more than
-//     the re-read gains, and the offset tracked from earlier frames scatters by several
-//     hundred ppm at -12 dB; trying an offset costs no transform, only reads.
+//     so over that hop, for the most power in the bands' strongest half bins, in steps of four
+//     `reread_step_samples` and then of one around the best (all chords summed into one
+//     2 W-point transform: their bands are disjoint);
+//   - the frequency offset (clocks, Doppler): over the whole ±max_offset_ppm, in steps of
+//     250 ppm and then of 50 around the best, for the most power in the bands' strongest
+//     tones; none unless another reads 0.2 dB more. Over 50 ms a tone read 6 Hz off loses
+//     1.5 dB, more than the re-read gains, and the offset tracked from earlier frames scatters
+//     by several hundred ppm at -12 dB; trying an offset costs no transform, only reads.
 //
 // How: the W + hop samples, zero-padded to 4 W, go through one FFT, so every grid bin (a tone
 // spacing) is every fourth bin and an offset moves a tone by quarter bins; grid bin k at an
