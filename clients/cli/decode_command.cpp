@@ -1,9 +1,12 @@
 // dtmfctl decode: a recording through the robot's receive path, printing every frame heard;
 // with --replies, through the sender's ear instead, printing every ACK and NACK heard.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <span>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -34,6 +37,21 @@ std::unique_ptr<link::Link> decode_link(const DecodeOptions& o) {
   return link::make_link(profile_by_name(o.profile), options);
 }
 
+// Feeds the recording, block by block, then a second of silence: a recording may stop as its
+// last frame or answer does, but a robot or a sender would go on listening (a failed frame's
+// NACK waits for its cluster to settle, 13 hops; a whole-chord re-read comes two hops after
+// its window), so every verdict gets its time.
+template <class Feed>
+void feed_recording(physical::WavFileSource& source, std::vector<float>& block, int sample_rate_hz, Feed&& feed) {
+  while (const std::size_t got = source.read(block)) feed(std::span<const float>(block.data(), got));
+  std::fill(block.begin(), block.end(), 0.0f);
+  for (std::size_t left = static_cast<std::size_t>(sample_rate_hz); left > 0;) {
+    const std::size_t n = std::min(block.size(), left);
+    feed(std::span<const float>(block.data(), n));
+    left -= n;
+  }
+}
+
 // The recording through the profile's receive path; prints every verdict, then (unless
 // --json) the count.
 int run_decode(const DecodeOptions& o) {
@@ -44,8 +62,8 @@ int run_decode(const DecodeOptions& o) {
   const auto receiver = link.receiver();
   std::vector<float> block(static_cast<std::size_t>(link.receiver_block_samples()) * 8);
   int frames = 0, intact = 0, authenticated = 0, refused = 0;
-  while (const std::size_t got = source.read(block)) {
-    for (const link::Reception& r : receiver->feed(std::span<const float>(block.data(), got))) {
+  const auto print = [&](std::span<const link::Reception> heard) {
+    for (const link::Reception& r : heard) {
       ++frames;
       intact += r.intact ? 1 : 0;
       authenticated += r.authenticated ? 1 : 0;
@@ -55,7 +73,8 @@ int run_decode(const DecodeOptions& o) {
       else
         std::printf("%s\n", reception_line(r).c_str());
     }
-  }
+  };
+  feed_recording(source, block, profile.sample_rate_hz, [&](std::span<const float> b) { print(receiver->feed(b)); });
   if (!o.json) {
     std::printf("%s: %d frame%s heard, %d intact, %d failed the check (profile %s)\n", source.describe().c_str(),
                 frames, frames == 1 ? "" : "s", intact, frames - intact, profile.name.c_str());
@@ -77,8 +96,8 @@ int run_decode_replies(const DecodeOptions& o) {
   const auto ear = link.answer_listener();
   std::vector<float> block(static_cast<std::size_t>(link.answer_block_samples()));
   int acks = 0, nacks = 0;
-  while (const std::size_t got = source.read(block)) {
-    for (const link::Answer& a : ear->feed(std::span<const float>(block.data(), got))) {
+  feed_recording(source, block, profile.sample_rate_hz, [&](std::span<const float> b) {
+    for (const link::Answer& a : ear->feed(b)) {
       (a.ack ? acks : nacks) += 1;
       // A tagged ACK's tag, when all its tones were heard (the sender checks 11 of 12 against
       // the tag it waits for; offline there is no frame to wait for).
@@ -95,7 +114,7 @@ int run_decode_replies(const DecodeOptions& o) {
                     tag >= 0 ? (" tag " + std::to_string(tag)).c_str() : "");
       }
     }
-  }
+  });
   if (!o.json) {
     std::printf("%s: %d ACK%s, %d NACK%s heard (profile %s)\n", source.describe().c_str(), acks, acks == 1 ? "" : "s",
                 nacks, nacks == 1 ? "" : "s", profile.name.c_str());

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "physical/wav_file.h"
 #include "support/run_command.h"
 
 namespace fs = std::filesystem;
@@ -82,6 +83,37 @@ TEST_F(Dtmfctl, TheFastProfileEncodesAWholeCommandPerFrameAndDecodesItBackThroug
   const Result word = run("encode --profile fast --word 5");
   EXPECT_EQ(word.exit_code, 2);
   EXPECT_NE(word.out.find("sends whole commands, not words"), std::string::npos) << word.out;
+}
+
+// A recording that stops 100 ms after a damaged frame (as `encode` leaves it) still gets the
+// frame's verdict: the robot would have gone on listening, and its NACK comes 133 ms after the
+// frame's first failed window. The frame: one command's first chord, another's second.
+TEST_F(Dtmfctl, ADamagedFrameAtTheEndOfARecordingIsStillReported) {
+  ASSERT_EQ(run("encode --profile fast --wav " + path("a.wav") + " drive --speed 50 --duration 2").exit_code, 0);
+  ASSERT_EQ(run("encode --profile fast --wav " + path("b.wav") + " turn --rotation 30").exit_code, 0);
+  const auto read = [&](const std::string& name) {
+    dtmf::physical::WavFileSource source(path(name), 48000);
+    std::vector<float> audio, block(4096);
+    while (const std::size_t got = source.read(block)) audio.insert(audio.end(), block.begin(), block.begin() + got);
+    return audio;
+  };
+  const std::vector<float> a = read("a.wav"), b = read("b.wav");
+  constexpr std::size_t kChord = 2460, kFrame = 2 * kChord, kAfter = 4800;
+  ASSERT_EQ(a.size(), kFrame + kAfter) << "one frame, then the 100 ms encode leaves for the ACK";
+  ASSERT_EQ(b.size(), a.size());
+  std::vector<float> spliced(a.begin(), a.begin() + kChord);
+  spliced.insert(spliced.end(), b.begin() + kChord, b.end());
+  dtmf::physical::write_wav_file(path("c.wav"), spliced, 48000);
+  const Result dec = run("decode --profile fast --json " + path("c.wav"));
+  ASSERT_EQ(dec.exit_code, 0) << dec.out;
+  const auto heard = json_lines(dec.out);
+  ASSERT_EQ(heard.size(), 1u) << dec.out;
+  EXPECT_FALSE(heard[0]["crc_ok"].get<bool>()) << dec.out;
+  // The clean frame, cut the same way, is heard intact and once.
+  const Result clean = run("decode --profile fast --json " + path("a.wav"));
+  const auto intact = json_lines(clean.out);
+  ASSERT_EQ(intact.size(), 1u) << clean.out;
+  EXPECT_TRUE(intact[0]["crc_ok"].get<bool>());
 }
 
 TEST_F(Dtmfctl, SimulatedDistanceAndNoiseStillDecode) {
