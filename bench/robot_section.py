@@ -22,8 +22,9 @@ REASONS = {
         "11 % to the power of its band (4–17.5 kHz), and one 40 ms window's noise power there spreads by 4.3 % "
         "(one σ over 540 bins), so a skip rule that misses no such frame (3.7 σ) skips about 7 % of noise windows. "
         "The whole-chord re-reads (2026-11-27: −12 dB 87.9 → 98.5 %) cost about 0.12 ms each: one every 270 "
-        "windows of white noise, about one in ten `fast` frames that follow a gap (the window astride the first "
-        "chord's start), and about two a second of `seed` chords, whose edges pass the fast gate; on the mixed "
+        "windows of white noise, one for every two to ten `fast` frames that follow a gap (by the noise: the "
+        "window astride the first chord's start spreads it over every band, and the gap's noise fills the other "
+        "chord's three), and about two a second of `seed` chords, whose edges pass the fast gate; on the mixed "
         "frames of this row that is about a third of the CPU",
     "ear":
         "as for the robot, the FFTs alone: `fast`'s answer ear takes one 1536-point Hann FFT per 4.25 ms hop "
