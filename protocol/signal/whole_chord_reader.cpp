@@ -8,11 +8,10 @@
 namespace dtmf::signal {
 
 namespace {
-constexpr int kPadding = 4;           // the reading FFT is kPadding * W points: quarter-bin steps
-constexpr int kSearchPadding = 2;     // the start search's FFT: half bins, at half the cost
-constexpr int kSearchMarginBins = 3;  // a band's tones moved by the largest offset (2.1 bins at 17.5 kHz)
-constexpr int kCoarseSteps = 4;       // the start search's coarse step, in reread_step_samples
-constexpr int kOffsetStepPpm = 50;    // a sixth of a quarter bin at 17.5 kHz
+constexpr int kPadding = 4;         // the reading FFT is kPadding * W points: quarter-bin steps
+constexpr int kSearchPadding = 2;   // the start search's FFT: half bins, at half the cost
+constexpr int kCoarseSteps = 4;     // the start search's coarse step, in reread_step_samples
+constexpr int kOffsetStepPpm = 50;  // a sixth of a quarter bin at 17.5 kHz
 constexpr int kCoarseOffsetPpm = 250;
 constexpr float kOffsetMargin = 1.05f;  // 0.2 dB
 }  // namespace
@@ -25,6 +24,12 @@ WholeChordReader::WholeChordReader(const HopLink& hops, int lo_bin, int bins, in
       first_padded_bin_(static_cast<std::size_t>(
           std::max(1.0, std::floor(kPadding * lo_bin * (1.0 - hops.max_offset_ppm * 1e-6)) - 2))),
       first_search_bin_(static_cast<std::size_t>(kSearchPadding * lo_bin)),
+      // How far the largest offset moves the top band's last tone (2.1 bins at 17.5 kHz).
+      search_margin_bins_([&] {
+        int top = 0;
+        for (const auto& set : hops.band_first_bin) top = std::max(top, *std::max_element(set.begin(), set.end()));
+        return static_cast<int>(std::ceil((top + hops.tones_per_band) * hops.max_offset_ppm * 1e-6));
+      }()),
       unit_(static_cast<float>(std::pow(static_cast<double>(hops.window_samples) / steady_samples_, 2))),
       fft_(kPadding * hops.window_samples, static_cast<int>(first_padded_bin_),
            static_cast<int>(std::ceil(kPadding * (lo_bin + bins) * (1.0 + hops.max_offset_ppm * 1e-6))) + 2 -
@@ -108,8 +113,8 @@ float WholeChordReader::start_score(long long start, int chords) {
   float score = 0;
   for (int set = 0; set < std::min(chords, 2); ++set) {
     for (const int first : hops_.band_first_bin[static_cast<std::size_t>(set)]) {
-      const auto lo = static_cast<std::size_t>(kSearchPadding * (first - kSearchMarginBins)) - first_search_bin_;
-      const auto hi = static_cast<std::size_t>(kSearchPadding * (first + hops_.tones_per_band + kSearchMarginBins)) -
+      const auto lo = static_cast<std::size_t>(kSearchPadding * (first - search_margin_bins_)) - first_search_bin_;
+      const auto hi = static_cast<std::size_t>(kSearchPadding * (first + hops_.tones_per_band + search_margin_bins_)) -
                       first_search_bin_;
       score += *std::max_element(search_power_.begin() + static_cast<std::ptrdiff_t>(lo),
                                  search_power_.begin() + static_cast<std::ptrdiff_t>(hi));

@@ -86,6 +86,7 @@ class WholeChordReader {
   int steady_samples_;  // W + hop
   std::size_t first_padded_bin_;
   std::size_t first_search_bin_;
+  int search_margin_bins_;      // either side of a band, for tones the largest offset moves
   float unit_;                  // (W / (W + hop))^2
   BinPower fft_;                // 4 W points: the readings
   BinPower search_fft_;         // 2 W points: the start search
