@@ -166,7 +166,7 @@ void HopListener::offer_shape(int chords, CandidateSink& sink) {
 
 void HopListener::keep_for_reread(const HopCandidate& first) {
   if (hops_.reread_delay_hops > 0 && pending_count_ < pending_.size())
-    pending_[pending_count_++] = {first.chords, window_.samples_fed(), first.heard_ms, first.start_ms};
+    pending_[pending_count_++] = {first.chords, window_.samples_fed()};
 }
 
 // Pending windows whose delay has passed with no frame taken meanwhile are read again over
@@ -187,20 +187,23 @@ void HopListener::reread_pending(CandidateSink& sink) {
     const auto back = static_cast<std::size_t>((now - p.end_sample) / hop_ + p.chords * hops_per_chord_);
     if (back >= ring_.size()) continue;
     const Window& before = ring_[(newest_ + ring_.size() - back) % ring_.size()];
-    const auto ppm =
+    const auto fit =
         reread_.read(now - p.end_sample, p.chords, background_.background_power(), before.power,
                      std::span<ChordPowers>(reread_windows_).first(static_cast<std::size_t>(p.chords + 1)));
-    if (!ppm) continue;
+    if (!fit) continue;
     std::array<const ChordPowers*, kMaxFrameChords + 1> windows{};
     for (int c = 0; c <= p.chords; ++c)
       windows[static_cast<std::size_t>(c)] = &reread_windows_[static_cast<std::size_t>(c)];
     // The reader read every bin at the offset already.
     HopCandidate c = read_candidate(p.chords, 0, std::span(windows).first(static_cast<std::size_t>(p.chords + 1)));
     c.whole_chords = true;
-    c.offset_ppm = *ppm;
-    for (std::size_t t = 0; t < c.tone_count(); ++t) c.peak_bins[t] *= static_cast<float>(1.0 + *ppm * 1e-6);
-    c.heard_ms = p.heard_ms;
-    c.start_ms = p.start_ms;
+    c.offset_ppm = fit->offset_ppm;
+    for (std::size_t t = 0; t < c.tone_count(); ++t) c.peak_bins[t] *= static_cast<float>(1.0 + fit->offset_ppm * 1e-6);
+    // Heard now, when the robot can act on it; begun where the re-read found the first chord
+    // (its fade before its steady part), closer than the grid's half a hop.
+    c.heard_ms = analysed_until_ms_;
+    c.start_ms =
+        analysed_until_ms_ - static_cast<double>(fit->steady_start_age + hops_.edge_samples) * 1000.0 / sample_rate_hz_;
     if (sink.take(c)) taken_at_sample_ = now;
   }
   pending_count_ = kept;

@@ -60,8 +60,8 @@ struct ToneReading {
 
 struct HopCandidate {
   int chords = 2;                                   // the frame shape: 2 chords, or 3 (authenticated)
-  double start_ms = 0;                              // when the first chord began (within a hop)
-  double heard_ms = 0;                              // end of the window inside the last chord
+  double start_ms = 0;                              // when the first chord began (within a hop; a re-read: 1 ms)
+  double heard_ms = 0;                              // end of the window in the last chord; a re-read's: when read
   int offset_ppm = 0;                               // the frequency offset these readings assume
   bool whole_chords = false;                        // read again over each chord's whole steady part
   std::array<ToneReading, kMaxFrameTones> tones{};  // first chord's bands, then the next chord's
@@ -121,8 +121,6 @@ class HopListener {
   struct Pending {
     int chords = 2;
     long long end_sample = 0;  // its window's end
-    double heard_ms = 0;
-    double start_ms = 0;
   };
   void reread_pending(CandidateSink& sink);
   int blind_offset_ppm(int chords) const;

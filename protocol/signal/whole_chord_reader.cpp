@@ -123,8 +123,8 @@ float WholeChordReader::start_score(long long start, int chords) {
   return score;
 }
 
-std::optional<int> WholeChordReader::read(long long age, int chords, std::span<const float> background,
-                                          std::span<const float> before, std::span<ChordPowers> out) {
+std::optional<WholeChordFit> WholeChordReader::read(long long age, int chords, std::span<const float> background,
+                                                    std::span<const float> before, std::span<ChordPowers> out) {
   const long long newest_end = static_cast<long long>(written_);
   const long long chord = hops_.chord_samples();
   const long long hop = hops_.hop_samples;
@@ -198,7 +198,7 @@ std::optional<int> WholeChordReader::read(long long age, int chords, std::span<c
       o.excess[static_cast<std::size_t>(i)] = std::max(0.0f, p - background[at]);
     }
   }
-  return offset_ppm;
+  return WholeChordFit{offset_ppm, newest_end - start};
 }
 
 }  // namespace dtmf::signal

@@ -43,6 +43,13 @@ struct ChordPowers {
   std::vector<float> excess;
 };
 
+// What a re-read found besides the bins: the offset it read them at, and where the first
+// chord's steady part began.
+struct WholeChordFit {
+  int offset_ppm = 0;
+  long long steady_start_age = 0;  // samples before the newest pushed
+};
+
 class WholeChordReader {
  public:
   // The grid's bins [lo_bin, lo_bin + bins), as the frame listener analyses them, for frames
@@ -58,10 +65,10 @@ class WholeChordReader {
   // window's powers a chord before the frame's first grid window (onsets are measured against
   // it, as the grid's readings are: a tone that was there before the frame holds its level
   // wherever the re-read finds the chord to start). `background` is the grid's steady
-  // background per bin. Returns the offset in ppm, or nothing when the history no longer
-  // holds the frame.
-  std::optional<int> read(long long age, int chords, std::span<const float> background, std::span<const float> before,
-                          std::span<ChordPowers> out);
+  // background per bin. Returns the offset and the steady start found, or nothing when the
+  // history no longer holds the frame.
+  std::optional<WholeChordFit> read(long long age, int chords, std::span<const float> background,
+                                    std::span<const float> before, std::span<ChordPowers> out);
 
   // How far back the history reaches, in samples.
   long long history_samples() const { return static_cast<long long>(history_.size()); }

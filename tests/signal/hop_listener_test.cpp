@@ -121,11 +121,19 @@ TEST(HopListener, AToneThatDoesNotStartWithItsChordIsNotHeard) {
   audio.insert(audio.end(), frame.begin(), frame.end());
   signal::HopListener listener(p);
   const auto got = candidates(with_silence(audio, 3000, 6000), listener);
-  // The frame's own alignment: its second chord's inner window ends about here.
+  // The frame's own alignment: its second chord's inner window ends about here, and the frame
+  // began here. A whole-chord re-read is heard a few hops after its window but knows where the
+  // frame began: those that found it within half a hop. (One of a window a hop late, its search
+  // clamped to that hop, finds it 10 ms late, where its onset reference straddles both copies.)
   const double aligned_ms = (3000.0 + 2 * p.hops.chord_samples() + p.hops.edge_samples + p.hops.window_samples) / 48.0;
-  int checked = 0;
+  const double begun_ms = (3000.0 + p.hops.chord_samples()) / 48.0;
+  int checked = 0, rereads = 0;
   for (const auto& c : got) {
-    if (c.chords != 2 || std::abs(c.heard_ms - aligned_ms) > 15) continue;
+    if (c.chords != 2) continue;
+    if (c.whole_chords ? std::abs(c.start_ms - begun_ms) > p.hops.hop_samples / 96.0
+                       : std::abs(c.heard_ms - aligned_ms) > 15)
+      continue;
+    rereads += c.whole_chords;
     ++checked;
     int first_chord_heard = 0;
     for (int b = 0; b < 8; ++b)
@@ -134,6 +142,7 @@ TEST(HopListener, AToneThatDoesNotStartWithItsChordIsNotHeard) {
     EXPECT_LE(first_chord_heard, 0) << "at " << c.heard_ms << " ms";
   }
   EXPECT_GT(checked, 0) << "no candidate at the frame's alignment to check";
+  EXPECT_GT(rereads, 0) << "no whole-chord re-read at the frame's alignment to check";
 }
 
 // A whine 6 dB over a tone, right on a tone of the plan: the background takes it, the symbol
@@ -171,8 +180,8 @@ TEST_P(HopListenerOffset, TheBlindOffsetEstimateReadsEverySymbolAndConfirmTracks
   for (const auto& c : got) {
     int right = 0;
     for (std::size_t t = 0; t < sent.size(); ++t) right += c.tones[t].symbol == sent[t];
-    // Of the candidates nearest the alignment, the hypothesis that reads the frame.
-    if (std::abs(c.heard_ms - aligned_ms) <= 6 && right > right_aligned) {
+    // Of the grid's candidates nearest the alignment, the hypothesis that reads the frame.
+    if (!c.whole_chords && std::abs(c.heard_ms - aligned_ms) <= 6 && right > right_aligned) {
       right_aligned = right;
       aligned = &c;
     }
@@ -331,12 +340,19 @@ TEST(HopListener, AWindowABandShortOfTheGateIsOnlyReadAgainOverWholeChords) {
   signal::HoppedSymbols sent{};
   for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((13 * t + 2) % 32);
   const double aligned_ms = (3000.0 + 2 * p.hops.chord_samples() - p.hops.hop_samples) / 48.0;
+  // A re-read is heard when it is made, its delay after the window; and it knows where the
+  // frame began (sample 3000) closer than the grid's half a hop.
+  const double reread_ms = aligned_ms + p.hops.reread_delay_hops * p.hops.hop_samples / 48.0;
   for (const int bands : {3, 2}) {
     signal::HopListener listener(p);
     const auto got = candidates(frame_with_bands_missing(sent, bands, 5), listener);
     int grid = 0, whole = 0, best_right = 0;
     for (const auto& c : got) {
-      if (c.chords != 2 || std::abs(c.heard_ms - aligned_ms) > 3) continue;
+      if (c.chords != 2) continue;
+      if (std::abs(c.heard_ms - (c.whole_chords ? reread_ms : aligned_ms)) > 3) continue;
+      if (c.whole_chords) {
+        EXPECT_NEAR(c.start_ms, 3000.0 / 48.0, p.hops.reread_step_samples / 48.0);
+      }
       (c.whole_chords ? whole : grid) += 1;
       int right = 0;
       for (int t = 0; t < 8 + bands; ++t)

@@ -39,7 +39,8 @@ long long last_window_end(long long start) {
 
 struct Read {
   std::array<signal::ChordPowers, 3> chords;
-  std::optional<int> offset_ppm;
+  std::optional<signal::WholeChordFit> fit;
+  long long steady_start = 0;  // the stream's sample where the fit found the first chord's steady part
 };
 
 // Pushes `audio` up to the frame's last grid window and the re-read's delay, then reads.
@@ -55,7 +56,8 @@ Read reread(const std::vector<float>& audio, long long frame_start) {
     c.excess.assign(kBins, 0.0f);
   }
   const std::vector<float> none(kBins, 0.0f);
-  r.offset_ppm = reader.read(pushed - end, 2, none, none, std::span(r.chords).first(3));
+  r.fit = reader.read(pushed - end, 2, none, none, std::span(r.chords).first(3));
+  if (r.fit) r.steady_start = pushed - r.fit->steady_start_age;
   return r;
 }
 
@@ -84,9 +86,13 @@ TEST_P(WholeChordReaderOffset, FindsTheChordsAndTheOffsetAndReadsEveryTone) {
     audio.insert(audio.end(), frame.begin(), frame.end());
     audio.resize(audio.size() + 6000, 0.0f);
     channel.process(audio, heard);
-    const Read r = reread(heard, start);
-    ASSERT_TRUE(r.offset_ppm);
-    EXPECT_NEAR(*r.offset_ppm, GetParam(), 150) << "frame " << k;
+    // The metre from the loudspeaker delays the frame by 140 samples (1 m / 343 m/s at 48 kHz).
+    const long long heard_start = start + std::lround(p.sample_rate_hz / 343.0);
+    const Read r = reread(heard, heard_start);
+    ASSERT_TRUE(r.fit);
+    EXPECT_NEAR(r.fit->offset_ppm, GetParam(), 150) << "frame " << k;
+    // Where the robot logs the frame as begun: within a search step of its steady part.
+    EXPECT_NEAR(r.steady_start, heard_start + h.edge_samples, h.reread_step_samples) << "frame " << k;
     const double tone_power = std::pow(h.tone_amplitude * h.window_samples / 2, 2);
     for (int c = 0; c < 2; ++c) {
       for (int b = 0; b < 8; ++b) {
@@ -128,7 +134,7 @@ TEST(WholeChordReader, AtMinusTwelveDbItMisreadsAboutHalfAsManyTonesAsTheGrid) {
     std::normal_distribution<float> noise(0.0f, static_cast<float>(std::sqrt(power / units::power_ratio_from_db(-12))));
     for (float& s : audio) s += noise(rng);
     const Read r = reread(audio, start);
-    ASSERT_TRUE(r.offset_ppm);
+    ASSERT_TRUE(r.fit);
     const long long end = last_window_end(start);
     for (int c = 0; c < 2; ++c) {
       const long long window_end = end - (1 - c) * h.chord_samples();
