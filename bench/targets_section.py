@@ -54,7 +54,10 @@ REASONS = {
         "the last 0.5–1 dB at −12 dB must come from the code or the sound (more parity: a longer frame; or "
         "longer chords: 1 dB per 26 %), or from a decoder that spends more of the parity without making a "
         "wrong accept likelier (swaps keeping 2 parity symbols took 88.7 → 92.2 % before the re-reads, but made "
-        "a wrong accept 14 times likelier)",
+        "a wrong accept 14 times likelier). Longer chords were measured (2026-11-27, docs/protocol.md "
+        "`hop_samples`): 61.5 ms chords heard 99.35 % of 10 000 at −12 dB, still short, and put the "
+        "authenticated frame at 184.5 ms, over its 160 ms target; three chords in 160 ms leave at most 1.2 dB "
+        "over the grid window, so this tone plan cannot meet both",
     ("decoder speed, one core (noise / frames)", "fast"):
         "one 1920-point real FFT (FFTW, measured plan) takes 1.65 µs of the 2.05 µs per 10.25 ms hop that "
         "5000 × leaves, and the receiver takes one every hop; the bins' background, the band scores and the "
