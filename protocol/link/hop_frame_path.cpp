@@ -62,15 +62,19 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
   // (A whole-chord re-read comes a few hops after its window: it belongs to the same run.)
   last_candidate_ms_ = std::max(last_candidate_ms_, c.heard_ms);
   std::optional<reliability::FrameBits> bits;
+  // Runner-up swaps (up to 63 more decodes a hypothesis) only at a second look: a clean
+  // frame's window a hop early fails its plain tries, and the next window decodes plainly.
+  // (A profile without second looks swaps at once.)
+  const bool swaps = c.second_look || hops_.reread_delay_hops == 0;
   if (c.chords == 2) {
     if (const auto d = reliability::decode_frame(readings_of<reliability::kCodeSymbols>(c, hops_.clear_certainty),
-                                                 hops_.max_erasures, plain_chase_tones_)) {
+                                                 hops_.max_erasures, swaps ? plain_chase_tones_ : 0)) {
       bits = d->bits;
       listener_.confirm(c, reliability::encode_symbols(d->bits));
     }
   } else {
     const auto d = reliability::decode_sealed(readings_of<reliability::kSealedSymbols>(c, hops_.clear_certainty),
-                                              hops_.sealed_max_erasures, budgeted_, sealed_chase_tones_);
+                                              hops_.sealed_max_erasures, budgeted_, swaps ? sealed_chase_tones_ : 0);
     if (d.authentic) {
       bits = d.authentic->bits;
       listener_.confirm(c, reliability::encode_sealed_symbols(d.authentic->bits));

@@ -2,8 +2,9 @@
 // both shapes: two chords (50 bits, unauthenticated) and three (80 bits, authenticated).
 //
 //   audio -> HopListener (candidates of either shape: tone readings per frequency-offset hypothesis,
-//            and a failed window's whole-chord re-read when this path says it could use one)
-//         -> Reed-Solomon + CRC (reliability/frame_code.h, reliability/sealed_frame.h), hypotheses in order
+//            and a failed window's second look when this path says it could use one)
+//         -> Reed-Solomon + CRC (reliability/frame_code.h, reliability/sealed_frame.h), hypotheses in order;
+//            runner-up swaps only at a second look (a clean frame's next window decodes plainly)
 //         -> FrameGate (one verdict per frame, whatever its shape: accepted once, or one NACK
 //            for a failed cluster; the first two chords of an authenticated frame fail as a
 //            two-chord frame and belong to its cluster)

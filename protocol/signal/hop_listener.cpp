@@ -121,11 +121,13 @@ void HopListener::analyze_window(CandidateSink& sink) {
   }
   ++windows_;
   analysed_until_ms_ = 1000.0 * static_cast<double>(window_.samples_fed()) / sample_rate_hz_;
-  if (pending_count_ > 0) reread_pending(sink);
-  if (analysed_until_ms_ < hold_until_ms_) return;
-  for (int chords = 2; chords <= kMaxFrameChords; ++chords) {
-    if (windows_ > (chords - 1) * hops_per_chord_) offer_shape(chords, sink);
+  if (analysed_until_ms_ >= hold_until_ms_) {
+    for (int chords = 2; chords <= kMaxFrameChords; ++chords) {
+      if (windows_ > (chords - 1) * hops_per_chord_) offer_shape(chords, sink);
+    }
   }
+  // After this window's own tries: a frame it takes needs no second look at the windows before.
+  if (pending_count_ > 0) reread_pending(sink);
 }
 
 const HopListener::Window& HopListener::chord_window(int chords, int c) const {
@@ -139,74 +141,89 @@ void HopListener::offer_shape(int chords, CandidateSink& sink) {
   if (passed == Gate::RereadOnly) {
     // Too weak for the grid's readings to decode, maybe not for the whole chords: the sink
     // sees the reading (as a failed window) and says whether to read it again.
-    const HopCandidate c = make_candidate(chords, tracked_ppm_.value_or(0));
-    if (sink.none_taken(c)) keep_for_reread(c);
+    if (sink.none_taken(make_candidate(chords, tracked_ppm_.value_or(0)))) keep_for_reread(chords, {});
     return;
   }
   std::array<int, 3> tried{};
-  int count = 0;
-  std::optional<HopCandidate> first_candidate;
+  std::size_t count = 0;
   // Builds and offers the hypothesis unless one like it was tried; true when taken.
   const auto offer = [&](int ppm) {
-    for (int i = 0; i < count; ++i) {
-      if (std::abs(tried[static_cast<std::size_t>(i)] - ppm) < kSameHypothesisPpm) return false;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (std::abs(tried[i] - ppm) < kSameHypothesisPpm) return false;
     }
-    tried[static_cast<std::size_t>(count++)] = ppm;
-    const HopCandidate c = make_candidate(chords, ppm);
-    if (!first_candidate) first_candidate = c;
-    if (!sink.take(c)) return false;
+    tried[count] = ppm;
+    offered_[count] = make_candidate(chords, ppm);
+    if (!sink.take(offered_[count++])) return false;
     taken_at_sample_ = window_.samples_fed();
     return true;
   };
   if (tracked_ppm_ && offer(*tracked_ppm_)) return;
   if (offer(0)) return;
   if (offer(blind_offset_ppm(chords))) return;
-  if (sink.none_taken(*first_candidate)) keep_for_reread(*first_candidate);
+  if (sink.none_taken(offered_[0])) keep_for_reread(chords, std::span(offered_).first(count));
 }
 
-void HopListener::keep_for_reread(const HopCandidate& first) {
-  if (hops_.reread_delay_hops > 0 && pending_count_ < pending_.size())
-    pending_[pending_count_++] = {first.chords, window_.samples_fed()};
+void HopListener::keep_for_reread(int chords, std::span<const HopCandidate> hypotheses) {
+  if (hops_.reread_delay_hops <= 0 || pending_count_ == pending_.size()) return;
+  Pending& p = pending_[pending_count_++];
+  p.chords = chords;
+  p.end_sample = window_.samples_fed();
+  p.hypotheses = hypotheses.size();
+  std::copy(hypotheses.begin(), hypotheses.end(), p.grid.begin());
 }
 
-// Pending windows whose delay has passed with no frame taken meanwhile are read again over
-// each chord's whole steady part; a window that a frame was taken in or after is dropped (the
-// frame was its own, or holds the windows after it).
+// Pending windows whose delay has passed with no frame taken meanwhile get a second look:
+// read again over each chord's whole steady part, then their grid hypotheses offered again
+// (the sink may decode those harder now); a window that a frame was taken in or after is
+// dropped (the frame was its own, or holds the windows after it).
 void HopListener::reread_pending(CandidateSink& sink) {
   const long long now = window_.samples_fed();
   const long long delay = static_cast<long long>(hops_.reread_delay_hops) * hop_;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < pending_count_; ++i) {
-    const Pending p = pending_[i];
+    Pending& p = pending_[i];
     if (taken_at_sample_ >= p.end_sample) continue;
     if (now - p.end_sample < delay) {
-      pending_[kept++] = p;
+      if (kept != i) pending_[kept] = p;
+      ++kept;
       continue;
     }
-    // The grid window a chord before the frame's first, as its readings had it.
-    const auto back = static_cast<std::size_t>((now - p.end_sample) / hop_ + p.chords * hops_per_chord_);
-    if (back >= ring_.size()) continue;
-    const Window& before = ring_[(newest_ + ring_.size() - back) % ring_.size()];
-    const auto fit =
-        reread_.read(now - p.end_sample, p.chords, background_.background_power(), before.power,
-                     std::span<ChordPowers>(reread_windows_).first(static_cast<std::size_t>(p.chords + 1)));
-    if (!fit) continue;
-    std::array<const ChordPowers*, kMaxFrameChords + 1> windows{};
-    for (int c = 0; c <= p.chords; ++c)
-      windows[static_cast<std::size_t>(c)] = &reread_windows_[static_cast<std::size_t>(c)];
-    // The reader read every bin at the offset already.
-    HopCandidate c = read_candidate(p.chords, 0, std::span(windows).first(static_cast<std::size_t>(p.chords + 1)));
-    c.whole_chords = true;
-    c.offset_ppm = fit->offset_ppm;
-    for (std::size_t t = 0; t < c.tone_count(); ++t) c.peak_bins[t] *= static_cast<float>(1.0 + fit->offset_ppm * 1e-6);
-    // Heard now, when the robot can act on it; begun where the re-read found the first chord
-    // (its fade before its steady part), closer than the grid's half a hop.
-    c.heard_ms = analysed_until_ms_;
-    c.start_ms =
-        analysed_until_ms_ - static_cast<double>(fit->steady_start_age + hops_.edge_samples) * 1000.0 / sample_rate_hz_;
-    if (sink.take(c)) taken_at_sample_ = now;
+    bool taken = false;
+    if (const auto c = read_whole_chords(p, now)) taken = sink.take(*c);
+    for (std::size_t h = 0; h < p.hypotheses && !taken; ++h) {
+      HopCandidate& g = p.grid[h];
+      g.second_look = true;
+      g.heard_ms = analysed_until_ms_;  // decided now
+      taken = sink.take(g);
+    }
+    if (taken) taken_at_sample_ = now;
   }
   pending_count_ = kept;
+}
+
+std::optional<HopCandidate> HopListener::read_whole_chords(const Pending& p, long long now) {
+  // The grid window a chord before the frame's first, as its readings had it.
+  const auto back = static_cast<std::size_t>((now - p.end_sample) / hop_ + p.chords * hops_per_chord_);
+  if (back >= ring_.size()) return std::nullopt;
+  const Window& before = ring_[(newest_ + ring_.size() - back) % ring_.size()];
+  const auto fit = reread_.read(now - p.end_sample, p.chords, background_.background_power(), before.power,
+                                std::span<ChordPowers>(reread_windows_).first(static_cast<std::size_t>(p.chords + 1)));
+  if (!fit) return std::nullopt;
+  std::array<const ChordPowers*, kMaxFrameChords + 1> windows{};
+  for (int c = 0; c <= p.chords; ++c)
+    windows[static_cast<std::size_t>(c)] = &reread_windows_[static_cast<std::size_t>(c)];
+  // The reader read every bin at the offset already.
+  HopCandidate c = read_candidate(p.chords, 0, std::span(windows).first(static_cast<std::size_t>(p.chords + 1)));
+  c.whole_chords = true;
+  c.second_look = true;
+  c.offset_ppm = fit->offset_ppm;
+  for (std::size_t t = 0; t < c.tone_count(); ++t) c.peak_bins[t] *= static_cast<float>(1.0 + fit->offset_ppm * 1e-6);
+  // Heard now, when the robot can act on it; begun where the re-read found the first chord
+  // (its fade before its steady part), closer than the grid's half a hop.
+  c.heard_ms = analysed_until_ms_;
+  c.start_ms =
+      analysed_until_ms_ - static_cast<double>(fit->steady_start_age + hops_.edge_samples) * 1000.0 / sample_rate_hz_;
+  return c;
 }
 
 // Half or more of each chord's eight bands stand out of their own means: a frame, or something loud

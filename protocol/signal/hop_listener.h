@@ -26,11 +26,12 @@
 // A window none of whose hypotheses was taken (or one a band short of the gate:
 // `reread_gate_bands`), when the sink asks for it and no frame was taken in the
 // `reread_delay_hops` windows after it (a window a hop early fails where the next one decodes),
-// is read once more over each chord's whole steady part, its start and offset searched afresh
-// (whole_chord_reader.h): 1 dB more per tone, for the frames the grid's windows hear too
-// weakly. It goes to the sink as one more candidate (`whole_chords`), with the times of its
-// window. Times are milliseconds since the first sample fed; the stream is taken to be
-// preceded by silence. Once constructed, feeding allocates nothing.
+// gets a second look: it is read once more over each chord's whole steady part, its start and
+// offset searched afresh (whole_chord_reader.h): 1 dB more per tone, for the frames the grid's
+// windows hear too weakly; then its grid hypotheses are offered again as they were. All are
+// `second_look` candidates, heard when offered: the sink's place for costlier decoding.
+// Times are milliseconds since the first sample fed; the stream is taken to be preceded by
+// silence. Once constructed, feeding allocates nothing.
 #pragma once
 
 #include <array>
@@ -59,11 +60,12 @@ struct ToneReading {
 };
 
 struct HopCandidate {
-  int chords = 2;                                   // the frame shape: 2 chords, or 3 (authenticated)
-  double start_ms = 0;                              // when the first chord began (within a hop; a re-read: 1 ms)
-  double heard_ms = 0;                              // end of the window in the last chord; a re-read's: when read
-  int offset_ppm = 0;                               // the frequency offset these readings assume
-  bool whole_chords = false;                        // read again over each chord's whole steady part
+  int chords = 2;             // the frame shape: 2 chords, or 3 (authenticated)
+  double start_ms = 0;        // when the first chord began (within a hop; a re-read: 1 ms)
+  double heard_ms = 0;        // end of the window in the last chord; a second look's: when offered
+  int offset_ppm = 0;         // the frequency offset these readings assume
+  bool whole_chords = false;  // read again over each chord's whole steady part
+  bool second_look = false;   // offered again after `reread_delay_hops` with nothing taken (so are re-reads)
   std::array<ToneReading, kMaxFrameTones> tones{};  // first chord's bands, then the next chord's
   std::array<float, kMaxFrameTones> peak_bins{};    // each band's peak, in fractional bins (offset tracking)
   std::size_t tone_count() const { return static_cast<std::size_t>(chords * HopLink::kBandsPerChord); }
@@ -74,9 +76,11 @@ class CandidateSink {
  public:
   virtual ~CandidateSink() = default;
   // True when the candidate is taken (its frame decoded): no further hypothesis is built.
+  // A `second_look` candidate comes only when nothing was taken since its window: the place
+  // for costlier decoding, which a clean frame's next window then never needs.
   virtual bool take(const HopCandidate& candidate) = 0;
   // No hypothesis of the window was taken; `first` is the first of them. True when the
-  // window is worth a whole-chord re-read (a frame the sink could take may be in it).
+  // window is worth a second look (a frame the sink could take may be in it).
   virtual bool none_taken(const HopCandidate& first) = 0;
 };
 
@@ -112,17 +116,23 @@ class HopListener {
   const Window& chord_window(int chords, int c) const;
   enum class Gate { Closed, RereadOnly, Open };
   Gate gate(int chords) const;
-  void keep_for_reread(const HopCandidate& first);
+  // Keeps a window for a second look: its grid hypotheses (none for a window short of the gate).
+  void keep_for_reread(int chords, std::span<const HopCandidate> hypotheses);
   HopCandidate make_candidate(int chords, int offset_ppm);
   // Readings of a frame of `chords` from windows[c + 1] for chord c (windows[0]: a chord
   // before the frame), taken at the bins of `offset_ppm`.
   HopCandidate read_candidate(int chords, int offset_ppm, std::span<const ChordPowers* const> windows) const;
-  // A window none of whose hypotheses was taken, kept for a whole-chord re-read.
+  // A window none of whose hypotheses was taken, kept for a second look.
   struct Pending {
     int chords = 2;
     long long end_sample = 0;  // its window's end
+    std::size_t hypotheses = 0;
+    std::array<HopCandidate, 3> grid{};  // the grid's readings, as offered
   };
   void reread_pending(CandidateSink& sink);
+  // The pending window read again over each chord's whole steady part, or nothing when the
+  // history no longer holds it.
+  std::optional<HopCandidate> read_whole_chords(const Pending& p, long long now);
   int blind_offset_ppm(int chords) const;
   // chord c of a frame, band b -> index into its tones; the band set chord c sounds on
   static int tone_index(int chord, int band) { return chord * HopLink::kBandsPerChord + band; }
@@ -147,6 +157,7 @@ class HopListener {
   std::optional<int> tracked_ppm_;
   double hold_until_ms_ = -1e300;
   std::vector<HopCandidate> found_;
+  std::array<HopCandidate, 3> offered_{};  // the newest window's hypotheses, as offered
   WholeChordReader reread_;
   std::array<ChordPowers, kMaxFrameChords + 1> reread_windows_;
   std::array<Pending, 8> pending_{};  // two shapes a window: the newest and the delay's windows

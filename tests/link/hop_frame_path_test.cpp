@@ -181,6 +181,32 @@ TEST(HopFramePath, AtMinusTwelveDbSnrWholeChordRereadsHearMostFramesTheGridLoses
   EXPECT_GT(2 * (reread.once - grid.once), kFrames - grid.once);
 }
 
+// Five bands of a frame each carry a wrong tone 1.7 dB over the right one: erasing the four
+// least certain leaves an error, so no plain try decodes it, and only swapping the wrong tones
+// for their runner-ups does. The robot spends those swaps only on a window that a second look
+// finds still unclaimed: it accepts the frame a re-read delay after the window that accepts
+// the same frame without the wrong tones.
+TEST(HopFramePath, RunnerUpSwapsWaitForASecondLook) {
+  const auto frame = fast_link(5)->plan(command::Turn{-40}).front();
+  const auto right = reliability::encode_symbols(frame.bits.low64());
+  auto wrong = right;
+  for (const std::size_t t : {1u, 4u, 8u, 11u, 14u}) wrong[t] = static_cast<std::uint8_t>((right[t] + 9) % 32);
+  const auto a = signal::synthesize_hopped_frame(p, right), b = signal::synthesize_hopped_frame(p, wrong);
+  std::array<double, 2> heard_ms{};
+  for (const bool doubtful : {false, true}) {
+    std::vector<float> audio(4800, 0.0f);
+    for (std::size_t i = 0; i < a.size(); ++i) audio.push_back(doubtful ? 0.45f * a[i] + 0.55f * b[i] : a[i]);
+    audio.resize(audio.size() + 9600, 0.0f);
+    const auto got = receive(audio);
+    ASSERT_EQ(got.size(), 1u) << (doubtful ? "doubtful" : "clean");
+    EXPECT_TRUE(got[0].acknowledged());
+    EXPECT_EQ(got[0].bits, frame.bits);
+    heard_ms[doubtful] = got[0].heard_ms;
+  }
+  EXPECT_NEAR(heard_ms[1] - heard_ms[0], p.hops.reread_delay_hops * p.hops.hop_samples / 48.0, 0.01)
+      << "clean decided at " << heard_ms[0] << " ms, doubtful at " << heard_ms[1] << " ms";
+}
+
 TEST(HopFramePath, AHeldChordOrSilenceExecutesNothing) {
   const auto frame = frame_audio(command::Turn{50}, 3);
   // The first chord held for a second: its tones never start again, so nothing is heard.

@@ -176,9 +176,9 @@ TEST(ListenerAllocation, WholeChordRereadsAllocateNothing) {
   for (float& s : audio) s += noise(rng);
   // Takes nothing and asks for every re-read: the listener's whole work on each window.
   struct Count final : signal::CandidateSink {
-    std::size_t grid = 0, whole = 0;
+    std::size_t grid = 0, whole = 0, second = 0;
     bool take(const signal::HopCandidate& c) override {
-      ++(c.whole_chords ? whole : grid);
+      ++(c.whole_chords ? whole : c.second_look ? second : grid);
       return false;
     }
     bool none_taken(const signal::HopCandidate&) override { return true; }
@@ -189,4 +189,5 @@ TEST(ListenerAllocation, WholeChordRereadsAllocateNothing) {
     listener.feed(std::span<const float>(audio).subspan(at, std::min<std::size_t>(480, audio.size() - at)), count);
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_GE(count.whole, 40u) << "re-reads ran";
+  EXPECT_GE(count.second, 40u) << "second looks at the grid's readings ran";
 }
