@@ -25,7 +25,9 @@ REASONS = {
         "windows of white noise, one for every two to ten `fast` frames that follow a gap (by the noise: the "
         "window astride the first chord's start spreads it over every band, and the gap's noise fills the other "
         "chord's three), and about two a second of `seed` chords, whose edges pass the fast gate; on the mixed "
-        "frames of this row that is about a third of the CPU",
+        "frames of this row that is about a third of the CPU. The runner-up swaps wait for the same second look, "
+        "so the window a hop before a frame's own costs none when that one decodes (about a tenth of the "
+        "frames' CPU, old and new binaries run in turn)",
     "ear":
         "as for the robot, the FFTs alone: `fast`'s answer ear takes one 1536-point Hann FFT per 4.25 ms hop "
         "(1.25 µs: 3.0 µs per 10.25 ms) and the seed's a 4096-point spectrum per 50 ms (0.96 µs per 10.25 ms), "
