@@ -39,8 +39,8 @@ std::unique_ptr<link::Link> decode_link(const DecodeOptions& o) {
 
 // Feeds the recording, block by block, then a second of silence: a recording may stop as its
 // last frame or answer does, but a robot or a sender would go on listening (a failed frame's
-// NACK waits for its cluster to settle, 13 hops; a whole-chord re-read comes two hops after
-// its window), so every verdict gets its time.
+// NACK waits for its cluster to settle, 13 hops; a failed window's second look comes two hops
+// after it), so every verdict gets its time.
 template <class Feed>
 void feed_recording(physical::WavFileSource& source, std::vector<float>& block, int sample_rate_hz, Feed&& feed) {
   while (const std::size_t got = source.read(block)) feed(std::span<const float>(block.data(), got));

@@ -59,8 +59,8 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
   if (const auto nack = gate_.on_time(c.heard_ms)) deliver(*nack, 0);
   // Candidates a cluster's gap apart belong to different frames: each its own budget.
   if (c.heard_ms - last_candidate_ms_ > hops_.cluster_gap_hops * listener_.hop_ms()) checks_ = 0;
-  // (A whole-chord re-read comes a few hops after its window: it belongs to the same run.)
-  last_candidate_ms_ = std::max(last_candidate_ms_, c.heard_ms);
+  // (Every candidate is heard when offered, a second look too: the times never go back.)
+  last_candidate_ms_ = c.heard_ms;
   std::optional<reliability::FrameBits> bits;
   // Runner-up swaps (up to 63 more decodes a hypothesis) only at a second look: a clean
   // frame's window a hop early fails its plain tries, and the next window decodes plainly.

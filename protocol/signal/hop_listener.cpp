@@ -144,7 +144,7 @@ void HopListener::offer_shape(int chords, CandidateSink& sink) {
     if (sink.none_taken(make_candidate(chords, tracked_ppm_.value_or(0)))) keep_for_reread(chords, {});
     return;
   }
-  std::array<int, 3> tried{};
+  std::array<int, kOffsetHypotheses> tried{};
   std::size_t count = 0;
   // Builds and offers the hypothesis unless one like it was tried; true when taken.
   const auto offer = [&](int ppm) {

@@ -50,6 +50,8 @@ namespace dtmf::signal {
 
 inline constexpr int kMaxFrameChords = 3;
 inline constexpr int kMaxFrameTones = kMaxFrameChords * HopLink::kBandsPerChord;  // 24
+// Offset hypotheses a candidate window is read at: the tracked offset, none, and its own estimate.
+inline constexpr std::size_t kOffsetHypotheses = 3;
 
 struct ToneReading {
   std::uint8_t symbol = 0;  // the strongest tone of its band
@@ -127,7 +129,7 @@ class HopListener {
     int chords = 2;
     long long end_sample = 0;  // its window's end
     std::size_t hypotheses = 0;
-    std::array<HopCandidate, 3> grid{};  // the grid's readings, as offered
+    std::array<HopCandidate, kOffsetHypotheses> grid{};  // the grid's readings, as offered
   };
   void reread_pending(CandidateSink& sink);
   // The pending window read again over each chord's whole steady part, or nothing when the
@@ -157,7 +159,7 @@ class HopListener {
   std::optional<int> tracked_ppm_;
   double hold_until_ms_ = -1e300;
   std::vector<HopCandidate> found_;
-  std::array<HopCandidate, 3> offered_{};  // the newest window's hypotheses, as offered
+  std::array<HopCandidate, kOffsetHypotheses> offered_{};  // the newest window's hypotheses, as offered
   WholeChordReader reread_;
   std::array<ChordPowers, kMaxFrameChords + 1> reread_windows_;
   std::array<Pending, 8> pending_{};  // two shapes a window: the newest and the delay's windows
