@@ -30,8 +30,12 @@
 // offset searched afresh (whole_chord_reader.h): 1 dB more per tone, for the frames the grid's
 // windows hear too weakly; then its grid hypotheses are offered again as they were. All are
 // `second_look` candidates, heard when offered: the sink's place for costlier decoding.
+// A grid candidate begins where its first chord's heard tones rose across the windows
+// (chord_onset.h): a clean frame decodes from windows astride its chords' starts, hops before
+// the ones wholly inside them, so the decoding window's own position says little.
 // Times are milliseconds since the first sample fed; the stream is taken to be preceded by
-// silence. Once constructed, feeding allocates nothing.
+// silence. Once constructed, feeding allocates nothing. (Reading a window's tones, offset and
+// start: hop_candidate_reading.cpp.)
 #pragma once
 
 #include <array>
@@ -63,7 +67,7 @@ struct ToneReading {
 
 struct HopCandidate {
   int chords = 2;             // the frame shape: 2 chords, or 3 (authenticated)
-  double start_ms = 0;        // when the first chord began (within a hop; a re-read: 1 ms)
+  double start_ms = 0;        // when the first chord began (where its tones rose; a re-read: 1 ms)
   double heard_ms = 0;        // end of the window in the last chord; a second look's: when offered
   int offset_ppm = 0;         // the frequency offset these readings assume
   bool whole_chords = false;  // read again over each chord's whole steady part
@@ -121,6 +125,9 @@ class HopListener {
   // Keeps a window for a second look: its grid hypotheses (none for a window short of the gate).
   void keep_for_reread(int chords, std::span<const HopCandidate> hypotheses);
   HopCandidate make_candidate(int chords, int offset_ppm);
+  // Where the first chord of `c` began (its heard tones' rise across the windows), or nothing
+  // when they show no clear rise where the grid could have read the frame.
+  std::optional<long long> first_chord_start_sample(const HopCandidate& c) const;
   // Readings of a frame of `chords` from windows[c + 1] for chord c (windows[0]: a chord
   // before the frame), taken at the bins of `offset_ppm`.
   HopCandidate read_candidate(int chords, int offset_ppm, std::span<const ChordPowers* const> windows) const;
@@ -139,6 +146,9 @@ class HopListener {
   // chord c of a frame, band b -> index into its tones; the band set chord c sounds on
   static int tone_index(int chord, int band) { return chord * HopLink::kBandsPerChord + band; }
   static int band_set(int chord) { return chord % 2; }
+
+  // Room either side of a band for tones moved by a frequency offset, and for a guard bin.
+  static constexpr int kMarginBins = 4;
 
   const HopLink& hops_;
   int sample_rate_hz_;
@@ -164,9 +174,10 @@ class HopListener {
   std::array<ChordPowers, kMaxFrameChords + 1> reread_windows_;
   std::array<Pending, 8> pending_{};  // two shapes a window: the newest and the delay's windows
   std::size_t pending_count_ = 0;
-  long long taken_at_sample_ = -1;      // the end of the latest window a candidate was taken in
-  mutable std::vector<float> scratch_;  // a band's tones' excess (readings)
-  mutable std::vector<float> floor_;    // ... and their raw power (the floor)
+  long long taken_at_sample_ = -1;              // the end of the latest window a candidate was taken in
+  mutable std::vector<float> scratch_;          // a band's tones' excess (readings)
+  mutable std::vector<float> floor_;            // ... and their raw power (the floor)
+  mutable std::vector<float> onset_amplitude_;  // a first chord's tones, window by window (start)
 };
 
 }  // namespace dtmf::signal
