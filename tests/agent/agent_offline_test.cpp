@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 #include "physical/wav_file.h"
 #include "profile/link_profile.h"
@@ -105,6 +106,31 @@ TEST_F(AgentOffline, AVelocityHoldsForItsLeaseThenTheWheelsStop) {
   EXPECT_EQ(lines.back()["linear_mps"], 0.0);
   EXPECT_EQ(lines.back()["angular_rps"], 0.0);
   EXPECT_NE(r.out.find("stop: lease ended"), std::string::npos) << r.out;
+}
+
+// After silence, a clean frame decodes from windows astride its chords' starts, about 40 ms
+// before it ends; the lease still runs from the frame's first chord (the robot's start is
+// where its tones rose, not the decoding window's place), so the wheels stop 0.5 s after it.
+TEST_F(AgentOffline, AVelocityHeardBeforeItsFrameEndsHoldsItsLeaseFromTheFrameStart) {
+  encode("--profile fast velocity --linear-mps 0.1 --angular-radps 0 --lease-s 0.5", path("v.wav"));
+  const LinkProfile& fast = fast_profile();
+  std::vector<float> audio(static_cast<std::size_t>(fast.samples_for_ms(300)), 0.0f);  // the frame at 300 ms
+  const auto frame = physical::read_audio_file(path("v.wav"), fast.sample_rate_hz);
+  audio.insert(audio.end(), frame.begin(), frame.end());
+  physical::write_wav_file(path("late.wav"), audio, fast.sample_rate_hz);
+  const auto r = agent(path("late.wav"), "", true);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto lines = json_lines(r.out);
+  const auto moving = [](const nlohmann::json& line) { return line["linear_mps"].get<double>() != 0.0; };
+  std::smatch heard;
+  ASSERT_TRUE(std::regex_search(r.out, heard, std::regex(R"(t=([0-9.]+)s fast frame \S+ seq \d+: ACK)"))) << r.out;
+  EXPECT_LT(std::stod(heard[1]) * 1000, 300 + 102.5) << "decided before the frame ended";
+  const auto first = std::find_if(lines.begin(), lines.end(), moving);
+  ASSERT_NE(first, lines.end()) << r.out;
+  const auto stopped = std::find_if(first, lines.end(), [&](const nlohmann::json& line) { return !moving(line); });
+  ASSERT_NE(stopped, lines.end()) << r.out;
+  // 0.1 m/s ramps down at the model's 2.5 m/s^2 in 40 ms, timed to reach zero at the lease's end.
+  EXPECT_NEAR((*stopped)["t_ms"].get<double>(), 300 + 500, 3) << r.out;
 }
 
 TEST_F(AgentOffline, ACorruptedChordIsNackedAndNothingMoves) {
