@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
         Autopsy a;
         a.doubted = profile.hops.chase_tones;
         a.max_erasures = profile.hops.max_erasures;
-        // "Near its start": within a hop (the listener's start estimates lie on its hop grid), and 2 ms.
+        // "Near its start": within a hop (a start the grid guessed lies up to a hop off) and 2 ms.
         const double near_ms = 1000.0 * profile.hops.hop_samples / profile.sample_rate_hz + 2;
         for (std::size_t i = 0; i < frames; ++i) {
           const link::TransmitFrame frame = trials.random_frame(rng);

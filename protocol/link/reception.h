@@ -45,7 +45,7 @@ struct SeedWordReading {
 };
 
 struct Reception {
-  double start_ms = 0;          // when the frame began sounding (within an analysis hop)
+  double start_ms = 0;          // when the frame began (fast: where its tones rose, a few ms; seed: a hop)
   double heard_ms = 0;          // when the verdict was reached: the robot's decision time
   reliability::FrameBits bits;  // the frame as accepted, or as first read when broken
   int bit_count = 0;

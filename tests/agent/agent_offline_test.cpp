@@ -89,8 +89,9 @@ TEST_F(AgentOffline, AVelocityHoldsForItsLeaseThenTheWheelsStop) {
   // The lease, 0.5 s (exact in the frame's field), runs from the frame's start (the
   // recording's first chord, at 0 s), not from when it was heard: once a 40 ms window lies
   // wholly inside its last chord (which begins at 51.25 ms, after a 0.5 ms fade), so at
-  // 91.75 ms at the earliest, and by its end (102.5 ms) at the latest.
-  // The robot places the start within a hop or two (10.25 ms each) of the chord's onset, and
+  // 91.75 ms at the earliest (the recording begins with the frame: no window lies astride its
+  // start, as in the test below), and by its end (102.5 ms) at the latest.
+  // The robot places the start where the first chord's tones rose, and
   // the wheels stand still at the lease's end: the ramp down (0.4 / 25 = 16 ms) ends by
   // about 520 ms, so with cmd_vel sampled every 50 ms the last motion is at 450 or 500 ms.
   EXPECT_GE(first_move, 51.25 + 0.5 + 40 - 0.5) << "moved before its last chord could be read";
