@@ -11,8 +11,8 @@ std::optional<double> chord_steady_start(std::span<const float> amplitude, int w
   const auto top = std::max_element(amplitude.begin(), amplitude.end());
   if (*top <= floor * min_rise) return std::nullopt;
   const float half = floor + 0.5f * (*top - floor);
-  // The first window at or over half the plateau, and the one before it, below half: window 0
-  // (the floor) is, since the plateau stands over it.
+  // The first window at or over half the plateau. Window 0, the floor, lies below half (the
+  // plateau stands over it), so that window has one before it, below half.
   const auto k = static_cast<std::size_t>(
       std::find_if(amplitude.begin(), top + 1, [half](float a) { return a >= half; }) - amplitude.begin());
   const float below = amplitude[k - 1], above = amplitude[k];
