@@ -1,8 +1,8 @@
-// Signal layer: where a chord began, from how its tones rose across the grid's windows.
+// Signal layer: where a chord began, from how a tone of it rose across the grid's windows.
 //
 // A rectangular window that holds L samples of a steady tone on its bin reads the tone's
-// amplitude in proportion to L. So across windows a hop apart, the summed amplitude of a
-// chord's tones rises in a straight line: from the window that ends where the chord's steady
+// amplitude in proportion to L. So across windows a hop apart, a tone's amplitude (or the sum
+// of several) rises in a straight line: from the window that ends where the chord's steady
 // part begins, to the first window wholly inside it, which holds the full amplitude (the
 // plateau). The rise crosses half the plateau at the window that began half a window before the
 // steady part. Interpolating that crossing between the two windows either side of it places
@@ -12,7 +12,9 @@
 // its chords (the window astride the first chord's start and the gap reads it right when
 // nothing else is there). The grid's own start, which assumes the windows lie inside the
 // chords, then named a start up to 40 ms early. The robot times a Velocity's lease and its
-// logged start from it. Pure arithmetic, no I/O.
+// logged start from it. (The fast listener takes the earliest of a chord's tones: in a room a
+// tone whose reverberation outweighs its direct sound rises late; hop_candidate_reading.cpp.)
+// Pure arithmetic, no I/O.
 #pragma once
 
 #include <optional>

@@ -30,8 +30,8 @@
 // offset searched afresh (whole_chord_reader.h): 1 dB more per tone, for the frames the grid's
 // windows hear too weakly; then its grid hypotheses are offered again as they were. All are
 // `second_look` candidates, heard when offered: the sink's place for costlier decoding.
-// A grid candidate begins where its first chord's heard tones rose across the windows
-// (chord_onset.h): a clean frame decodes from windows astride its chords' starts, hops before
+// A grid candidate begins where the earliest of its first chord's heard tones rose across the
+// windows (chord_onset.h): a clean frame decodes from windows astride its chords' starts, hops before
 // the ones wholly inside them, so the decoding window's own position says little.
 // Times are milliseconds since the first sample fed; the stream is taken to be preceded by
 // silence. Once constructed, feeding allocates nothing. (Reading a window's tones, offset and
@@ -67,7 +67,7 @@ struct ToneReading {
 
 struct HopCandidate {
   int chords = 2;             // the frame shape: 2 chords, or 3 (authenticated)
-  double start_ms = 0;        // when the first chord began (where its tones rose; a re-read: 1 ms)
+  double start_ms = 0;        // when the first chord began (its earliest tone's rise; a re-read: 1 ms)
   double heard_ms = 0;        // end of the window in the last chord; a second look's: when offered
   int offset_ppm = 0;         // the frequency offset these readings assume
   bool whole_chords = false;  // read again over each chord's whole steady part
@@ -125,8 +125,8 @@ class HopListener {
   // Keeps a window for a second look: its grid hypotheses (none for a window short of the gate).
   void keep_for_reread(int chords, std::span<const HopCandidate> hypotheses);
   HopCandidate make_candidate(int chords, int offset_ppm);
-  // Where the first chord of `c` began (its heard tones' rise across the windows), or nothing
-  // when they show no clear rise where the grid could have read the frame.
+  // Where the first chord of `c` began (the earliest rise of its heard tones across the windows),
+  // or nothing when fewer than half of them rose clearly where the grid could have read the frame.
   std::optional<long long> first_chord_start_sample(const HopCandidate& c) const;
   // Readings of a frame of `chords` from windows[c + 1] for chord c (windows[0]: a chord
   // before the frame), taken at the bins of `offset_ppm`.
@@ -177,7 +177,7 @@ class HopListener {
   long long taken_at_sample_ = -1;              // the end of the latest window a candidate was taken in
   mutable std::vector<float> scratch_;          // a band's tones' excess (readings)
   mutable std::vector<float> floor_;            // ... and their raw power (the floor)
-  mutable std::vector<float> onset_amplitude_;  // a first chord's tones, window by window (start)
+  mutable std::vector<float> onset_amplitude_;  // a first-chord tone, window by window (start)
 };
 
 }  // namespace dtmf::signal

@@ -11,6 +11,8 @@
 
 #include "link/link.h"
 #include "sim/acoustic_channel.h"
+#include "sim/measured_rir.h"
+#include "sim/room_model.h"
 #include "units/decibels.h"
 
 using namespace dtmf;
@@ -19,9 +21,10 @@ namespace {
 const LinkProfile& p = fast_profile();
 
 struct StartErrors {
-  int frames = 0;         // accepted
-  int decided_early = 0;  // of them, decided before the frame had finished sounding
-  double worst_ms = 0;    // the largest |start_ms - when it began|
+  int frames = 0;           // accepted
+  int decided_early = 0;    // of them, decided before the frame had finished sounding
+  double worst_ms = 0;      // the largest |start_ms - when it began|
+  double latest_ms = -1e9;  // the largest start_ms - when it began (late: a lease runs long)
   double mean_abs_ms = 0;
 };
 
@@ -55,13 +58,15 @@ StartErrors start_errors(int count, std::size_t step, double delay_ms, const Air
       ++e.frames;
       e.decided_early += r.heard_ms < sent + frame_ms;
       e.worst_ms = std::max(e.worst_ms, std::abs(r.start_ms - sent));
+      e.latest_ms = std::max(e.latest_ms, r.start_ms - sent);
       e.mean_abs_ms += std::abs(r.start_ms - sent);
     }
   }
   if (e.frames > 0) e.mean_abs_ms /= e.frames;
   std::printf(
-      "%d of %d frames accepted, %d decided before they ended; start off by %.2f ms on average, %.2f ms at most\n",
-      e.frames, count, e.decided_early, e.mean_abs_ms, e.worst_ms);
+      "%d of %d frames accepted, %d decided before they ended; start off by %.2f ms on average, %.2f ms at most, "
+      "%.2f ms late at most\n",
+      e.frames, count, e.decided_early, e.mean_abs_ms, e.worst_ms, e.latest_ms);
   return e;
 }
 }  // namespace
@@ -76,9 +81,13 @@ TEST(FrameStart, ACleanFrameIsDatedFromItsFirstChordNotFromTheWindowThatDecodedI
   EXPECT_LE(e.worst_ms, 1.0);
 }
 
-// Where the windows astride a chord's edge hold noise or a room's echoes too, the rise is
-// still placed to within a hop, and mostly to a millisecond or two.
-TEST(FrameStart, InNoiseAndInAReverberantRoomTheStartIsWithinAHop) {
+// Where the windows astride a chord's edge hold noise or a room's echoes too, the start is
+// still placed within a hop on average (the grid's guess: 24 ms early at 0 dB, 32 ms in the
+// diffuse reverberator). Noise makes the earliest tone's rise early now and then (to 21 ms
+// early at 0 dB), never late. In the measured rooms a tone whose reverberation outweighs its
+// direct sound rises late, and the earliest of eight can still be: in the smoking room up to
+// 22 ms (a Velocity's lease then runs that much long, well within lease + 0.2 s).
+TEST(FrameStart, InNoiseAndInRoomsTheStartIsWithinAHop) {
   const double hop_ms = 1000.0 * p.hops.hop_samples / p.sample_rate_hz;
   {
     // White noise 0 dB under the frames' power (the power of a chord: the synthesizer's RMS).
@@ -96,8 +105,8 @@ TEST(FrameStart, InNoiseAndInAReverberantRoomTheStartIsWithinAHop) {
       return noisy;
     });
     EXPECT_EQ(e.frames, 100);
-    EXPECT_LE(e.worst_ms, hop_ms);
-    EXPECT_LE(e.mean_abs_ms, 2.5);
+    EXPECT_LE(e.mean_abs_ms, hop_ms);
+    EXPECT_LE(e.latest_ms, hop_ms / 4);
   }
   {
     sim::ChannelConfig room;
@@ -112,7 +121,26 @@ TEST(FrameStart, InNoiseAndInAReverberantRoomTheStartIsWithinAHop) {
       return heard;
     });
     EXPECT_EQ(e.frames, 100);
-    EXPECT_LE(e.worst_ms, hop_ms);
-    EXPECT_LE(e.mean_abs_ms, 2.5);
+    EXPECT_LE(e.mean_abs_ms, hop_ms);
+    EXPECT_LE(e.latest_ms, hop_ms / 4);
+  }
+  // Rooms someone measured, at 1 m: the sound arrives with the response's direct sound.
+  for (const char* name : {"seminar_room_clap", "smoking_room", "studio_live_room"}) {
+    sim::ChannelConfig room;
+    room.noise = sim::parse_noise("pink", -50);
+    room.room.rir_file = std::string(DTMF_RIR_DIR) + "/" + name + ".wav";
+    const auto model = std::make_shared<const sim::RoomModel>(room.room, p.sample_rate_hz);
+    const auto direct = sim::load_measured_rir(room.room.rir_file, p.sample_rate_hz).direct_index;
+    const auto e = start_errors(100, 5, 1000.0 * static_cast<double>(direct) / p.sample_rate_hz,
+                                [&](const std::vector<float>& audio) {
+                                  sim::AcousticChannel channel(p.sample_rate_hz, room, model);
+                                  channel.add_transmitter(1.0);
+                                  std::vector<float> heard;
+                                  channel.process(audio, heard);
+                                  return heard;
+                                });
+    EXPECT_EQ(e.frames, 100) << name;
+    EXPECT_LE(e.mean_abs_ms, hop_ms) << name;
+    EXPECT_LE(e.latest_ms, 2.5 * hop_ms) << name;
   }
 }
