@@ -23,8 +23,8 @@
 namespace dtmf::signal {
 
 // Where the chord's steady part began, in samples after the start of window 0, or nothing
-// when the amplitudes show no rise. `amplitude[k]`: the summed magnitude of the chord's tones
-// in the window that starts k hops after window 0. Window 0 must lie wholly before the chord
+// when the amplitudes show no rise. `amplitude[k]`: the magnitude of a tone of the chord (or
+// the sum of several) in the window that starts k hops after window 0. Window 0 must lie wholly before the chord
 // (its amplitude is the floor), and some window wholly inside it (its amplitude the plateau).
 // `min_rise`: the plateau must stand this many times over the floor to be read at all.
 std::optional<double> chord_steady_start(std::span<const float> amplitude, int window_samples, int hop_samples,

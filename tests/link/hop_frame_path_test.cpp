@@ -134,7 +134,7 @@ SnrRun frames_at_snr(const LinkProfile& profile, double snr_db, int frames, unsi
     const auto n = std::min<std::size_t>(1024, audio.size() - at);
     for (const auto& r : receiver->feed(std::span<const float>(audio.data() + at, n))) {
       if (!r.intact) continue;
-      // A frame starts its slot; a decode from a window a hop or two early says so, too early.
+      // A frame starts its slot, and its start is placed within a few ms of it (frame_start_test.cpp).
       const auto k = std::lround((r.start_ms - 5000.0 / 48.0) / slot_ms);
       if (k < 0 || k >= frames || bits[static_cast<std::size_t>(k)] != r.bits) {
         ++run.wrong;
