@@ -10,8 +10,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <sstream>
+#include <string_view>
 
 namespace dtmf::security {
 
@@ -24,6 +23,53 @@ std::string octal_mode(mode_t mode) {
   char text[8];
   std::snprintf(text, sizeof text, "%04o", static_cast<unsigned>(mode & 07777));
   return text;
+}
+
+// Closes a file descriptor on every way out.
+class FileDescriptor {
+ public:
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  ~FileDescriptor() { ::close(fd_); }
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+
+ private:
+  int fd_;
+};
+
+// A buffer in libsodium's guarded memory (locked out of swap), wiped and freed on every way out.
+class GuardedBuffer {
+ public:
+  explicit GuardedBuffer(std::size_t size) {
+    ensure_sodium();
+    data_ = static_cast<char*>(sodium_malloc(size));
+    if (data_ == nullptr) throw std::runtime_error("no guarded memory to read a key file (sodium_malloc failed)");
+  }
+  ~GuardedBuffer() { sodium_free(data_); }  // zeroes it first
+  GuardedBuffer(const GuardedBuffer&) = delete;
+  GuardedBuffer& operator=(const GuardedBuffer&) = delete;
+  char* data() const { return data_; }
+
+ private:
+  char* data_;
+};
+
+constexpr const char* kBlanks = " \t\r";
+
+std::string_view trim(std::string_view text) {
+  const std::size_t first = text.find_first_not_of(kBlanks);
+  if (first == std::string_view::npos) return {};
+  return text.substr(first, text.find_last_not_of(kBlanks) - first + 1);
+}
+
+bool is_hex(char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F'); }
+
+bool all_hex(std::string_view text) { return std::all_of(text.begin(), text.end(), is_hex); }
+
+std::uint32_t hex_value(char c) {
+  if (c >= '0' && c <= '9') return static_cast<std::uint32_t>(c - '0');
+  if (c >= 'a' && c <= 'f') return static_cast<std::uint32_t>(c - 'a' + 10);
+  return static_cast<std::uint32_t>(c - 'A' + 10);
 }
 
 std::uint32_t derive_id(const unsigned char* key) {
@@ -75,57 +121,77 @@ std::shared_ptr<const LinkKey> LinkKey::from_bytes(std::span<const unsigned char
 
 std::shared_ptr<const LinkKey> LinkKey::load(const std::filesystem::path& file) {
   const std::string name = file.string();
-  struct stat info {};
-  if (::stat(name.c_str(), &info) != 0) {
+  // Opened first and checked on the open file, so that what is checked is what is read.
+  const int fd = ::open(name.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0) {
     throw KeyFileError("cannot read key file " + name + ": " + std::strerror(errno) +
                        " (make one with: dtmfctl keygen " + name + ")");
   }
+  const FileDescriptor open_file(fd);
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) throw KeyFileError("cannot read key file " + name + ": " + std::strerror(errno));
   if (!S_ISREG(info.st_mode)) throw KeyFileError("key file " + name + " is not a regular file");
   if ((info.st_mode & (S_IRWXG | S_IRWXO)) != 0) {
     throw KeyFileError("key file " + name + " may be read or changed by others (mode " + octal_mode(info.st_mode) +
                        "); allow its owner only: chmod 600 " + name);
   }
   if (info.st_size > static_cast<off_t>(kMaxFileBytes)) throw KeyFileError("key file " + name + " is too long");
-  std::ifstream in(file);
-  if (!in) throw KeyFileError("cannot open key file " + name + ": " + std::strerror(errno));
+
+  // The whole file in guarded memory, wiped on every way out; lines are read in place
+  // (no stream buffers, no copies).
+  const GuardedBuffer text(kMaxFileBytes + 1);
+  std::size_t size = 0;
+  while (size <= kMaxFileBytes) {
+    const ssize_t got = ::read(fd, text.data() + size, kMaxFileBytes + 1 - size);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) throw KeyFileError("cannot read key file " + name + ": " + std::strerror(errno));
+    if (got == 0) break;
+    size += static_cast<std::size_t>(got);
+  }
+  if (size > kMaxFileBytes) throw KeyFileError("key file " + name + " is too long");
 
   std::shared_ptr<LinkKey> key(new LinkKey());
   bool have_key = false, have_id = false;
   std::uint32_t stated_id = 0;
-  std::string line;
   int number = 0;
-  while (std::getline(in, line)) {
+  std::string_view rest(text.data(), size);
+  while (!rest.empty()) {
     ++number;
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream words(line);
-    std::string field, value;
-    words >> field >> value;
-    // Errors name the line and the field, never the value: it may be the key.
-    const std::string where = "key file " + name + " line " + std::to_string(number);
+    const std::size_t end = rest.find('\n');
+    std::string_view line = rest.substr(0, end);
+    rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
+    line = trim(line);
+    if (line.empty() || line.front() == '#') continue;
+    // Errors name the line and what it should be, never a byte of it: any of it may be the key.
+    const auto refuse = [&](const std::string& what) {
+      return KeyFileError("key file " + name + " line " + std::to_string(number) + ": " + what +
+                          "; each line is 'key-id <8 hex digits>' or 'key <" + std::to_string(2 * kKeyBytes) +
+                          " hex digits>', separated by a space (make a new file with dtmfctl keygen)");
+    };
+    const std::size_t gap = line.find_first_of(kBlanks);
+    if (gap == std::string_view::npos) throw refuse("not a field and a value");
+    const std::string_view field = line.substr(0, gap);
+    const std::string_view value = trim(line.substr(gap));
+    if (value.find_first_of(kBlanks) != std::string_view::npos) throw refuse("more than a field and a value");
     if (field == "key") {
+      if (have_key) throw refuse("a second key line");
       std::size_t written = 0;
-      if (value.size() != 2 * kKeyBytes ||
+      if (value.size() != 2 * kKeyBytes || !all_hex(value) ||
           sodium_hex2bin(key->bytes_, kKeyBytes, value.data(), value.size(), nullptr, &written, nullptr) != 0 ||
           written != kKeyBytes) {
-        sodium_memzero(value.data(), value.size());
-        throw KeyFileError(where + ": the key must be " + std::to_string(2 * kKeyBytes) +
-                           " hexadecimal digits (make a new one with dtmfctl keygen)");
+        throw refuse("the key is not " + std::to_string(2 * kKeyBytes) + " hexadecimal digits");
       }
-      sodium_memzero(value.data(), value.size());
       have_key = true;
     } else if (field == "key-id") {
-      char* end = nullptr;
-      const unsigned long id = std::strtoul(value.c_str(), &end, 16);
-      if (value.size() != 8 || end != value.c_str() + value.size()) {
-        throw KeyFileError(where + ": the key id must be 8 hexadecimal digits");
-      }
-      stated_id = static_cast<std::uint32_t>(id);
+      if (have_id) throw refuse("a second key-id line");
+      if (value.size() != 8 || !all_hex(value)) throw refuse("the key id is not 8 hexadecimal digits");
+      stated_id = 0;
+      for (const char digit : value) stated_id = (stated_id << 4) | hex_value(digit);
       have_id = true;
     } else {
-      throw KeyFileError(where + ": unknown field '" + field.substr(0, 20) + "' (expected key-id or key)");
+      throw refuse("neither a key-id nor a key line");
     }
   }
-  sodium_memzero(line.data(), line.size());
   if (!have_key || !have_id)
     throw KeyFileError("key file " + name + " lacks its " + (have_key ? "key-id" : "key") + " line");
   key->id_ = derive_id(key->bytes_);
