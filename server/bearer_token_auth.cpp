@@ -1,6 +1,8 @@
 #include "bearer_token_auth.h"
 
+#include <arpa/inet.h>
 #include <grpcpp/security/auth_metadata_processor.h>
+#include <netinet/in.h>
 #include <openssl/crypto.h>
 
 #include <stdexcept>
@@ -56,7 +58,19 @@ bool open_without_token(const std::string& method_path) {
 }
 
 bool is_loopback_address(const std::string& address) {
-  return address == "localhost" || address == "::1" || address == "[::1]" || address.starts_with("127.");
+  // "localhost" is not an address but a name. By the convention of /etc/hosts (and RFC 6761,
+  // which reserves it for loopback) it resolves to 127.0.0.1 and ::1 only, and gRPC listens
+  // on what it resolves to; kept, as the name users type.
+  if (address == "localhost") return true;
+  // Otherwise only a literal address: a name that merely begins with "127." (127.evil.example,
+  // 127.0.0.1.nip.io) resolves wherever its owner likes.
+  in_addr v4{};
+  if (::inet_pton(AF_INET, address.c_str(), &v4) == 1) return (ntohl(v4.s_addr) >> 24) == 127;  // 127.0.0.0/8
+  const std::string v6 = address.size() > 2 && address.front() == '[' && address.back() == ']'
+                             ? address.substr(1, address.size() - 2)
+                             : address;
+  in6_addr six{};
+  return ::inet_pton(AF_INET6, v6.c_str(), &six) == 1 && IN6_IS_ADDR_LOOPBACK(&six);  // ::1 only
 }
 
 bool open_to_anyone(const ServerSecurity& security, const std::string& address) {

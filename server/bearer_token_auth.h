@@ -35,7 +35,9 @@ bool open_to_anyone(const ServerSecurity& security, const std::string& address);
 // service and server reflection (which describes only the public API).
 bool open_without_token(const std::string& method_path);
 
-// True for 127.0.0.0/8, ::1 and "localhost" (an --address value, without the port).
+// True for an --address value (without the port) that is this machine only: an IPv4 literal
+// in 127.0.0.0/8, the IPv6 literal ::1 (bracketed or not), and the name "localhost". Never
+// for another name, however it begins ("127.0.0.1.nip.io" is anyone's).
 bool is_loopback_address(const std::string& address);
 
 // The credentials to listen on `address` with; throws std::invalid_argument when the
