@@ -1,7 +1,8 @@
 // dtmfctl: the command-line client of dtmf-teleop.
 //
 // Exit codes: 0 success / confirmed, 1 a runtime error (unreadable file, bad audio), 2 bad usage,
-// 3 the robot did not confirm or the command failed, 4 the server cannot be reached.
+// 3 the robot did not confirm or the command failed, 4 the server cannot be reached, 5 the
+// server refused the caller (no or wrong bearer token: UNAUTHENTICATED; PERMISSION_DENIED).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
@@ -29,7 +30,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success (command confirmed), 1 runtime error (unreadable file, bad audio), 2 bad usage,\n"
-      "            3 the robot did not confirm / the command failed, 4 the server cannot be reached.\n"
+      "            3 the robot did not confirm / the command failed, 4 the server cannot be reached,\n"
+      "            5 the server refused the caller (no or wrong bearer token: --token-file; not allowed).\n"
       "Examples:\n"
       "  dtmfctl encode --json --word 2861\n"
       "  dtmfctl encode --wav drive.wav drive --speed 50 --duration 3\n"

@@ -46,9 +46,17 @@ int exit_code_for(const grpc::Status& status) {
       return program::kExitUsage;
     case grpc::StatusCode::UNAVAILABLE:
       return kExitUnreachable;
+    case grpc::StatusCode::UNAUTHENTICATED:
+    case grpc::StatusCode::PERMISSION_DENIED:
+      return kExitNotAuthorized;
     default:
       return kExitUnconfirmed;
   }
+}
+
+bool caller_refused(const grpc::Status& status) {
+  return status.error_code() == grpc::StatusCode::UNAUTHENTICATED ||
+         status.error_code() == grpc::StatusCode::PERMISSION_DENIED;
 }
 
 std::string describe_status(const grpc::Status& status) {

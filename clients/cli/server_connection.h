@@ -16,6 +16,9 @@ namespace dtmf::cli {
 // 0 confirmed, 2 bad usage (common/program_main.h), and:
 inline constexpr int kExitUnconfirmed = 3;  // the robot did not confirm, or the command failed
 inline constexpr int kExitUnreachable = 4;  // no server answered
+// The server refused the caller before the command: no bearer token or not its token
+// (UNAUTHENTICATED), or not allowed (PERMISSION_DENIED). Nothing went on air.
+inline constexpr int kExitNotAuthorized = 5;
 
 // Thrown when the server cannot be reached; main() turns it into exit code 4.
 class Unreachable : public std::runtime_error {
@@ -40,6 +43,8 @@ class ServerConnection {
 
 // The exit code and the one line to print for a finished call.
 int exit_code_for(const grpc::Status& status);
+// Whether the server refused the caller (UNAUTHENTICATED, PERMISSION_DENIED): exit code 5.
+bool caller_refused(const grpc::Status& status);
 std::string describe_status(const grpc::Status& status);
 
 }  // namespace dtmf::cli

@@ -5,6 +5,7 @@
 #include <netinet/in.h>
 #include <signal.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -186,6 +187,8 @@ class SecuredServerProcess : public ServerProcess {
                   .exit_code,
               0);
     std::ofstream(path("token")) << "tok-123\n";
+    ::chmod(path("token").c_str(), 0600);  // a secret: the server refuses it if others may read it
+    ::chmod(key.c_str(), 0600);
     return "--tls-cert " + cert + " --tls-key " + key + " --auth-token-file " + path("token");
   }
   std::shared_ptr<grpc::ChannelCredentials> credentials() override {
@@ -225,6 +228,7 @@ class TokenOnLoopbackServerProcess : public ServerProcess {
  protected:
   std::string extra_flags() override {
     std::ofstream(path("token")) << "tok-456\n";
+    ::chmod(path("token").c_str(), 0600);
     return "--auth-token-file " + path("token");
   }
 };
@@ -255,6 +259,29 @@ TEST_F(TokenOnLoopbackServerProcess, RefusesCallsWithoutTheTokenButAnswersHealth
   expect_serving(channel_);  // no token needed
 }
 
+// Issue 34: dtmfctl left a call refused for its token with exit code 3, "the robot did not
+// confirm"; a script could not tell a missing token from a robot out of earshot. Now 5.
+TEST_F(TokenOnLoopbackServerProcess, DtmfctlWithoutTheTokenExitsWithItsOwnCode) {
+  const std::string dtmfctl = std::string(DTMFCTL_PATH) + " --server 127.0.0.1:" + std::to_string(port_);
+  std::ofstream(path("wrong")) << "tok-457\n";
+  std::ofstream(path("right")) << "tok-456\n";
+  for (const std::string call : {"stop --on-unconfirmed fail", "drive --speed 20", "runs", "report 1"}) {
+    const auto without = test_support::run_command(dtmfctl + " " + call + " < /dev/null");
+    EXPECT_EQ(without.exit_code, 5) << call << ": " << without.out;
+    EXPECT_NE(without.out.find("bearer token"), std::string::npos) << call << ": " << without.out;
+    const auto wrong =
+        test_support::run_command(dtmfctl + " --token-file " + path("wrong") + " " + call + " < /dev/null");
+    EXPECT_EQ(wrong.exit_code, 5) << call << ": " << wrong.out;
+    EXPECT_NE(wrong.out.find("not this server's"), std::string::npos) << call << ": " << wrong.out;
+  }
+  // Past the token the codes are as before: this server has no database (3), and health
+  // needs no token (0).
+  EXPECT_EQ(test_support::run_command(dtmfctl + " --token-file " + path("right") + " runs").exit_code, 3);
+  EXPECT_EQ(test_support::run_command(dtmfctl + " health").exit_code, 0);
+  const auto help = test_support::run_command(std::string(DTMFCTL_PATH) + " --help");
+  EXPECT_NE(help.out.find("5 the server refused the caller"), std::string::npos) << help.out;
+}
+
 TEST(ServerFlags, UsageErrorsAndABusyPortAreClear) {
   EXPECT_EQ(test_support::run_command(std::string(DTMF_SERVER_PATH) + " --port 70000").exit_code, 2);
   EXPECT_EQ(test_support::run_command(std::string(DTMF_SERVER_PATH) + " --on-unconfirmed maybe").exit_code, 2);
@@ -272,6 +299,7 @@ TEST(ServerFlags, UsageErrorsAndABusyPortAreClear) {
   // A token in clear text off loopback is refused before anything is opened, with the ways out.
   const std::string token = ::testing::TempDir() + "/server-flags-token";
   std::ofstream(token) << "t\n";
+  ::chmod(token.c_str(), 0600);
   const auto exposed = test_support::run_command(std::string(DTMF_SERVER_PATH) +
                                                  " --audio-out wav:/dev/null --audio-in none --db none --address "
                                                  "0.0.0.0 --port 0 --auth-token-file " +
@@ -284,4 +312,72 @@ TEST(ServerFlags, UsageErrorsAndABusyPortAreClear) {
       std::string(DTMF_SERVER_PATH) + " --audio-out wav:/dev/null --audio-in none --db none --tls-cert " + token);
   EXPECT_EQ(half_tls.exit_code, 2) << half_tls.out;
   EXPECT_NE(half_tls.out.find("--tls-key"), std::string::npos) << half_tls.out;
+}
+
+namespace {
+
+// dtmf-server with `flags` and no sound card, stopped after 20 s if it has not stopped by
+// itself (a server that accepts what it should refuse would serve on: exit code 124).
+test_support::CommandResult start_server(const std::string& flags) {
+  return test_support::run_command("timeout 20 " + std::string(DTMF_SERVER_PATH) +
+                                   " --audio-out wav:/dev/null --audio-in none --db none --port " +
+                                   std::to_string(free_port()) + " " + flags);
+}
+
+std::string write_file(const fs::path& file, const std::string& text, mode_t mode) {
+  fs::remove(file);
+  std::ofstream(file) << text;
+  ::chmod(file.c_str(), mode);
+  return file.string();
+}
+
+}  // namespace
+
+// Issue 34: an empty token file read as "no token" and turned authentication off; a token
+// file or TLS key others could read was taken. Each now stops the server at start, saying
+// what to do, without a byte of the file.
+TEST(ServerFlags, AnEmptyTokenFileOrASecretOthersMayReadStopsTheServerAtStart) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("server-secrets-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const std::string blank : {"", "\n", "  \n \n"}) {
+    const std::string token = write_file(dir / "empty-token", blank, 0600);
+    const auto r = start_server("--auth-token-file " + token);
+    EXPECT_EQ(r.exit_code, 1) << r.out;
+    for (const std::string& hint :
+         {token, std::string("empty"), "openssl rand -hex 32 > " + token, std::string("chmod 600")}) {
+      EXPECT_NE(r.out.find(hint), std::string::npos) << hint << " in " << r.out;
+    }
+  }
+  const std::string token = write_file(dir / "token", "Zq8rT0kenV4lue\n", 0644);
+  const auto readable = start_server("--auth-token-file " + token);
+  EXPECT_EQ(readable.exit_code, 1) << readable.out;
+  EXPECT_NE(readable.out.find("mode 0644"), std::string::npos) << readable.out;
+  EXPECT_NE(readable.out.find("chmod 600 " + token), std::string::npos) << readable.out;
+  EXPECT_EQ(readable.out.find("Zq8rT0kenV4lue"), std::string::npos) << readable.out;
+  ::chmod(token.c_str(), 0600);
+
+  const std::string cert = (dir / "cert.pem").string(), key = (dir / "key.pem").string();
+  ASSERT_EQ(test_support::run_command("openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=localhost "
+                                      "-addext subjectAltName=DNS:localhost -keyout " +
+                                      key + " -out " + cert)
+                .exit_code,
+            0);
+  ::chmod(cert.c_str(), 0644);  // public
+  for (const mode_t mode : {0640u, 0604u}) {
+    ::chmod(key.c_str(), mode);
+    const auto r = start_server("--tls-cert " + cert + " --tls-key " + key + " --auth-token-file " + token);
+    EXPECT_EQ(r.exit_code, 1) << r.out;
+    EXPECT_NE(r.out.find("chmod 600 " + key), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("PRIVATE KEY"), std::string::npos) << r.out;
+  }
+  fs::remove_all(dir);
+}
+
+// Issue 34: any --address that began with "127." counted as loopback, so a name such as
+// 127.0.0.1.nip.io (which resolves wherever its owner likes) was served without TLS or a
+// token. It gets protected mode's refusal now, before anything is opened.
+TEST(ServerFlags, ANameThatMerelyBeginsWith127IsNotLoopback) {
+  const auto r = start_server("--address 127.0.0.1.nip.io");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("--allow-anyone-on-the-network"), std::string::npos) << r.out;
 }
