@@ -1,7 +1,8 @@
-// What dtmf-server, dtmf-agent and dtmfctl share about keys: the flags (--key, --state-dir)
-// and the link options they make — the key read from its file (security/link_key.h), the
-// freshness counters kept in the state directory (security/counter_file.h). The key's bytes
-// never leave the LinkKey: flags name files, logs name the key id.
+// What dtmf-server, dtmf-agent and dtmfctl share about keys: the flags (--key, --state-dir,
+// and the robot's --new-key) and the link options they make — the key read from its file
+// (security/link_key.h), the freshness counters kept in the state directory
+// (security/counter_file.h), opened and locked at start. The key's bytes never leave the
+// LinkKey: flags name files, logs name the key id.
 // Header-only: each program includes it once.
 #pragma once
 
@@ -21,6 +22,7 @@ namespace dtmf::program {
 struct KeyFlags {
   std::string key_file;   // empty: no key
   std::string state_dir;  // where the counters live
+  bool new_key = false;   // the robot's --new-key: the key was just made, it has no state yet
 };
 
 // A user's own state directory: $XDG_STATE_HOME/dtmf-teleop, else ~/.local/state/dtmf-teleop.
@@ -39,14 +41,46 @@ inline void add_key_flags(CLI::App& app, KeyFlags& flags, const std::string& env
       ->capture_default_str();
 }
 
-// The link options the flags give: nothing but the address without a key.
+// The robot's --new-key (PREFIX_NEW_KEY): once, for the first start with a key just made.
+inline void add_new_key_flag(CLI::App& app, KeyFlags& flags, const std::string& env_prefix) {
+  app.add_flag("--new-key", flags.new_key,
+               "with --key: the key was just made (dtmfctl keygen): write its counter state, then run. Once, at "
+               "pairing: refused when the key has state here; without it, a key with no state here is refused")
+      ->envname(env_prefix + "_NEW_KEY")
+      ->needs(app.get_option("--key"));
+}
+
+// The sender's link options the flags give (dtmf-server, dtmfctl encode): nothing but the
+// address without a key; with one, its counters, locked for this process from now on.
 inline link::LinkOptions link_options(const KeyFlags& flags, std::uint8_t address = 0) {
   link::LinkOptions options;
   options.address = address;
   if (flags.key_file.empty()) return options;
   options.key = security::LinkKey::load(flags.key_file);
-  options.counters = std::make_shared<security::FileCounterStore>(flags.state_dir, *options.key);
+  options.counters = security::FileCounterStore::open_sender(flags.state_dir, *options.key);
   spdlog::info("key {} from {}; counters in {}", options.key->id_hex(), flags.key_file, flags.state_dir);
+  return options;
+}
+
+// The robot's (dtmf-agent): with a key, its accepted counter read (or, with --new-key,
+// written) and locked before this returns, so before the robot listens. Throws when there is
+// no state for the key and no --new-key, or the state is damaged.
+inline link::LinkOptions robot_link_options(const KeyFlags& flags, std::uint8_t address) {
+  link::LinkOptions options;
+  options.address = address;
+  if (flags.key_file.empty()) return options;
+  options.key = security::LinkKey::load(flags.key_file);
+  const auto counters = security::FileCounterStore::open_robot(
+      flags.state_dir, *options.key, flags.new_key ? security::RobotKey::New : security::RobotKey::Paired);
+  options.counters = counters;
+  if (flags.new_key) {
+    spdlog::info(
+        "key {} from {}: new, its counter state written in {} (accepted 0); start without --new-key from now on",
+        options.key->id_hex(), flags.key_file, flags.state_dir);
+  } else {
+    spdlog::info("key {} from {}; counters in {} (last accepted {})", options.key->id_hex(), flags.key_file,
+                 flags.state_dir, counters->last_accepted());
+  }
   return options;
 }
 

@@ -4,6 +4,7 @@
 //   dtmf-agent                                   # default microphone and speaker, DDS cmd_vel
 //   dtmf-agent --audio wav:x.wav --ack-out wav:y.wav --cmd-vel log --db none   # offline
 //   dtmf-agent --stop-robot                      # publish zero on cmd_vel now, and exit
+//   dtmf-agent --key link.key --new-key          # once, at pairing: the key's counter state made
 // Exit codes: 0 stopped cleanly, 1 a device, the database or DDS could not be had, 2 bad usage.
 #include <unistd.h>
 
@@ -94,8 +95,10 @@ int run(const Flags& f) {
   const command::RobotModel& model = command::robot_model_by_name(f.robot);
   const bool offline = physical::is_file_spec(f.audio);
 
-  // Everything that can be missing is checked before the robot could move: the key first.
-  link::LinkOptions link_options = program::link_options(f.keys, static_cast<std::uint8_t>(f.address));
+  // Everything that can be missing is checked before the robot could move: the key first,
+  // and its counter state, read and locked before the robot listens (a second agent on the
+  // same state directory stops here; so does one with no state or damaged state for its key).
+  link::LinkOptions link_options = program::robot_link_options(f.keys, static_cast<std::uint8_t>(f.address));
   link_options.accept_unauthenticated = f.accept_unauthenticated;
   if (!link_options.key) {
     spdlog::info(
@@ -281,6 +284,7 @@ int main(int argc, char** argv) {
   app.add_option("--spill-file", f.spill_file, "where log rows wait while the database is away");
   app.add_option("--host", f.host, "name of this robot in the log (default: hostname)");
   dtmf::program::add_key_flags(app, f.keys, "DTMF_AGENT", "/var/lib/dtmf-agent");
+  dtmf::program::add_new_key_flag(app, f.keys, "DTMF_AGENT");
   app.add_option("--address", f.address, "this robot's address (0..7): it takes the frames sent to it")
       ->envname("DTMF_AGENT_ADDRESS")
       ->check(CLI::Range(0, 7))

@@ -13,7 +13,11 @@ namespace fs = std::filesystem;
 SpillFile::SpillFile(std::string path) : path_(std::move(path)), replay_path_(path_ + ".replaying") {
   const fs::path parent = fs::path(path_).parent_path();
   std::error_code ignored;
-  if (!parent.empty()) fs::create_directories(parent, ignored);
+  // A directory made here is this user's alone (0700, whatever the umask): it holds the log's
+  // rows, and as a user's default state directory also the key's counters, which refuse a
+  // directory others may write (security/counter_file.h).
+  if (!parent.empty() && fs::create_directories(parent, ignored))
+    fs::permissions(parent, fs::perms::owner_all, fs::perm_options::replace, ignored);
   active_has_rows_ = fs::exists(path_) && fs::file_size(path_) > 0;
 }
 

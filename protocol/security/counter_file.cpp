@@ -7,10 +7,11 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "security/freshness.h"
 
@@ -20,48 +21,110 @@ namespace {
 
 // 2026-01-01T00:00:00Z.
 constexpr std::chrono::seconds kEpoch{1767225600};
+// Longer than any file written here ("reserved N\nconfirmed M\n" with 11-digit values).
+constexpr std::size_t kLongestState = 4096;
 
 [[noreturn]] void fail(const std::string& what, const std::filesystem::path& path) {
   throw std::runtime_error(what + " " + path.string() + ": " + std::strerror(errno));
 }
 
-void fsync_directory(const std::filesystem::path& directory) {
-  const int fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) fail("cannot open the state directory", directory);
-  const bool ok = ::fsync(fd) == 0;
-  ::close(fd);
-  if (!ok) fail("cannot sync the state directory", directory);
+// A counter file that is not in the form written here: what is wrong with it.
+struct Damage {
+  std::string what;
+};
+
+// `text` for a message: at most 40 characters, anything unprintable as \xNN.
+std::string shown(std::string_view text) {
+  std::string out;
+  for (const char c : text.substr(0, 40)) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7f && c != '\'' && c != '\\') {
+      out += c;
+    } else {
+      char escaped[5];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", u);
+      out += escaped;
+    }
+  }
+  return text.size() > 40 ? out + "..." : out;
 }
 
-// Replaces `path` with `text`, durably and atomically.
-void replace_file(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path temporary = path.string() + ".new";
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-  if (fd < 0) fail("cannot write the counter state", temporary);
-  const bool ok = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size()) && ::fsync(fd) == 0;
-  const int error = errno;
-  ::close(fd);
-  errno = error;
-  if (!ok) fail("cannot write the counter state", temporary);
-  if (::rename(temporary.c_str(), path.c_str()) != 0) fail("cannot replace the counter state", path);
-  fsync_directory(path.parent_path());
+// Takes the line "NAME N\n" off the front of `text` and gives N, exactly as written here: N in
+// decimal, with no sign, no leading zero and no space around it, below the counter's limit.
+std::uint64_t take_line(std::string_view& text, std::string_view name, int number) {
+  const std::string line_name = "line " + std::to_string(number);
+  if (text.empty()) throw Damage{number == 1 ? "it is empty" : line_name + " is missing"};
+  const std::size_t end = text.find('\n');
+  if (end == std::string_view::npos) {
+    throw Damage{line_name + ", '" + shown(text) + "', is cut short (it has no end of line)"};
+  }
+  const std::string_view line = text.substr(0, end);
+  const std::string expected = std::string(name) + " <number>";
+  if (line.size() <= name.size() || line.substr(0, name.size()) != name || line[name.size()] != ' ') {
+    throw Damage{line_name + " is '" + shown(line) + "', where '" + expected + "' belongs"};
+  }
+  const std::string_view digits = line.substr(name.size() + 1);
+  const bool decimal = !digits.empty() &&
+                       std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) &&
+                       (digits.size() == 1 || digits[0] != '0');
+  if (!decimal) {
+    throw Damage{line_name + " is '" + shown(line) + "': its value is not a decimal number, where '" + expected +
+                 "' belongs"};
+  }
+  std::uint64_t value = 0;
+  for (const char c : digits) {
+    value = value * 10 + static_cast<std::uint64_t>(c - '0');
+    if (value >= kCounterLimit) {
+      throw Damage{line_name + " is '" + shown(line) + "': its value is beyond the " + std::to_string(kCounterBits) +
+                   "-bit counter"};
+    }
+  }
+  text.remove_prefix(end + 1);
+  return value;
 }
 
-// "name value" lines; a missing file reads as empty.
-std::optional<std::uint64_t> read_field(const std::filesystem::path& path, const std::string& name) {
-  std::ifstream in(path);
-  if (!in) {
-    if (errno == ENOENT || !std::filesystem::exists(path)) return std::nullopt;
+void expect_end(std::string_view text) {
+  if (!text.empty()) throw Damage{"it goes on after its last line: '" + shown(text) + "'"};
+}
+
+// The file `name` in the directory, or nothing when there is none. Never read through a
+// symbolic link, and only a regular file.
+std::optional<std::string> read_state(int directory_fd, const std::filesystem::path& path, const std::string& name) {
+  // O_NONBLOCK: a FIFO in its place must not hang the program.
+  const int fd = ::openat(directory_fd, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT) return std::nullopt;
+    if (errno == ELOOP) throw Damage{"it is a symbolic link (a counter file is never read through one)"};
     fail("cannot read the counter state", path);
   }
-  std::string field;
-  std::uint64_t value = 0;
-  while (in >> field >> value) {
-    if (field == name) return value;
+  struct stat status {};
+  if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) {
+    ::close(fd);
+    throw Damage{"it is not a regular file"};
   }
-  if (!in.eof())
-    throw std::runtime_error("the counter state " + path.string() + " is damaged: it must hold lines 'name number'");
-  return std::nullopt;
+  std::string text;
+  char buffer[1024];
+  while (text.size() <= kLongestState) {
+    const ssize_t got = ::read(fd, buffer, sizeof buffer);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) {
+      const int error = errno;
+      ::close(fd);
+      errno = error;
+      fail("cannot read the counter state", path);
+    }
+    if (got == 0) break;
+    text.append(buffer, static_cast<std::size_t>(got));
+  }
+  ::close(fd);
+  if (text.size() > kLongestState) throw Damage{"it is longer than any counter state"};
+  return text;
+}
+
+std::string octal_mode(mode_t mode) {
+  char text[8];
+  std::snprintf(text, sizeof text, "%04o", static_cast<unsigned>(mode & 07777));
+  return text;
 }
 
 }  // namespace
@@ -73,39 +136,79 @@ std::uint64_t clock_counter_floor(std::chrono::system_clock::time_point now) {
   return 1 + static_cast<std::uint64_t>(since.count()) * kCountersPerSecond / 1000;
 }
 
-FileCounterStore::FileCounterStore(std::filesystem::path directory, const LinkKey& key, Clock clock)
-    : directory_(std::move(directory)), key_id_(key.id_hex()), clock_(std::move(clock)) {
+std::shared_ptr<FileCounterStore> FileCounterStore::open_sender(std::filesystem::path directory, const LinkKey& key,
+                                                                Clock clock) {
+  std::shared_ptr<FileCounterStore> store(
+      new FileCounterStore(std::move(directory), key, Role::Sender, std::move(clock)));
+  store->start_sender();
+  return store;
+}
+
+std::shared_ptr<FileCounterStore> FileCounterStore::open_robot(std::filesystem::path directory, const LinkKey& key,
+                                                               RobotKey start) {
+  std::shared_ptr<FileCounterStore> store(new FileCounterStore(std::move(directory), key, Role::Robot, {}));
+  store->start_robot(start);
+  return store;
+}
+
+FileCounterStore::FileCounterStore(std::filesystem::path directory, const LinkKey& key, Role role, Clock clock)
+    : directory_(std::move(directory)), key_id_(key.id_hex()), role_(role), clock_(std::move(clock)) {
+  const std::string fix = " (give --state-dir a directory this user may write)";
   std::error_code error;
   if (!std::filesystem::is_directory(directory_, error)) {
     std::filesystem::create_directories(directory_, error);
     if (!error) std::filesystem::permissions(directory_, std::filesystem::perms::owner_all, error);
     if (error) {
-      throw std::runtime_error("cannot make the state directory " + directory_.string() + ": " + error.message() +
-                               " (give --state-dir a directory this user may write)");
+      throw std::runtime_error("cannot make the state directory " + directory_.string() + ": " + error.message() + fix);
     }
   }
-  if (::access(directory_.c_str(), W_OK) != 0) {
-    throw std::runtime_error("cannot write in the state directory " + directory_.string() + ": " +
-                             std::strerror(errno) + " (give --state-dir a directory this user may write)");
+  // The directory's own path is the operator's (systemd's StateDirectory= with DynamicUser=
+  // is a link to /var/lib/private/...), so it is followed; nothing in it ever is.
+  directory_fd_ = ::open(directory_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (directory_fd_ < 0) {
+    throw std::runtime_error("cannot open the state directory " + directory_.string() + ": " + std::strerror(errno) +
+                             fix);
+  }
+  struct stat status {};
+  std::string refusal;
+  if (::fstat(directory_fd_, &status) != 0) {
+    refusal = "cannot read the state directory " + directory_.string() + ": " + std::strerror(errno) + fix;
+  } else if (status.st_uid != ::geteuid()) {
+    refusal = "the state directory " + directory_.string() + " belongs to user " + std::to_string(status.st_uid) +
+              ", not to this one (" + std::to_string(::geteuid()) +
+              "): that user could change the counters in it. Give --state-dir a directory of this user's "
+              "(chown " +
+              std::to_string(::geteuid()) + " " + directory_.string() + "; chmod 700 " + directory_.string() + ")";
+  } else if ((status.st_mode & (S_IWGRP | S_IWOTH)) != 0) {
+    refusal = "the state directory " + directory_.string() + " has mode " + octal_mode(status.st_mode) +
+              ": its group or others may write in it, and so could put back an old counter (and old recordings "
+              "would be taken again). Make it this user's alone: chmod 700 " +
+              directory_.string();
+  } else if (::faccessat(directory_fd_, ".", W_OK, 0) != 0) {
+    refusal = "cannot write in the state directory " + directory_.string() + ": " + std::strerror(errno) + fix;
+  }
+  if (!refusal.empty()) {
+    ::close(directory_fd_);
+    throw std::runtime_error(refusal);
   }
 }
 
 FileCounterStore::~FileCounterStore() {
-  if (sender_lock_ >= 0) {
+  if (role_ == Role::Sender && lock_fd_ >= 0 && confirmed_unwritten_) {
     // The confirmed hint, for a clean restart without a synchronisation frame.
     try {
-      if (confirmed_unwritten_) write_sender();
+      write_sender();
     } catch (const std::exception&) {
     }
-    ::close(sender_lock_);
   }
-  if (robot_lock_ >= 0) ::close(robot_lock_);
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+  if (directory_fd_ >= 0) ::close(directory_fd_);
 }
 
-int FileCounterStore::lock(const std::string& role) const {
-  const std::filesystem::path path = directory_ / (role + "-" + key_id_ + ".lock");
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
-  if (fd < 0) fail("cannot open the lock", path);
+void FileCounterStore::take_lock(const std::string& role) {
+  const std::string name = role + "-" + key_id_ + ".lock";
+  const int fd = ::openat(directory_fd_, name.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) fail("cannot open the lock", directory_ / name);
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     ::close(fd);
     throw std::runtime_error("another process keeps its " + role + " counter in " + directory_.string() + " for key " +
@@ -113,30 +216,104 @@ int FileCounterStore::lock(const std::string& role) const {
                              ": two would reuse counter values; stop it, or give this one "
                              "its own --state-dir");
   }
-  return fd;
+  lock_fd_ = fd;
 }
 
-void FileCounterStore::open_sender() const {
-  if (sender_lock_ >= 0) return;
-  sender_lock_ = lock("sender");
-  const std::filesystem::path path = directory_ / ("sender-" + key_id_);
-  reserved_ = read_field(path, "reserved").value_or(0);
-  last_confirmed_ = read_field(path, "confirmed");
+// Replaces the file `name` with `text`, durably and atomically, never through a link.
+void FileCounterStore::write_file(const std::string& name, const std::string& text) const {
+  const std::string temporary = name + ".new";
+  // A temporary left by a crash, or anything planted in its place (a link is removed, not followed).
+  if (::unlinkat(directory_fd_, temporary.c_str(), 0) != 0 && errno != ENOENT) {
+    fail("cannot remove the old temporary", directory_ / temporary);
+  }
+  const int fd = ::openat(directory_fd_, temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) fail("cannot write the counter state", directory_ / temporary);
+  const bool ok = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size()) && ::fsync(fd) == 0;
+  const int error = errno;
+  ::close(fd);
+  errno = error;
+  if (!ok) fail("cannot write the counter state", directory_ / temporary);
+  if (::renameat(directory_fd_, temporary.c_str(), directory_fd_, name.c_str()) != 0) {
+    fail("cannot replace the counter state", directory_ / name);
+  }
+  if (::fsync(directory_fd_) != 0) fail("cannot sync the state directory", directory_);
+}
+
+void FileCounterStore::require(Role role, const char* what) const {
+  if (role_ != role) {
+    throw std::logic_error(std::string(what) + ": this counter store of key " + key_id_ + " is the " +
+                           (role_ == Role::Sender ? "sender's" : "robot's"));
+  }
+}
+
+void FileCounterStore::start_sender() {
+  take_lock("sender");
+  const std::string name = "sender-" + key_id_;
+  const std::filesystem::path path = directory_ / name;
+  try {
+    if (const auto text = read_state(directory_fd_, path, name)) {
+      std::string_view rest = *text;
+      reserved_ = take_line(rest, "reserved", 1);
+      if (!rest.empty()) last_confirmed_ = take_line(rest, "confirmed", 2);
+      expect_end(rest);
+    }
+  } catch (const Damage& damage) {
+    throw std::runtime_error("the counter state " + path.string() + " is damaged: " + damage.what +
+                             ". This sender cannot tell which counters it used. Remove the file: its counters then "
+                             "start from the clock, above all it used unless it averaged more than " +
+                             std::to_string(kCountersPerSecond) +
+                             " frames a second (docs/security.md, \"Recovering a lost counter\"); or make a new key "
+                             "(dtmfctl keygen) and install it on both sides");
+  }
   next_ = std::max(reserved_, clock_counter_floor(clock_()));
   reserved_ = next_;
 }
 
-void FileCounterStore::write_sender() const {
+void FileCounterStore::start_robot(RobotKey start) {
+  take_lock("robot");
+  const std::string name = "robot-" + key_id_;
+  const std::filesystem::path path = directory_ / name;
+  std::optional<std::uint64_t> accepted;
+  try {
+    if (const auto text = read_state(directory_fd_, path, name)) {
+      std::string_view rest = *text;
+      accepted = take_line(rest, "accepted", 1);
+      expect_end(rest);
+    }
+  } catch (const Damage& damage) {
+    throw std::runtime_error("the counter state " + path.string() + " is damaged: " + damage.what +
+                             ". The robot cannot tell which frames are old. Make a new key (dtmfctl keygen), "
+                             "install it on both sides, and start dtmf-agent --new-key");
+  }
+  if (start == RobotKey::New) {
+    if (accepted) {
+      throw std::runtime_error("key " + key_id_ + " has been used here (last accepted " + std::to_string(*accepted) +
+                               ", in " + path.string() + "): drop --new-key");
+    }
+    write_file(name, "accepted 0\n");
+    last_accepted_ = 0;
+    return;
+  }
+  if (!accepted) {
+    throw std::runtime_error("no counter state for key " + key_id_ + " in " + directory_.string() +
+                             ": if this key was just made, start once with --new-key; if the robot lost its "
+                             "state, make a new key (dtmfctl keygen), install it on both sides, and start "
+                             "dtmf-agent --new-key (with this key it would take old recordings again)");
+  }
+  last_accepted_ = *accepted;
+}
+
+void FileCounterStore::write_sender() {
   std::ostringstream text;
   text << "reserved " << reserved_ << "\n";
   if (last_confirmed_) text << "confirmed " << *last_confirmed_ << "\n";
-  replace_file(directory_ / ("sender-" + key_id_), text.str());
+  write_file("sender-" + key_id_, text.str());
   confirmed_unwritten_ = false;
 }
 
 std::uint64_t FileCounterStore::next_counter() {
   std::lock_guard lock(mutex_);
-  open_sender();
+  require(Role::Sender, "next_counter");
   if (next_ >= reserved_) {
     if (next_ + kSenderBlock >= kCounterLimit) {
       throw std::runtime_error("the freshness counter of key " + key_id_ +
@@ -150,7 +327,7 @@ std::uint64_t FileCounterStore::next_counter() {
 
 std::optional<std::uint64_t> FileCounterStore::last_confirmed() const {
   std::lock_guard lock(mutex_);
-  open_sender();
+  require(Role::Sender, "last_confirmed");
   return last_confirmed_;
 }
 
@@ -158,28 +335,22 @@ std::optional<std::uint64_t> FileCounterStore::last_confirmed() const {
 // frame, never what keeps a counter from being used twice.
 void FileCounterStore::confirmed(std::uint64_t counter) {
   std::lock_guard lock(mutex_);
-  open_sender();
+  require(Role::Sender, "confirmed");
   last_confirmed_ = std::max(last_confirmed_.value_or(0), counter);
   confirmed_unwritten_ = true;
 }
 
-void FileCounterStore::open_robot() const {
-  if (robot_lock_ >= 0) return;
-  robot_lock_ = lock("robot");
-  last_accepted_ = read_field(directory_ / ("robot-" + key_id_), "accepted").value_or(0);
-}
-
 std::uint64_t FileCounterStore::last_accepted() const {
   std::lock_guard lock(mutex_);
-  open_robot();
+  require(Role::Robot, "last_accepted");
   return last_accepted_;
 }
 
 void FileCounterStore::accept(std::uint64_t counter) {
   std::lock_guard lock(mutex_);
-  open_robot();
+  require(Role::Robot, "accept");
   if (counter <= last_accepted_) return;
-  replace_file(directory_ / ("robot-" + key_id_), "accepted " + std::to_string(counter) + "\n");
+  write_file("robot-" + key_id_, "accepted " + std::to_string(counter) + "\n");
   last_accepted_ = counter;
 }
 

@@ -10,13 +10,30 @@
 // skipping at most a block and never repeating a value. It also starts no lower than the
 // clock (kCountersPerSecond since 2026-01-01), so a new machine given the same key starts
 // above what an old one used unless that one averaged more frames a second than that. The
-// robot's accepted counter is on disk before the frame acts or is answered. One process per
-// role and key: a lock (flock) refuses a second one. Files are made with mode 0600.
+// robot's accepted counter is on disk before the frame acts or is answered.
+//
+// Failing closed. A file is read only in the exact form written here; anything else (empty,
+// cut short, an unknown line, a value that is no number, anything after the last line) is
+// damaged, and a damaged file stops the program with what to do. A robot with no file for
+// its key refuses to start: it could not tell an old recording from a new frame. A key just
+// made is declared so once (RobotKey::New, dtmf-agent --new-key), which writes "accepted 0"
+// and is refused when the key already has state. A sender with no file is safe (it starts
+// above the clock's floor).
+//
+// The directory is trusted only when it is this user's and no one else may write in it
+// (made with mode 0700 when missing). It is opened once; every file in it is opened, made,
+// renamed and removed relative to it, and never through a symbolic link: a link planted as
+// a counter file or its temporary is refused or removed, never written through.
+//
+// One process per role and key: a lock (flock), taken when the store opens, refuses a second
+// one. Files are made with mode 0600.
 #pragma once
 
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <memory>
+#include <string>
 
 #include "security/counter_store.h"
 #include "security/link_key.h"
@@ -29,14 +46,32 @@ inline constexpr std::uint64_t kSenderBlock = 32;
 // The lowest counter the clock allows at `now`.
 std::uint64_t clock_counter_floor(std::chrono::system_clock::time_point now);
 
+// What a robot's store expects to find for its key.
+enum class RobotKey {
+  Paired,  // the key's state is on disk: missing, the robot cannot tell which frames are old
+  New,     // the key was just made (dtmf-agent --new-key): "accepted 0" is written, and state
+           // already there for it is refused
+};
+
 class FileCounterStore final : public CounterStore {
  public:
   using Clock = std::function<std::chrono::system_clock::time_point()>;
-  // Creates `directory` (mode 0700) when it is missing. Files are opened, read and locked on
-  // first use of a role. Throws std::runtime_error naming the directory and what to do.
-  FileCounterStore(std::filesystem::path directory, const LinkKey& key, Clock clock = std::chrono::system_clock::now);
-  ~FileCounterStore() override;
 
+  // The sender's counters (next_counter, last_confirmed, confirmed): the lock is taken and
+  // the file read before this returns; no file means counters start from the clock.
+  static std::shared_ptr<FileCounterStore> open_sender(std::filesystem::path directory, const LinkKey& key,
+                                                       Clock clock = std::chrono::system_clock::now);
+  // The robot's accepted counter (last_accepted, accept): the lock is taken and the file read
+  // (or, for a new key, written) before this returns.
+  static std::shared_ptr<FileCounterStore> open_robot(std::filesystem::path directory, const LinkKey& key,
+                                                      RobotKey start = RobotKey::Paired);
+  // Both throw std::runtime_error naming the directory or file, what is wrong and what to do.
+
+  ~FileCounterStore() override;
+  FileCounterStore(const FileCounterStore&) = delete;
+  FileCounterStore& operator=(const FileCounterStore&) = delete;
+
+  // Each role's own; the other role's throw std::logic_error.
   std::uint64_t next_counter() override;
   std::optional<std::uint64_t> last_confirmed() const override;
   void confirmed(std::uint64_t counter) override;
@@ -46,19 +81,24 @@ class FileCounterStore final : public CounterStore {
   const std::filesystem::path& directory() const { return directory_; }
 
  private:
-  void open_sender() const;
-  void open_robot() const;
-  int lock(const std::string& role) const;
-  void write_sender() const;
+  enum class Role { Sender, Robot };
+  FileCounterStore(std::filesystem::path directory, const LinkKey& key, Role role, Clock clock);
+  void start_sender();
+  void start_robot(RobotKey start);
+  void take_lock(const std::string& role);
+  void write_sender();
+  void write_file(const std::string& name, const std::string& text) const;
+  void require(Role role, const char* what) const;
 
   std::filesystem::path directory_;
   std::string key_id_;
+  Role role_;
   Clock clock_;
+  int directory_fd_ = -1, lock_fd_ = -1;
   mutable std::mutex mutex_;
-  mutable int sender_lock_ = -1, robot_lock_ = -1;
-  mutable std::uint64_t next_ = 0, reserved_ = 0, last_accepted_ = 0;
-  mutable std::optional<std::uint64_t> last_confirmed_;
-  mutable bool confirmed_unwritten_ = false;
+  std::uint64_t next_ = 0, reserved_ = 0, last_accepted_ = 0;
+  std::optional<std::uint64_t> last_confirmed_;
+  bool confirmed_unwritten_ = false;
 };
 
 }  // namespace dtmf::security

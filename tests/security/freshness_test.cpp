@@ -54,25 +54,25 @@ TEST(CounterFile, ASenderRestartedContinuesPastItsReservationAndAboveTheClock) {
   const auto key = LinkKey::generate();
   std::uint64_t last = 0;
   {
-    FileCounterStore store(dir.path, *key, [] { return at(100); });
-    const std::uint64_t first = store.next_counter();
+    const auto store = FileCounterStore::open_sender(dir.path, *key, [] { return at(100); });
+    const std::uint64_t first = store->next_counter();
     EXPECT_EQ(first, clock_counter_floor(at(100)));
     EXPECT_EQ(first, 1u + 100 * kCountersPerSecond);
-    for (int i = 0; i < 40; ++i) last = store.next_counter();
-    store.confirmed(last);
+    for (int i = 0; i < 40; ++i) last = store->next_counter();
+    store->confirmed(last);
   }
   {
     // The clock went back: the reservation on disk still wins.
-    FileCounterStore store(dir.path, *key, [] { return at(50); });
-    const std::uint64_t next = store.next_counter();
+    const auto store = FileCounterStore::open_sender(dir.path, *key, [] { return at(50); });
+    const std::uint64_t next = store->next_counter();
     EXPECT_GT(next, last);
     EXPECT_LE(next, last + kSenderBlock + 1);
-    EXPECT_EQ(store.last_confirmed(), last) << "written with the reservation";
+    EXPECT_EQ(store->last_confirmed(), last) << "written with the reservation";
   }
   {
     // A day later the clock is far ahead of the reservation.
-    FileCounterStore store(dir.path, *key, [] { return at(86400); });
-    EXPECT_EQ(store.next_counter(), clock_counter_floor(at(86400)));
+    const auto store = FileCounterStore::open_sender(dir.path, *key, [] { return at(86400); });
+    EXPECT_EQ(store->next_counter(), clock_counter_floor(at(86400)));
   }
 }
 
@@ -80,26 +80,24 @@ TEST(CounterFile, TheRobotsAcceptedCounterSurvivesARestartAndNeverGoesBack) {
   TempDir dir;
   const auto key = LinkKey::generate(), other = LinkKey::generate();
   {
-    FileCounterStore store(dir.path, *key);
-    EXPECT_EQ(store.last_accepted(), 0u);
-    store.accept(500);
-    store.accept(400);
-    EXPECT_EQ(store.last_accepted(), 500u);
+    const auto store = FileCounterStore::open_robot(dir.path, *key, RobotKey::New);
+    EXPECT_EQ(store->last_accepted(), 0u);
+    store->accept(500);
+    store->accept(400);
+    EXPECT_EQ(store->last_accepted(), 500u);
   }
-  FileCounterStore again(dir.path, *key);
-  EXPECT_EQ(again.last_accepted(), 500u);
-  FileCounterStore under_another_key(dir.path / "x", *other);
-  EXPECT_EQ(under_another_key.last_accepted(), 0u) << "each key has its own counters";
+  EXPECT_EQ(FileCounterStore::open_robot(dir.path, *key)->last_accepted(), 500u);
+  EXPECT_EQ(FileCounterStore::open_robot(dir.path / "x", *other, RobotKey::New)->last_accepted(), 0u)
+      << "each key has its own counters";
 }
 
+// At its start, not at its first counter (tests/security/robot_state_test.cpp: the robot's).
 TEST(CounterFile, ASecondProcessOnTheSameStateIsRefused) {
   TempDir dir;
   const auto key = LinkKey::generate();
-  FileCounterStore first(dir.path, *key);
-  first.next_counter();
-  FileCounterStore second(dir.path, *key);
+  const auto first = FileCounterStore::open_sender(dir.path, *key);
   try {
-    second.next_counter();
+    FileCounterStore::open_sender(dir.path, *key);
     FAIL() << "two senders on one counter";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("--state-dir"), std::string::npos) << e.what();
@@ -111,7 +109,7 @@ TEST(CounterFile, AnUnwritableDirectorySaysWhatToDo) {
   if (::geteuid() == 0) {
     // root may write anywhere: a path below a regular file is unusable for anyone.
     try {
-      FileCounterStore store("/etc/hostname/state", *key);
+      FileCounterStore::open_sender("/etc/hostname/state", *key);
       FAIL();
     } catch (const std::runtime_error& e) {
       EXPECT_NE(std::string(e.what()).find("--state-dir"), std::string::npos) << e.what();
@@ -119,7 +117,7 @@ TEST(CounterFile, AnUnwritableDirectorySaysWhatToDo) {
     return;
   }
   try {
-    FileCounterStore store("/proc/dtmf-state", *key);
+    FileCounterStore::open_sender("/proc/dtmf-state", *key);
     FAIL();
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("--state-dir"), std::string::npos) << e.what();
@@ -140,9 +138,9 @@ TEST(CounterFile, KilledTwentyTimesASenderNeverHandsOutACounterTwice) {
     ASSERT_GE(child, 0);
     if (child == 0) {
       ::close(pipe_fd[0]);
-      FileCounterStore store(dir.path / "state", *key, [] { return at(0); });
+      const auto store = FileCounterStore::open_sender(dir.path / "state", *key, [] { return at(0); });
       while (true) {
-        const std::uint64_t c = store.next_counter();
+        const std::uint64_t c = store->next_counter();
         if (::write(pipe_fd[1], &c, sizeof c) != sizeof c) ::_exit(1);
       }
     }
