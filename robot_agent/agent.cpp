@@ -113,6 +113,15 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
   if (r.event == link::ReceptionEvent::Refused) {
     spdlog::warn("t={:.3f}s {} frame {}{} refused ({}): {}: NACK", r.heard_ms / 1000.0, profile.name, bits, number,
                  link::reason_name(r.refusal), r.detail);
+    if (r.refusal == link::RefusalReason::Authentication) {
+      if (const auto burst = forgeries_.refused(r.heard_ms)) {
+        spdlog::warn(
+            "t={:.3f}s {} frames refused for authentication in the last minute (a burst: {} a minute or more): "
+            "someone may be playing forged or recorded frames, or a sender uses another key (compare the key ids "
+            "both sides log at start); each is in the receptions table, and the run report shows the peak",
+            r.heard_ms / 1000.0, *burst, kBurstPerMinute);
+      }
+    }
     store_.write(row);
     told(heard);
     return;

@@ -26,6 +26,7 @@
 #include "cmd_vel/velocity.h"
 #include "link/link.h"
 #include "profile/link_profile.h"
+#include "refusal_burst.h"
 #include "reply_player.h"
 #include "store.h"
 #include "velocity_provider.h"
@@ -138,6 +139,7 @@ class Agent {
   double next_publish_ms_ = 0;
   double published_ms_ = -1;  // the last sample's audio time
   std::size_t frames_heard_ = 0;
+  RefusalBurst forgeries_;  // refusals for authentication: a burst is said once
   // The last intact frame's link, and until when (audio ms) that frame and its answer sound.
   const link::Link* sounding_link_ = nullptr;
   double sounding_until_ms_ = 0;

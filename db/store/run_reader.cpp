@@ -71,6 +71,8 @@ void fill_figures(RunReport& report, const pqxx::row& r) {
   report.error_catch_rate_pct = measure("error_catch_rate_pct");
   report.refused = count("refused");
   report.refused_authentication = count("refused_authentication");
+  report.sender_confirmed_unauthenticated = count("sender_confirmed_unauthenticated");
+  report.refused_authentication_peak_per_minute = count("refused_authentication_peak_per_minute");
   report.response_time_avg_ms = measure("response_time_avg_ms");
   report.response_time_min_ms = measure("response_time_min_ms");
   report.response_time_max_ms = measure("response_time_max_ms");

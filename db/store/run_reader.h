@@ -50,6 +50,8 @@ struct RunReport {
                crc_accepted = 0, crc_rejected = 0, negative_confirmations_sent = 0;
   // Intact frames the robot refused (migration 007), and those for authentication.
   std::int64_t refused = 0, refused_authentication = 0;
+  // Confirmed by an untagged ACK, and the most authentication refusals in 60 s (migration 009).
+  std::int64_t sender_confirmed_unauthenticated = 0, refused_authentication_peak_per_minute = 0;
   std::optional<double> false_positive_rate_pct, success_rate_pct, sender_confirmed_rate_pct, error_catch_rate_pct,
       response_time_avg_ms, response_time_min_ms, response_time_max_ms, latency_avg_ms, latency_min_ms, latency_max_ms;
   std::vector<FrameRecord> frames;  // with include_frames only

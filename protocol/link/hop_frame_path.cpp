@@ -73,6 +73,7 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
       listener_.confirm(c, reliability::encode_symbols(d->bits));
     }
   } else {
+    candidate_heard_ms_ = c.heard_ms;
     const auto d = reliability::decode_sealed(readings_of<reliability::kSealedSymbols>(c, hops_.clear_certainty),
                                               hops_.sealed_max_erasures, budgeted_, swaps ? sealed_chase_tones_ : 0);
     if (d.authentic) {
@@ -121,12 +122,16 @@ bool HopFramePath::none_taken(const signal::HopCandidate& first) {
     clear += first.tones[t].heard && first.tones[t].certainty >= hops_.clear_certainty ? 1 : 0;
   }
   if (clear < static_cast<int>(first.tone_count()) - max_erasures) return worth_rereading;
+  // A frame that decoded and failed its MAC is one to refuse (authentication), not a damaged one.
+  const bool mac_failed = first.chords != 2 && mac_failed_ && mac_failed_->first == first.heard_ms;
   const reliability::FrameBits read =
-      first.chords == 2
+      mac_failed ? mac_failed_->second
+      : first.chords == 2
           ? reliability::FrameBits(
                 reliability::read_bits(readings_of<reliability::kCodeSymbols>(first, hops_.clear_certainty)))
           : reliability::read_sealed_bits(readings_of<reliability::kSealedSymbols>(first, hops_.clear_certainty));
-  if (const auto verdict = gate_.on_candidate(first.start_ms, first.heard_ms, false, {first.chords, read})) {
+  if (const auto verdict =
+          gate_.on_candidate(first.start_ms, first.heard_ms, false, {first.chords, read, mac_failed})) {
     deliver(*verdict, first.offset_ppm);
   }
   return worth_rereading;
@@ -142,11 +147,15 @@ bool HopFramePath::rose_with_its_chords(const signal::HopCandidate& c) const {
 bool HopFramePath::checked_authentic(const reliability::FrameBits& bits) {
   if (!authentic_) return false;
   for (int i = 0; i < checks_; ++i) {
-    if (checked_[static_cast<std::size_t>(i)].first == bits) return checked_[static_cast<std::size_t>(i)].second;
+    const auto& [checked, held] = checked_[static_cast<std::size_t>(i)];
+    if (checked != bits) continue;
+    if (!held) mac_failed_ = {candidate_heard_ms_, bits};
+    return held;
   }
   if (checks_ == kMacChecksPerFrame) return false;
   const bool holds = authentic_(bits);
   checked_[static_cast<std::size_t>(checks_++)] = {bits, holds};
+  if (!holds) mac_failed_ = {candidate_heard_ms_, bits};
   return holds;
 }
 

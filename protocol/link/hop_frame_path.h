@@ -12,6 +12,11 @@
 //            and the frame accepted last, read again where most of its tones did not rise
 //            with their chords: its reverberant tail (in a quiet room it stays over the
 //            floor for most of a second), dropped
+// A damaged frame whose MAC was checked and failed (its CRC held after corrections) is a
+// refusal for authentication, not a broken frame: where none_taken would NACK it as damaged,
+// its verdict carries the decoded bits as intact, so that the admission refuses it and the
+// log counts it with the forgeries (same NACK on air; noise that passes no frame-like gate
+// still makes no verdict at all).
 // An authenticated frame's MAC is checked for at most kMacChecksPerFrame different frames
 // read between two verdicts, or in one run of candidates (the same bits read again cost no
 // check): a forger gets that many guesses at a 32-bit MAC per frame he plays, and no more
@@ -71,6 +76,9 @@ class HopFramePath final : private signal::CandidateSink {
   reliability::SealedCheck budgeted_;  // authentic_ within the per-frame budget
   std::array<std::pair<reliability::FrameBits, bool>, kMacChecksPerFrame> checked_{};
   int checks_ = 0;
+  // The last decode whose CRC held and whose MAC failed, and when its candidate was heard.
+  std::optional<std::pair<double, reliability::FrameBits>> mac_failed_;
+  double candidate_heard_ms_ = 0;  // the candidate being decoded
   double last_candidate_ms_ = -1e300;
   signal::HopListener listener_;
   reliability::FrameGate gate_;

@@ -17,6 +17,7 @@
 #include "security/counter_file.h"
 #include "security/frame_mac.h"
 #include "security/freshness.h"
+#include "signal/hop_synthesizer.h"
 
 using namespace dtmf;
 namespace fs = std::filesystem;
@@ -100,7 +101,8 @@ TEST(AuthenticatedLink, ARecordedSessionReplayedExecutesNothingBeforeOrAfterTheR
   const auto sender = link::make_link(p, keyed(key));
   const auto recording = with_silence_after(sender->render(session(*sender, kSession)));
   {
-    const auto robot = link::make_link(p, keyed(key, std::make_shared<security::FileCounterStore>(dir.path, *key)));
+    const auto robot =
+        link::make_link(p, keyed(key, security::FileCounterStore::open_robot(dir.path, *key, security::RobotKey::New)));
     const auto receiver = robot->receiver();
     const Heard first = hear(*receiver, recording);
     EXPECT_EQ(first.executed, 4);
@@ -112,7 +114,7 @@ TEST(AuthenticatedLink, ARecordedSessionReplayedExecutesNothingBeforeOrAfterTheR
     EXPECT_EQ(replay.refused_for_authentication, 4);
   }
   // The robot restarts: its counter comes back from disk.
-  const auto robot = link::make_link(p, keyed(key, std::make_shared<security::FileCounterStore>(dir.path, *key)));
+  const auto robot = link::make_link(p, keyed(key, security::FileCounterStore::open_robot(dir.path, *key)));
   const Heard after_restart = hear(*robot->receiver(), recording);
   EXPECT_EQ(after_restart.executed, 0) << "after a restart";
   EXPECT_EQ(after_restart.refused_for_authentication, 4);
@@ -155,6 +157,34 @@ TEST(AuthenticatedLink, AFrameUnderAnotherKeyIsRefusedAndSoIsAnUnauthenticatedOn
   EXPECT_EQ(hear(*lenient_robot->receiver(), with_silence_after(unkeyed->render(session(*unkeyed, kSession)))).executed,
             4)
       << "--accept-unauthenticated lets them in";
+}
+
+// A frame under another key that reaches the robot damaged: its code corrects it, its CRC
+// holds, and its MAC fails. It is a forgery to count (refused, authentication), not a damaged
+// frame (a NACK the log would count as noise); until 2026-11 it was counted as damaged.
+TEST(AuthenticatedLink, AFrameUnderAnotherKeyThatNeededCorrectionsIsRefusedForAuthentication) {
+  const auto sender = link::make_link(p, keyed(fixed_key(3)));
+  const auto robot = link::make_link(p, keyed(fixed_key(4)));
+  for (const int errors : {0, 1, 2, 3}) {
+    std::vector<float> audio;
+    const auto frames = session(*sender, kSession);  // a synchronisation first, the first time
+    for (const auto& frame : frames) {
+      auto symbols = reliability::encode_sealed_symbols(frame.bits);
+      // `errors` tones sent wrong, each a clear tone of another symbol: more than a refusal
+      // may spend on a frame that only its CRC stands behind when errors > 2.
+      for (int e = 0; e < errors; ++e) {
+        auto& s = symbols[static_cast<std::size_t>(5 + 7 * e)];
+        s = static_cast<std::uint8_t>((s + 11) % 32);
+      }
+      const auto chords = signal::synthesize_hopped_frame(p, symbols);
+      audio.insert(audio.end(), chords.begin(), chords.end());
+      audio.resize(audio.size() + static_cast<std::size_t>(p.samples_for_ms(400)), 0.0f);
+    }
+    const Heard h = hear(*robot->receiver(), with_silence_after(audio));
+    EXPECT_EQ(h.executed, 0) << errors << " errors";
+    EXPECT_EQ(h.broken, 0) << errors << " errors: counted as damaged";
+    EXPECT_EQ(h.refused_for_authentication, static_cast<int>(frames.size())) << errors << " errors";
+  }
 }
 
 // A retransmission after a lost ACK: answered with the frame's tag, not executed again.
@@ -257,7 +287,7 @@ TEST(AuthenticatedLink, ASenderThatLostItsStateRecoversAndNothingOldBecomesRepla
   const auto key = fixed_key(7);
   const auto t0 = std::chrono::system_clock::now();
   const auto old_sender = link::make_link(
-      p, keyed(key, std::make_shared<security::FileCounterStore>(dir.path / "old", *key, [&] { return t0; })));
+      p, keyed(key, security::FileCounterStore::open_sender(dir.path / "old", *key, [&] { return t0; })));
   const auto robot = link::make_link(p, keyed(key));
   const auto receiver = robot->receiver();
   const auto old_session = with_silence_after(old_sender->render(session(*old_sender, kSession)));
@@ -265,7 +295,7 @@ TEST(AuthenticatedLink, ASenderThatLostItsStateRecoversAndNothingOldBecomesRepla
 
   // Ten seconds later, a new machine with the same key and an empty state directory.
   const auto new_sender =
-      link::make_link(p, keyed(key, std::make_shared<security::FileCounterStore>(
+      link::make_link(p, keyed(key, security::FileCounterStore::open_sender(
                                         dir.path / "new", *key, [&] { return t0 + std::chrono::seconds(10); })));
   const auto fresh = new_sender->plan(command::Turn{20});
   ASSERT_EQ(fresh.size(), 2u) << "a synchronisation first";
