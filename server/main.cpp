@@ -26,6 +26,7 @@
 #include "physical/portaudio_device.h"
 #include "physical/realtime_priority.h"
 #include "physical/wav_file.h"
+#include "secret_file.h"
 #include "store_recorder.h"
 #include "teleop_service.h"
 #include "utf8_refusal.h"
@@ -53,20 +54,13 @@ class Silence : public dtmf::physical::AudioSource {
   std::chrono::steady_clock::time_point next_ = std::chrono::steady_clock::now();
 };
 
-std::string read_file(const std::string& path, const char* what) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(std::string("cannot read the ") + what + " file '" + path + "'");
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
-  return text;
-}
-
 struct Flags {
   std::string address = "127.0.0.1";
   int port = 50051;
   std::string audio_out = "default";
   std::string audio_in = "default";
-  std::string profile = "seed";
+  std::string profile;  // empty: with a key the first profile that carries a MAC, else seed
+  bool allow_unauthenticated = false;
   std::optional<std::string> db;
   std::string spill_file;
   std::string on_unconfirmed = "fail";
@@ -81,13 +75,28 @@ struct Flags {
 };
 
 // Read before any device or database is opened, so that a refused combination costs nothing.
+// The TLS key and the token are refused if others may read them, a blank token too (secret_file.h).
 dtmf::server::ServerSecurity read_security(const Flags& f) {
-  dtmf::server::ServerSecurity security;
-  if (!f.tls_cert.empty()) security.tls_cert_pem = read_file(f.tls_cert, "TLS certificate");
-  if (!f.tls_key.empty()) security.tls_key_pem = read_file(f.tls_key, "TLS key");
-  if (!f.auth_token_file.empty()) security.auth_token = read_file(f.auth_token_file, "auth token");
+  dtmf::server::ServerSecurity security = dtmf::server::read_security_files(f.tls_cert, f.tls_key, f.auth_token_file);
   security.allow_anyone_on_the_network = f.allow_anyone;
   return security;
+}
+
+// --profile, or with a key the first profile whose frames carry a MAC (fast), else the seed's.
+// With a key, a profile without one needs --allow-unauthenticated-commands: a keyed robot
+// refuses its frames, and anyone can play its ACK.
+const dtmf::LinkProfile& default_profile(const Flags& f, const std::vector<std::unique_ptr<dtmf::link::Link>>& links) {
+  if (f.profile.empty()) return dtmf::link::default_profile(links);
+  const dtmf::LinkProfile& chosen = dtmf::profile_by_name(f.profile);
+  for (const auto& l : links) {
+    if (&l->profile() == &chosen && l->keyed() && !l->can_authenticate() && !f.allow_unauthenticated) {
+      throw std::invalid_argument("--profile " + f.profile +
+                                  ": carries no MAC, and this server has a key (--key): a keyed robot refuses its "
+                                  "frames and anyone can play its ACK. Leave --profile out (commands then go "
+                                  "authenticated), or add --allow-unauthenticated-commands");
+    }
+  }
+  return chosen;
 }
 
 int run(const Flags& f) {
@@ -100,10 +109,17 @@ int run(const Flags& f) {
         "port {} can drive the robot",
         f.address, f.port);
   }
-  const LinkProfile& profile = profile_by_name(f.profile);
   // The key before any device: a key file others may read stops the server here.
   auto links = link::make_links(program::link_options(f.keys, static_cast<std::uint8_t>(f.robot_address)));
-  if (f.keys.key_file.empty()) spdlog::info("no key: frames go unauthenticated (dtmf-server --key FILE)");
+  const LinkProfile& profile = default_profile(f, links);
+  if (f.keys.key_file.empty()) {
+    spdlog::info("no key: frames go unauthenticated (dtmf-server --key FILE)");
+  } else if (f.allow_unauthenticated) {
+    spdlog::warn(
+        "--allow-unauthenticated-commands: commands may go out without a MAC (profile seed); a keyed robot refuses "
+        "them unless it runs with --accept-unauthenticated, and their ACKs, which anyone within earshot can play, are "
+        "reported as unauthenticated. Stop always goes authenticated");
+  }
   const store::DatabaseUrl db = store::parse_database_flag(f.db);
   if (!store::database_disabled(db)) {
     auto connection = store::connect(db);
@@ -132,8 +148,9 @@ int run(const Flags& f) {
   char hostname[256] = {};
   ::gethostname(hostname, sizeof hostname - 1);
   server::StoreRecorder recorder(store, hostname);
-  server::Transmitter transmitter(std::move(links), profile, std::move(speaker), std::move(microphone), recorder,
-                                  {.max_queue = f.max_queue, .realtime_audio = true});
+  server::Transmitter transmitter(
+      std::move(links), profile, std::move(speaker), std::move(microphone), recorder,
+      {.max_queue = f.max_queue, .realtime_audio = true, .allow_unauthenticated = f.allow_unauthenticated});
 
   server::ServiceOptions options;
   options.database = db;
@@ -201,9 +218,13 @@ int main(int argc, char** argv) {
       ->envname("DTMF_SERVER_AUDIO_IN")
       ->capture_default_str();
   app.add_option("--profile", f.profile,
-                 "link profile of commands that name none (CommandOptions.profile): " + dtmf::profile_names())
-      ->envname("DTMF_SERVER_PROFILE")
-      ->capture_default_str();
+                 "link profile of commands that name none (CommandOptions.profile): " + dtmf::profile_names() +
+                     "; default: with --key the first that carries a MAC (fast), else seed")
+      ->envname("DTMF_SERVER_PROFILE");
+  app.add_flag("--allow-unauthenticated-commands", f.allow_unauthenticated,
+               "with --key: let commands name a profile without a MAC (seed); their untagged ACKs are reported as "
+               "unauthenticated (a warning at every start). Stop always goes authenticated")
+      ->envname("DTMF_SERVER_ALLOW_UNAUTHENTICATED_COMMANDS");
   app.add_option("--db", f.db,
                  "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
       ->envname("DTMF_DB_URL");

@@ -51,6 +51,8 @@ void fill_report(v1::GetReportResponse& response, const store::RunReport& report
   response.set_negative_confirmations_sent(report.negative_confirmations_sent);
   response.set_refused(report.refused);
   response.set_refused_authentication(report.refused_authentication);
+  response.set_sender_confirmed_unauthenticated(report.sender_confirmed_unauthenticated);
+  response.set_refused_authentication_peak_per_minute(report.refused_authentication_peak_per_minute);
   using R = v1::GetReportResponse;
   const auto measure = [&](const std::optional<double>& value, void (R::*setter)(double)) {
     if (value) (response.*setter)(*value);

@@ -53,6 +53,9 @@ void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event) {
     for (double hz : frame->tones_hz) out.add_tones_hz(hz);
     out.set_authenticated(frame->authenticated);
     out.set_synchronisation(frame->synchronisation);
+    // An authenticated frame's ACK answers it only with its tag (link/answer_wait.h).
+    if (event.kind == ProgressEvent::Kind::Ack || event.kind == ProgressEvent::Kind::Confirmed)
+      out.set_answer_authenticated(frame->authenticated);
   }
   if (event.response_time_ms) out.set_response_time_ms(*event.response_time_ms);
   out.set_detail(event.detail);
@@ -92,14 +95,12 @@ auto progress_to(grpc::ServerWriter<Response>* writer) {
 TeleopService::TeleopService(Transmitter& transmitter, store::Store& store, ServiceOptions options)
     : transmitter_(transmitter), store_(store), options_(std::move(options)) {}
 
-CommandSettings TeleopService::settings_of(const v1::CommandOptions& options) const {
-  const CommandSettings settings = command_settings(options, options_.defaults);
-  if (settings.profile) {
-    try {
-      transmitter_.usable_profile(settings.profile->name);
-    } catch (const std::invalid_argument& e) {
-      throw RequestError(std::string("options.profile: ") + e.what());
-    }
+CommandSettings TeleopService::settings_of(const v1::CommandOptions& options, bool stop) const {
+  CommandSettings settings = command_settings(options, options_.defaults);
+  try {
+    settings.profile = &transmitter_.sendable_profile(settings.profile, stop);
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(std::string("options.profile: ") + e.what());
   }
   return settings;
 }
@@ -110,7 +111,7 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
   std::shared_ptr<Job> job;
   std::string profile = transmitter_.profile().name;
   try {
-    const CommandSettings settings = settings_of(request_options);
+    const CommandSettings settings = settings_of(request_options, std::holds_alternative<command::Stop>(command));
     if (settings.profile) profile = settings.profile->name;
     job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile);
   } catch (const RequestError& e) {
@@ -118,6 +119,8 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
   } catch (const command::ParameterError& e) {
     // The chosen profile's frames cannot carry the command (its fields, or its kind).
     return {grpc::StatusCode::INVALID_ARGUMENT, "profile " + profile + ": " + e.what()};
+  } catch (const UnauthenticatedRefused& e) {
+    return {grpc::StatusCode::INVALID_ARGUMENT, std::string("options.profile: ") + e.what()};
   } catch (const QueueFull& e) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
   } catch (const TransmitterUnavailable& e) {

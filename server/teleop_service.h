@@ -55,9 +55,10 @@ class TeleopService final : public v1::TeleopService::Service {
   template <class Write>
   grpc::Status run_command(grpc::ServerContext* context, const command::Command& command,
                            const v1::CommandOptions& options, bool to_front, Write write);
-  // The request's options over the server's defaults, with a profile this server can send;
-  // throws RequestError.
-  CommandSettings settings_of(const v1::CommandOptions& options) const;
+  // The request's options over the server's defaults, with the profile the command goes out
+  // under (Transmitter::sendable_profile: with a key, a Stop always authenticated); throws
+  // RequestError.
+  CommandSettings settings_of(const v1::CommandOptions& options, bool stop = false) const;
   grpc::Status start_run(const std::string& label, const std::string& notes, const LinkProfile& profile,
                          std::string& run_id);
   grpc::Status end_run(const std::string& run_id);

@@ -26,7 +26,14 @@ Transmitter::Transmitter(std::vector<std::unique_ptr<link::Link>> links, const L
   for (const auto& l : owned_links_) {
     if (l->profile().sample_rate_hz == profile_.sample_rate_hz) links_.push_back(l.get());
   }
-  link_for(profile_);  // the default profile must be among them
+  if (keyed() && !link_for(profile_).can_authenticate() && !options_.allow_unauthenticated) {
+    // The default profile must be among them, and with a key carry a MAC.
+    throw std::invalid_argument("the default profile " + profile_.name +
+                                " carries no MAC, and this sender has a key: its frames would be refused by the "
+                                "robot, and their ACKs could be played by anyone. Choose a profile that carries one "
+                                "(" +
+                                authenticated_link().name() + "), or allow it: --allow-unauthenticated-commands");
+  }
   // The ears are built (their FFTs planned: a fast ear without FFTW wisdom measures for
   // 0.1-0.3 s of CPU, seconds on a loaded machine) before anything can be sent: built in the
   // listening thread, they came up after the first frames had gone out, and those frames'
@@ -53,6 +60,30 @@ link::Link& Transmitter::link_for(const LinkProfile& profile) const {
 
 const link::Link& Transmitter::link_of(const LinkProfile& profile) const { return link_for(profile); }
 
+bool Transmitter::keyed() const { return !links_.empty() && links_.front()->keyed(); }
+
+const link::Link& Transmitter::authenticated_link() const {
+  for (const link::Link* l : links_) {
+    if (l->keyed() && l->can_authenticate()) return *l;
+  }
+  throw std::invalid_argument("no profile of this sender carries a MAC at " + std::to_string(profile_.sample_rate_hz) +
+                              " Hz");
+}
+
+const LinkProfile& Transmitter::sendable_profile(const LinkProfile* requested, bool stop) const {
+  const LinkProfile& profile = requested ? usable_profile(requested->name) : profile_;
+  const link::Link& link = link_for(profile);
+  if (!link.keyed() || link.can_authenticate()) return profile;
+  // A Stop must reach a keyed robot, which refuses frames without a MAC.
+  if (stop) return authenticated_link().profile();
+  if (options_.allow_unauthenticated) return profile;
+  throw UnauthenticatedRefused("profile " + profile.name +
+                               " carries no MAC, and this sender has a key: a keyed robot refuses its frames, and "
+                               "anyone within earshot can play its ACK. Send with profile " +
+                               authenticated_link().name() +
+                               ", or start dtmf-server with --allow-unauthenticated-commands");
+}
+
 const LinkProfile& Transmitter::usable_profile(std::string_view name) const {
   const LinkProfile& p = profile_by_name(name);
   link_for(p);
@@ -62,7 +93,7 @@ const LinkProfile& Transmitter::usable_profile(std::string_view name) const {
 std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy policy,
                                          std::chrono::milliseconds decision_timeout, bool to_front,
                                          const LinkProfile* profile) {
-  link::Link& link = link_for(profile ? usable_profile(profile->name) : profile_);
+  link::Link& link = link_for(sendable_profile(profile, std::holds_alternative<command::Stop>(command)));
   std::shared_ptr<Job> job;
   {
     std::lock_guard lock(mutex_);

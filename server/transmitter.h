@@ -7,7 +7,10 @@
 // or for the ACK timeout, retransmits by itself, and then follows the command's policy (ask
 // the caller, continue, or fail). A second thread listens to the microphone with every
 // link's answer listener (ReplyListeners). Each command goes out under the profile its
-// caller chose, or the transmitter's default. Frames of a command
+// caller chose, or the transmitter's default. With a key, nothing goes on air without a MAC
+// unless the operator allowed it (TransmitterOptions::allow_unauthenticated), and a Stop
+// always goes authenticated: the robot refuses a frame without a MAC, and an untagged ACK
+// is a fixed chord anyone within earshot can play (docs/security.md). Frames of a command
 // go out in order with nothing between them but other frames of the same command; a
 // cancelled command's queued frames never play, a chord already on air completes.
 // It only emits progress events: the caller's stream reads them, and the observer it is
@@ -39,25 +42,37 @@ class TransmitterUnavailable : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+// A command under a profile without a MAC, from a sender with a key that was not told to
+// allow it: INVALID_ARGUMENT, naming the flag.
+class UnauthenticatedRefused : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
 
 struct TransmitterOptions {
   std::size_t max_queue = 32;
   // Run the loudspeaker and microphone threads at real-time priority (physical/realtime_priority.h):
   // the program does, in-process tests need not.
   bool realtime_audio = false;
+  // With a key: commands may name a profile whose frames carry no MAC (the seed's), and be
+  // confirmed by an untagged ACK (dtmf-server --allow-unauthenticated-commands). Stop still
+  // goes authenticated.
+  bool allow_unauthenticated = false;
 };
 
 class Transmitter {
  public:
   // `links`: what it can send and hear (link::make_links, with the key if it has one);
   // `profile`: the default for commands that name none. Every link with the default's sample
-  // rate can be chosen per command.
+  // rate can be chosen per command. With a key, a default without a MAC needs
+  // `options.allow_unauthenticated` (else std::invalid_argument).
   Transmitter(std::vector<std::unique_ptr<link::Link>> links, const LinkProfile& profile,
               std::unique_ptr<physical::AudioSink> speaker, std::unique_ptr<physical::AudioSource> microphone,
               ProgressObserver& observer, TransmitterOptions options);
   ~Transmitter();
 
-  // Queues a command. Throws QueueFull, TransmitterUnavailable, command::ParameterError.
+  // Queues a command under sendable_profile(profile, command is a Stop). Throws QueueFull,
+  // TransmitterUnavailable, UnauthenticatedRefused, command::ParameterError.
   std::shared_ptr<Job> submit(const command::Command& command, Policy policy,
                               std::chrono::milliseconds decision_timeout, bool to_front = false,
                               const LinkProfile* profile = nullptr);
@@ -73,6 +88,14 @@ class Transmitter {
   const LinkProfile& usable_profile(std::string_view name) const;
   // The link this transmitter sends `profile` with.
   const link::Link& link_of(const LinkProfile& profile) const;
+  // Whether this transmitter has a key (its links' frames carry MACs where they can).
+  bool keyed() const;
+  // The profile a command asking for `requested` (nullptr: the default) goes out under: that
+  // one, unless this transmitter has a key and it carries no MAC. Then a Stop goes under the
+  // first profile that does, and any other command is refused (UnauthenticatedRefused)
+  // unless unauthenticated commands are allowed. std::invalid_argument for a profile this
+  // transmitter cannot send.
+  const LinkProfile& sendable_profile(const LinkProfile* requested, bool stop) const;
 
  private:
   struct HeardReply {
@@ -94,6 +117,8 @@ class Transmitter {
   std::optional<HeardReply> wait_reply(const link::Link& link, const link::TransmitFrame& frame, double since_ms,
                                        double until_ms);
   link::Link& link_for(const LinkProfile& profile) const;
+  // The first link that authenticates its frames; std::invalid_argument if none does.
+  const link::Link& authenticated_link() const;
 
   const LinkProfile& profile_;
   std::vector<std::unique_ptr<link::Link>> owned_links_;

@@ -161,7 +161,10 @@ void Transmitter::send(Job& job) {
     }
     continued = continued || retry.state() == RetryState::Continued;
   }
-  end(job, continued ? Outcome::Continued : Outcome::Confirmed, "");
+  // Allowed, but never to be taken for a keyed confirmation (--allow-unauthenticated-commands).
+  const bool untagged = keyed() && !job.frames().empty() && !job.frames().back()->authenticated;
+  end(job, continued ? Outcome::Continued : Outcome::Confirmed,
+      untagged ? "unauthenticated: the robot's ACK carries no tag, and anyone within earshot can play one" : "");
 }
 
 }  // namespace dtmf::server

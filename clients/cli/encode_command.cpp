@@ -21,7 +21,7 @@ namespace {
 struct EncodeOptions {
   bool json = false;
   std::string wav;
-  std::string profile = "seed";
+  std::string profile;  // empty: fast with a key, else seed (link::default_profile)
   std::optional<int> word;
   std::optional<double> speed;
   std::optional<double> rotation;
@@ -54,7 +54,8 @@ command::Command build_command(const EncodeOptions& o) {
 int run_encode(const EncodeOptions& o) {
   link::LinkOptions options = program::link_options(o.keys);
   options.first_sequence = 0;  // unauthenticated frames are numbered from 0, where the format numbers them
-  const auto made = link::make_link(profile_by_name(o.profile), options);
+  const auto made = link::make_link(
+      o.profile.empty() ? link::default_profile(link::make_links(options)) : profile_by_name(o.profile), options);
   link::Link& link = *made;
   if (link.keyed() && !link.can_authenticate()) {
     throw std::invalid_argument("--key: the " + link.name() +
@@ -122,7 +123,8 @@ void add_encode_command(CLI::App& app, Action& run, const GlobalOptions& global)
   encode->add_option(
       "--wav", o->wav,
       "also write the chords to this WAV file (profile timing; fast: each frame then 100 ms for its answer)");
-  encode->add_option("--profile", o->profile, "link profile: " + profile_names())->capture_default_str();
+  encode->add_option("--profile", o->profile,
+                     "link profile: " + profile_names() + " (default: fast with --key, else seed)");
   encode->add_option("--word", o->word, "encode one raw 12-bit word instead of a command")->check(CLI::Range(0, 4095));
   program::add_key_flags(*encode, o->keys, "DTMFCTL", program::default_user_state_dir());
 

@@ -100,6 +100,8 @@ void ProgressView::show(const v1::Progress& p, const std::optional<SequencePosit
     if (p.synchronisation()) event["synchronisation"] = true;
     if (p.event() == v1::FRAME_EVENT_ACK || p.event() == v1::FRAME_EVENT_NACK)
       event["response_time_ms"] = p.response_time_ms();
+    if (p.event() == v1::FRAME_EVENT_ACK || p.event() == v1::FRAME_EVENT_CONFIRMED)
+      event["answer_authenticated"] = p.answer_authenticated();
     if (!p.detail().empty()) event["detail"] = p.detail();
     if (sequence) {
       event["run_id"] = sequence->run_id;

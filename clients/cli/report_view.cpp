@@ -70,7 +70,9 @@ nlohmann::ordered_json report_json(const v1::GetReportResponse& r) {
           {"latency_min_ms", optional(r.has_latency_min_ms(), r.latency_min_ms())},
           {"latency_max_ms", optional(r.has_latency_max_ms(), r.latency_max_ms())},
           {"refused", r.refused()},
-          {"refused_authentication", r.refused_authentication()}};
+          {"refused_authentication", r.refused_authentication()},
+          {"sender_confirmed_unauthenticated", r.sender_confirmed_unauthenticated()},
+          {"refused_authentication_peak_per_minute", r.refused_authentication_peak_per_minute()}};
 }
 
 // The layout of the seed's Appendix A: counts and rates side by side, then the times.
@@ -95,6 +97,8 @@ void print_table(const v1::GetReportResponse& r) {
   row("Duplicates", n(r.duplicates()), "Error catch rate",
       percent(r.has_error_catch_rate_pct(), r.error_catch_rate_pct()));
   row("Refused", n(r.refused()), "Refused for authentication", n(r.refused_authentication()));
+  row("Confirmed without a tag", n(r.sender_confirmed_unauthenticated()), "Most refused in a minute",
+      n(r.refused_authentication_peak_per_minute()));
   std::printf("\n");
   row("Average response time", ms(r.has_response_time_avg_ms(), r.response_time_avg_ms()), "Average latency",
       ms(r.has_latency_avg_ms(), r.latency_avg_ms()));
@@ -134,6 +138,7 @@ int run_report(const ReportOptions& o) {
   const grpc::Status status = fetch_report(connection, o.run, report);
   if (!status.ok()) {
     std::fprintf(stderr, "dtmfctl: %s\n", describe_status(status).c_str());
+    if (caller_refused(status)) return kExitNotAuthorized;
     return status.error_code() == grpc::StatusCode::UNAVAILABLE ? kExitUnreachable : kExitUnconfirmed;
   }
   if (o.json)
@@ -154,7 +159,7 @@ int run_runs(const ReportOptions& o) {
   const grpc::Status status = connection.teleop().ListRuns(context.get(), request, &runs);
   if (!status.ok()) {
     std::fprintf(stderr, "dtmfctl: %s\n", describe_status(status).c_str());
-    return kExitUnconfirmed;
+    return caller_refused(status) ? kExitNotAuthorized : kExitUnconfirmed;
   }
   for (const auto& run : runs.runs()) {
     if (o.json) {

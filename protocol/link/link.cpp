@@ -74,4 +74,12 @@ std::vector<std::unique_ptr<Link>> make_links(const LinkOptions& options,
   return links;
 }
 
+const LinkProfile& default_profile(std::span<const std::unique_ptr<Link>> links) {
+  if (links.empty()) throw std::invalid_argument("a sender needs at least one link");
+  for (const auto& l : links) {
+    if (l->keyed() && l->can_authenticate()) return l->profile();
+  }
+  return links.front()->profile();
+}
+
 }  // namespace dtmf::link

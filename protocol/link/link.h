@@ -131,5 +131,8 @@ std::unique_ptr<Link> make_link(const LinkProfile& profile, LinkOptions options 
 // One link per profile in all_profiles() (or those given), with the same options.
 std::vector<std::unique_ptr<Link>> make_links(const LinkOptions& options,
                                               const std::vector<const LinkProfile*>& profiles = all_profiles());
+// A sender's profile when none is named: with a key the first of `links` that authenticates
+// its frames (fast), else the first (seed). Nothing goes out without a MAC by default.
+const LinkProfile& default_profile(std::span<const std::unique_ptr<Link>> links);
 
 }  // namespace dtmf::link

@@ -222,11 +222,13 @@ TEST_F(Dtmfctl, KeysMakeAuthenticatedFramesThatOnlyTheSameKeyAccepts) {
   EXPECT_TRUE(sent[0]["synchronisation"].get<bool>());
   EXPECT_EQ(sent[1]["frame"].get<std::string>().size(), 80u);
   EXPECT_EQ(sent[1]["tones_hz"].size(), 24u) << "three chords of eight tones";
-  const Result second = run("encode " + keyed + "stop");
+  // With a key and no --profile: authenticated (fast), never the seed's frames without a MAC.
+  const Result second = run("encode --key " + path("a.key") + " --state-dir " + path("state") + " --json stop");
   ASSERT_EQ(second.exit_code, 0) << second.out;
   const auto later = json_lines(second.out);
   ASSERT_FALSE(later.empty());
   EXPECT_GT(later.front()["counter"].get<std::uint64_t>(), sent[1]["counter"].get<std::uint64_t>());
+  for (const auto& frame : later) EXPECT_TRUE(frame["authenticated"].get<bool>()) << second.out;
 
   const Result good = run("decode --key " + path("a.key") + " --profile fast --json " + path("f.wav"));
   ASSERT_EQ(good.exit_code, 0) << good.out;

@@ -7,6 +7,8 @@
 //   robot; with the robot's key changed it is refused, the robot does not move, and the
 //   report (SQL, and `dtmfctl report` through GetReport) counts the refusal. The key itself is
 //   in no log, no database row and no process's arguments.
+// - A keyed server's profile-less Stop, with the seed's ACK played into its microphone, goes
+//   authenticated and stops the robot; with the robot gone the played ACK confirms nothing.
 // - The sender and the robot are each killed with -9 twenty times while frames are on air.
 //   Every MAC input the sender put on air is in its log before the frame sounds (the
 //   "on air" lines), and every frame the robot executed in its log: no counter is ever on
@@ -25,6 +27,8 @@
 
 #include "../agent/dds_test_subscriber.h"
 #include "../db/temp_database.h"
+#include "link/link.h"
+#include "physical/wav_file.h"
 #include "support/free_port.h"
 #include "support/processes.h"
 
@@ -73,10 +77,13 @@ class AuthenticatedE2E : public ::testing::Test {
     fs::remove_all(dir_);
   }
 
-  // Each life of a program logs to its own file: agent-1.log, agent-2.log, ...
+  // Each life of a program logs to its own file: agent-1.log, agent-2.log, ... The first
+  // start with each key pairs it (--new-key: the robot refuses a key it has no state for);
+  // every later start finds the key's state and must not say so again.
   void start_agent(const std::string& key) {
+    const std::string new_key = paired_.insert(key).second ? " --new-key" : "";
     agent_ = test_support::start_process(std::string(kRobotAudio) + "ROS_DOMAIN_ID=" + std::to_string(domain_) + " " +
-                                             DTMF_AGENT_PATH + " --key " + path(key) + " --state-dir " +
+                                             DTMF_AGENT_PATH + " --key " + path(key) + new_key + " --state-dir " +
                                              path("agent-state") +
                                              " --audio default --ack-out default --cmd-vel sim,dds --topic /" + topic_ +
                                              " --db " + db_.url() + " --spill-file " + path("agent.spill"),
@@ -130,6 +137,7 @@ class AuthenticatedE2E : public ::testing::Test {
   test_support::TempDatabase db_;
   std::unique_ptr<test_support::CmdVelSubscriber> subscriber_;
   int agent_ = 0, server_ = 0, port_ = 0, agent_lives_ = 0, server_lives_ = 0;
+  std::set<std::string> paired_;  // keys the agent was started with
 };
 
 }  // namespace
@@ -241,4 +249,68 @@ TEST_F(AuthenticatedE2E, SenderAndRobotKilledTwentyTimesEachNeverUseACounterTwic
   for (std::size_t i = 1; i < counters.size(); ++i) {
     EXPECT_GT(counters[i], counters[i - 1]) << "executed counter " << counters[i] << " after " << counters[i - 1];
   }
+}
+
+// The operator's Stop from a keyed server given no profile, while a stranger's phone plays the
+// seed profile's ACK (its fixed 2.5 + 3.5 kHz chord) into the sender's microphone: the Stop
+// goes authenticated, the keyed robot stops, and the tag of the robot's own ACK confirms it.
+// With the robot gone, nothing but the forger answers, and no Stop is confirmed. (Before issue
+// 34 the Stop went out as a seed frame: the robot refused it and drove on, and the played ACK
+// made `dtmfctl stop` print "confirmed" and exit 0.)
+TEST_F(AuthenticatedE2E, AProfileLessStopStopsTheKeyedRobotAndAPlayedSeedAckConfirmsNothing) {
+  start_agent("robot.key");
+  start_server();
+  // Driving on, with no end and no profile: the server's default, authenticated with a key.
+  const auto driving = run_command(std::string(DTMFCTL_PATH) + " --server 127.0.0.1:" + std::to_string(port_) +
+                                   " --json drive --speed 40 < /dev/null");
+  ASSERT_EQ(driving.exit_code, 0) << driving.out;
+  EXPECT_EQ(driving.out.find("\"authenticated\":false"), std::string::npos) << driving.out;
+  for (int i = 0; i < 50 && moving_messages() == 0; ++i) std::this_thread::sleep_for(100ms);
+  ASSERT_GT(moving_messages(), 0) << "the keyed robot drives";
+
+  // The forger: 60 s of the seed's ACK, one after another, into the sender's microphone.
+  const auto seed = link::make_link(seed_profile());
+  link::Reception accepted;
+  accepted.intact = true;
+  accepted.event = link::ReceptionEvent::Command;
+  const std::vector<float> ack = seed->answer_audio(accepted);
+  std::vector<float> forged;
+  while (forged.size() < static_cast<std::size_t>(60 * seed_profile().sample_rate_hz)) {
+    forged.insert(forged.end(), ack.begin(), ack.end());
+    forged.resize(forged.size() + static_cast<std::size_t>(seed_profile().samples_for_ms(20)), 0.0f);
+  }
+  physical::write_wav_file(path("seed-ack.wav"), forged, seed_profile().sample_rate_hz);
+  const int forger =
+      test_support::start_process("PULSE_SINK=sender_ear exec paplay " + path("seed-ack.wav"), path("forger.log"));
+
+  const auto stop = [&] {
+    return run_command(std::string(DTMFCTL_PATH) + " --server 127.0.0.1:" + std::to_string(port_) +
+                       " --json stop < /dev/null");
+  };
+  const auto stopped = stop();
+  EXPECT_EQ(stopped.exit_code, 0) << stopped.out;
+  EXPECT_NE(stopped.out.find("\"event\":\"confirmed\""), std::string::npos) << stopped.out;
+  EXPECT_NE(stopped.out.find("\"answer_authenticated\":true"), std::string::npos) << stopped.out;
+  EXPECT_EQ(stopped.out.find("\"answer_authenticated\":false"), std::string::npos) << stopped.out;
+  EXPECT_EQ(stopped.out.find("\"profile\":\"seed\""), std::string::npos) << stopped.out;
+  // The robot stands: its last cmd_vel is zero, and nothing moves from here on.
+  std::this_thread::sleep_for(1000ms);
+  const long moving_after_stop = moving_messages();
+  const auto samples = subscriber_->samples();
+  ASSERT_FALSE(samples.empty());
+  EXPECT_EQ(samples.back().linear.x, 0.0);
+  EXPECT_EQ(samples.back().angular.z, 0.0);
+  std::this_thread::sleep_for(1000ms);
+  EXPECT_EQ(moving_messages(), moving_after_stop) << "the keyed robot stopped";
+
+  // Without the robot only the forger answers: no confirmation, whatever the profile asked.
+  test_support::stop_process(agent_);
+  agent_ = 0;
+  const auto unanswered = stop();
+  EXPECT_EQ(unanswered.exit_code, 3) << unanswered.out;
+  EXPECT_EQ(unanswered.out.find("\"event\":\"confirmed\""), std::string::npos) << unanswered.out;
+  EXPECT_EQ(unanswered.out.find("\"event\":\"ack\""), std::string::npos) << unanswered.out;
+  EXPECT_TRUE(test_support::process_running(forger))
+      << "the forger played all along: " << read_file(path("forger.log"));
+  test_support::stop_process(forger);
 }

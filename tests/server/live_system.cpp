@@ -27,8 +27,21 @@ class LiveSystem::Recorder : public agent::CmdVelOutput {
   std::vector<PublishedVelocity> history;
 };
 
+namespace {
+
+LiveSystemOptions with_profile(LiveSystemOptions options) {
+  if (!options.profile) {
+    link::LinkOptions keyed;
+    keyed.key = options.sender_key;
+    options.profile = &link::default_profile(link::make_links(keyed));
+  }
+  return options;
+}
+
+}  // namespace
+
 LiveSystem::LiveSystem(LiveSystemOptions options)
-    : options_(std::move(options)),
+    : options_(with_profile(std::move(options))),
       air_(
           options_.profile->sample_rate_hz,
           [this] {
@@ -41,6 +54,7 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   const LinkProfile& profile = *options_.profile;
   auto sender = air_.add_station("sender", 0.0);
   auto robot = air_.add_station("robot", options_.distance_m);
+  if (options_.forger) forger_speaker_ = air_.add_station("forger", -0.3).speaker;
   air_.start();
 
   store::StoreOptions no_db;
@@ -56,6 +70,7 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   agent::AgentOptions agent_options;
   agent_options.profiles = all_profiles();
   agent_options.link.key = options_.robot_key;
+  agent_options.link.accept_unauthenticated = options_.robot_accepts_unauthenticated;
   agent_options.on_frame_heard = [this](const agent::HeardFrame& frame) {
     if (!frame.intact) return;
     std::lock_guard lock(heard_.mutex);
@@ -84,7 +99,9 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   sender_links.key = options_.sender_key;
   transmitter_ = std::make_unique<server::Transmitter>(
       link::make_links(sender_links), profile, std::move(sender.speaker), std::move(sender.microphone),
-      *recorder_of_sends_, server::TransmitterOptions{.max_queue = options_.max_queue});
+      *recorder_of_sends_,
+      server::TransmitterOptions{.max_queue = options_.max_queue,
+                                 .allow_unauthenticated = options_.allow_unauthenticated});
   server::ServiceOptions service_options;
   service_options.database = options_.database;
   service_options.defaults.policy = options_.default_policy;

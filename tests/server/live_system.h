@@ -24,7 +24,9 @@
 namespace dtmf::test_support {
 
 struct LiveSystemOptions {
-  const LinkProfile* profile = &seed_profile();  // the server's default; the robot hears every profile
+  // The server's default (none: as dtmf-server's, fast with a key, else seed); the robot hears every profile.
+  const LinkProfile* profile = nullptr;
+  bool allow_unauthenticated = false;  // dtmf-server --allow-unauthenticated-commands
   double distance_m = 1.0;
   double air_block_ms = 10;   // the room's audio period: what a device buffer adds to each way
   std::string rir_file;       // a measured room both ways (pink noise -50 dBFS); empty: free field, white -70 dBFS
@@ -37,6 +39,10 @@ struct LiveSystemOptions {
   // counters in memory, the robot's starting with none accepted.
   std::shared_ptr<const security::LinkKey> sender_key;
   std::shared_ptr<const security::LinkKey> robot_key;
+  bool robot_accepts_unauthenticated = false;  // dtmf-agent --accept-unauthenticated
+  // A third loudspeaker in the room, 0.3 m from the sender's microphone (a stranger's
+  // phone): forger_speaker() plays what a test gives it.
+  bool forger = false;
 };
 
 // What the robot heard, in order: seed words of intact frames, and commands executed.
@@ -74,6 +80,9 @@ class LiveSystem {
   // The sender's loudspeaker goes silent (or sounds again): the link is lost from now on, the
   // frame on air cut where it is; the server goes on as if nothing happened.
   void mute_sender(bool muted) { air_.mute("sender", muted); }
+  // The forger's loudspeaker (LiveSystemOptions::forger): its write() returns once the
+  // samples are queued close to playing, like a sound card's.
+  physical::AudioSink& forger_speaker() { return *forger_speaker_; }
 
  private:
   class Recorder;
@@ -96,6 +105,7 @@ class LiveSystem {
   std::unique_ptr<agent::Agent> agent_;
   std::atomic<bool> stopping_{false};
   std::thread robot_;
+  std::unique_ptr<physical::AudioSink> forger_speaker_;
 };
 
 // Reads a server stream to its end: every response, and the final status.

@@ -63,6 +63,9 @@ class Progress:
     sequence: Optional[int] = None  # fast: the number the frame's ACK names
     authenticated: bool = False     # the frame carries a MAC (fast, with a key on the server)
     synchronisation: bool = False   # a counter synchronisation ahead of the command (authenticated)
+    # ACK, CONFIRMED: the answer spelled the frame's tag under the key. False: an untagged
+    # ACK, which anyone within earshot can play (never a keyed confirmation).
+    answer_authenticated: bool = False
 
     @classmethod
     def from_proto(cls, p: pb.Progress) -> "Progress":
@@ -72,7 +75,8 @@ class Progress:
                    frame_bits=p.frame_bits, tones_hz=tuple(p.tones_hz), response_time_ms=p.response_time_ms,
                    detail=p.detail, queue_position=p.queue_position, time_unix_ms=p.time_unix_ms,
                    profile=p.profile, sequence=p.sequence if p.HasField("sequence") else None,
-                   authenticated=p.authenticated, synchronisation=p.synchronisation)
+                   authenticated=p.authenticated, synchronisation=p.synchronisation,
+                   answer_authenticated=p.answer_authenticated)
 
 
 @dataclass(frozen=True)
