@@ -1,5 +1,7 @@
 #include "secret_file.h"
 
+#include "security/owned_file.h"
+
 #include <fcntl.h>
 #include <openssl/crypto.h>
 #include <sys/stat.h>
@@ -14,25 +16,10 @@ namespace dtmf::server {
 
 namespace {
 
+using security::FileDescriptor;
+using security::octal_mode;
+
 constexpr std::size_t kMaxFileBytes = 1 << 20;  // a token or a PEM file is far smaller
-
-std::string octal_mode(mode_t mode) {
-  char text[8];
-  std::snprintf(text, sizeof text, "%04o", static_cast<unsigned>(mode & 07777));
-  return text;
-}
-
-// Closes a file descriptor on every way out.
-class FileDescriptor {
- public:
-  explicit FileDescriptor(int fd) : fd_(fd) {}
-  ~FileDescriptor() { ::close(fd_); }
-  FileDescriptor(const FileDescriptor&) = delete;
-  FileDescriptor& operator=(const FileDescriptor&) = delete;
-
- private:
-  int fd_;
-};
 
 // Wipes a string's bytes when it goes out of scope unreturned (a refused secret).
 struct Wipe {

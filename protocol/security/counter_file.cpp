@@ -1,5 +1,7 @@
 #include "security/counter_file.h"
 
+#include "security/owned_file.h"
+
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -118,12 +120,6 @@ std::optional<std::string> read_state(int directory_fd, const std::filesystem::p
   }
   ::close(fd);
   if (text.size() > kLongestState) throw Damage{"it is longer than any counter state"};
-  return text;
-}
-
-std::string octal_mode(mode_t mode) {
-  char text[8];
-  std::snprintf(text, sizeof text, "%04o", static_cast<unsigned>(mode & 07777));
   return text;
 }
 

@@ -1,5 +1,7 @@
 #include "security/link_key.h"
 
+#include "security/owned_file.h"
+
 #include <fcntl.h>
 #include <sodium.h>
 #include <sys/stat.h>
@@ -18,24 +20,6 @@ namespace {
 
 constexpr const char* kHeader = "# dtmf-teleop link key: keep it secret (docs/security.md)";
 constexpr std::size_t kMaxFileBytes = 4096;
-
-std::string octal_mode(mode_t mode) {
-  char text[8];
-  std::snprintf(text, sizeof text, "%04o", static_cast<unsigned>(mode & 07777));
-  return text;
-}
-
-// Closes a file descriptor on every way out.
-class FileDescriptor {
- public:
-  explicit FileDescriptor(int fd) : fd_(fd) {}
-  ~FileDescriptor() { ::close(fd_); }
-  FileDescriptor(const FileDescriptor&) = delete;
-  FileDescriptor& operator=(const FileDescriptor&) = delete;
-
- private:
-  int fd_;
-};
 
 // A buffer in libsodium's guarded memory (locked out of swap), wiped and freed on every way out.
 class GuardedBuffer {
