@@ -305,3 +305,57 @@ TEST(RunReport, RefusedFramesAreCountedAndAreNoFalsePositives) {
   EXPECT_EQ(report->refused, 3);
   EXPECT_EQ(report->refused_authentication, 2);
 }
+
+// Migration 009: a burst of authentication refusals shows as the most in any 60 s, and a
+// transmission confirmed by an untagged ACK (a frame without a MAC) is counted apart from
+// the keyed confirmations.
+TEST(RunReport, ABurstOfForgeriesShowsAsItsPeakAndUntaggedConfirmationsApart) {
+  TempDatabase db;
+  StoreOptions options;
+  options.database = db.url();
+  options.spill_path = ::testing::TempDir() + "/report-burst-" + std::to_string(::getpid()) + ".spill";
+  const WallTime t0 = WallClock::now() - std::chrono::hours(5);
+  TestRunRow run;
+  run.label = "burst";
+  run.profile = "fast";
+  run.started_at = t0;
+  run.ended_at = t0 + std::chrono::minutes(5);
+  {
+    Store store(options);
+    store.write(run);
+    const auto refused = [&](int frame, WallTime at) {
+      ReceptionRow r = reception_row(frame, true, at);
+      r.profile = "fast";
+      r.frame_width = 80;
+      r.event = "refused";
+      r.reason = "authentication";
+      r.reply = "nack";
+      store.write(r);
+    };
+    // Three spread over the first two minutes, then twelve within 30 s.
+    for (int i = 0; i < 3; ++i) refused(0x100 + i, t0 + std::chrono::seconds(40 * i));
+    for (int i = 0; i < 12; ++i) refused(0x200 + i, t0 + std::chrono::seconds(180) + milliseconds(2500 * i));
+    // Two confirmed transmissions: one with a tagged ACK, one with an untagged one.
+    const auto transmissions = sequence_transmissions(store, run.id, t0);
+    for (int i = 0; i < 2; ++i) {
+      FrameAttemptRow a =
+          attempt_row(run.id, transmissions[static_cast<std::size_t>(i)], 1, t0 + milliseconds(i * kSlotMs));
+      a.answer = "ack";
+      a.answered_at = a.chord_started_at + milliseconds(300);
+      a.authenticated = i == 0;
+      store.write(a);
+    }
+    ASSERT_TRUE(store.flush(std::chrono::seconds(30)));
+  }
+  pqxx::connection c(db.url());
+  pqxx::work tx(c);
+  const pqxx::row r = tx.exec("SELECT * FROM run_report('" + run.id + "'::uuid)")[0];
+  EXPECT_EQ(r["refused_authentication"].as<int>(), 15);
+  EXPECT_EQ(r["refused_authentication_peak_per_minute"].as<int>(), 12);
+  EXPECT_EQ(r["sender_confirmed"].as<int>(), 2);
+  EXPECT_EQ(r["sender_confirmed_unauthenticated"].as<int>(), 1);
+  const auto report = RunReader(db.url()).report(run.id, false);
+  ASSERT_TRUE(report);
+  EXPECT_EQ(report->refused_authentication_peak_per_minute, 12);
+  EXPECT_EQ(report->sender_confirmed_unauthenticated, 1);
+}
