@@ -26,8 +26,9 @@ Transmitter::Transmitter(std::vector<std::unique_ptr<link::Link>> links, const L
   for (const auto& l : owned_links_) {
     if (l->profile().sample_rate_hz == profile_.sample_rate_hz) links_.push_back(l.get());
   }
-  if (keyed() && !link_for(profile_).can_authenticate() && !options_.allow_unauthenticated) {
-    // The default profile must be among them, and with a key carry a MAC.
+  // The default profile must be among them, and with a key carry a MAC.
+  const link::Link& default_link = link_for(profile_);
+  if (default_link.keyed() && !default_link.can_authenticate() && !options_.allow_unauthenticated) {
     throw std::invalid_argument("the default profile " + profile_.name +
                                 " carries no MAC, and this sender has a key: its frames would be refused by the "
                                 "robot, and their ACKs could be played by anyone. Choose a profile that carries one "
