@@ -18,6 +18,7 @@
 #include "security/frame_mac.h"
 #include "security/freshness.h"
 #include "signal/hop_synthesizer.h"
+#include "support/temp_dir.h"
 
 using namespace dtmf;
 namespace fs = std::filesystem;
@@ -84,13 +85,9 @@ std::vector<link::TransmitFrame> session(link::Link& sender, const std::vector<c
 const std::vector<command::Command> kSession = {command::DriveForward{60}, command::Turn{-40},
                                                 command::DriveForDuration{80, 3}, command::Stop{}};
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/dtmf-auth-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TempDir() { fs::remove_all(path); }
+// A directory of its own under /tmp for each test.
+struct TempDir : dtmf::test_support::TempDir {
+  TempDir() : dtmf::test_support::TempDir("dtmf-auth") {}
 };
 
 }  // namespace

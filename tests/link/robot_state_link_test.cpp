@@ -13,6 +13,7 @@
 #include "command/command.h"
 #include "link/link.h"
 #include "security/counter_file.h"
+#include "support/temp_dir.h"
 
 using namespace dtmf;
 namespace fs = std::filesystem;
@@ -21,13 +22,9 @@ namespace {
 
 const LinkProfile& p = fast_profile();
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/dtmf-lost-state-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TempDir() { fs::remove_all(path); }
+// A directory of its own under /tmp for each test.
+struct TempDir : dtmf::test_support::TempDir {
+  TempDir() : dtmf::test_support::TempDir("dtmf-lost-state") {}
 };
 
 std::shared_ptr<const security::LinkKey> fixed_key() {

@@ -9,6 +9,7 @@
 
 #include "security/counter_file.h"
 #include "security/freshness.h"
+#include "support/temp_dir.h"
 
 using namespace dtmf::security;
 namespace fs = std::filesystem;
@@ -34,14 +35,11 @@ TEST(Freshness, TheSenderSynchronisesWhenTheRobotCouldNotComplete) {
 }
 
 namespace {
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/dtmf-state-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TempDir() { fs::remove_all(path); }
+// A directory of its own under /tmp for each test.
+struct TempDir : dtmf::test_support::TempDir {
+  TempDir() : dtmf::test_support::TempDir("dtmf-state") {}
 };
+
 std::chrono::system_clock::time_point at(double seconds_since_2026) {
   return std::chrono::system_clock::time_point(std::chrono::seconds(1767225600)) +
          std::chrono::duration_cast<std::chrono::system_clock::duration>(

@@ -12,19 +12,16 @@
 
 #include "security/frame_mac.h"
 #include "security/link_key.h"
+#include "support/temp_dir.h"
 
 using namespace dtmf::security;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/dtmf-key-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TempDir() { fs::remove_all(path); }
+// A directory of its own under /tmp for each test.
+struct TempDir : dtmf::test_support::TempDir {
+  TempDir() : dtmf::test_support::TempDir("dtmf-key") {}
 };
 
 std::string read_all(const fs::path& p) {

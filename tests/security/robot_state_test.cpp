@@ -14,19 +14,16 @@
 
 #include "security/counter_file.h"
 #include "security/freshness.h"
+#include "support/temp_dir.h"
 
 using namespace dtmf::security;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/dtmf-robot-state-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TempDir() { fs::remove_all(path); }
+// A directory of its own under /tmp for each test.
+struct TempDir : dtmf::test_support::TempDir {
+  TempDir() : dtmf::test_support::TempDir("dtmf-robot-state") {}
 };
 
 std::string read_file(const fs::path& file) {

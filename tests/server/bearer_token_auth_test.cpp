@@ -12,6 +12,7 @@
 #include <string>
 
 #include "secret_file.h"
+#include "support/temp_dir.h"
 
 using namespace dtmf::server;
 namespace fs = std::filesystem;
@@ -102,13 +103,9 @@ TEST(BearerTokenAuth, AnotherAddressWithoutTlsAndATokenNeedsTheFlagThatNamesTheR
 // The secret files of the server's flags (server/secret_file.h).
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/dtmf-secret-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TempDir() { fs::remove_all(path); }
+// A directory of its own under /tmp for each test.
+struct TempDir : dtmf::test_support::TempDir {
+  TempDir() : dtmf::test_support::TempDir("dtmf-secret") {}
 };
 
 std::string write(const fs::path& file, const std::string& text, mode_t mode) {
