@@ -10,6 +10,12 @@
 
 namespace dtmf::bench {
 
+// Every measured room of bench/rirs (its README.md: source, licence, RT60), by RT60: the
+// benchmarks' room cases, named by file stem.
+inline constexpr const char* kMeasuredRooms[] = {"studio_live_room",    "seminar_room_clap", "smoking_room",
+                                                 "st_margarets_church", "st_andrews_church", "monument_chamber",
+                                                 "concert_hall",        "typing_room",       "club_hall"};
+
 struct ChannelCase {
   std::string name;
   std::string flags;

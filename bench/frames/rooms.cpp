@@ -45,7 +45,7 @@ std::string number(double v) {
 
 std::vector<ChannelCase> default_cases(const LinkProfile& profile, const std::string& rirs) {
   std::vector<ChannelCase> cases;
-  for (const char* room : {"studio_live_room", "seminar_room_clap", "smoking_room"}) {
+  for (const char* room : kMeasuredRooms) {
     for (double d : {1.0, 3.0}) {
       cases.push_back({std::string(room) + " " + number(d) + " m",
                        "--rir " + rirs + "/" + room + ".wav --distance " + number(d) + kQuiet});

@@ -43,16 +43,20 @@ std::string error_of(const std::string& path) {
 
 }  // namespace
 
-TEST(MeasuredRir, TheThreeRoomsLoadResampledTrimmedToTheirDirectSoundWithTheirRt60) {
+TEST(MeasuredRir, EveryRoomLoadsResampledTrimmedToItsDirectSoundWithItsRt60) {
   struct Room {
     const char* file;
     int channels;
     double rt60_s;  // bench/rirs/README.md
+    int rate_hz;
   };
-  for (const Room& r : {Room{"seminar_room_clap.wav", 1, 0.63}, Room{"studio_live_room.wav", 2, 0.22},
-                        Room{"smoking_room.wav", 2, 0.76}}) {
+  for (const Room& r : {Room{"seminar_room_clap.wav", 1, 0.63, 44100}, Room{"studio_live_room.wav", 2, 0.22, 44100},
+                        Room{"smoking_room.wav", 2, 0.76, 44100}, Room{"st_margarets_church.wav", 1, 1.05, 44100},
+                        Room{"st_andrews_church.wav", 2, 1.35, 48000}, Room{"monument_chamber.wav", 2, 1.45, 48000},
+                        Room{"concert_hall.wav", 1, 1.74, 48000}, Room{"typing_room.wav", 2, 2.08, 48000},
+                        Room{"club_hall.wav", 2, 2.24, 44100}}) {
     const MeasuredRir rir = load_measured_rir(rir_path(r.file), kRate);
-    EXPECT_EQ(rir.file_rate_hz, 44100) << r.file;
+    EXPECT_EQ(rir.file_rate_hz, r.rate_hz) << r.file;
     EXPECT_EQ(rir.file_channels, r.channels) << r.file;
     EXPECT_LE(rir.direct_index, 16u) << r.file << ": the direct sound a few samples from the start";
     // The direct sound (2.5 ms about its peak) carries a unit impulse's energy, peak positive.
