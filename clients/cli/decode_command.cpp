@@ -107,11 +107,12 @@ int run_decode_replies(const DecodeOptions& o) {
         nlohmann::json j{{"t_ms", a.heard_ms}, {"reply", a.ack ? "ack" : "nack"}};
         if (a.sequence) j["sequence"] = *a.sequence;
         if (tag >= 0) j["tag"] = tag;
+        j["lane"] = a.lane;
         std::cout << j.dump() << '\n';
       } else {
-        std::printf("t=%.3f s %s%s%s\n", a.heard_ms / 1000.0, a.ack ? "ACK" : "NACK",
+        std::printf("t=%.3f s %s%s%s lane %d\n", a.heard_ms / 1000.0, a.ack ? "ACK" : "NACK",
                     a.sequence ? (" seq " + std::to_string(*a.sequence)).c_str() : "",
-                    tag >= 0 ? (" tag " + std::to_string(tag)).c_str() : "");
+                    tag >= 0 ? (" tag " + std::to_string(tag)).c_str() : "", a.lane);
       }
     }
   });

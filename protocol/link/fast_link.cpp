@@ -8,8 +8,10 @@
 
 #include "command/command_payload.h"
 #include "command/random_command.h"
+#include "link/fast_answer_listener.h"
 #include "link/frame_admission.h"
 #include "link/hop_frame_path.h"
+#include "link/reply_lane.h"
 #include "reliability/command_frame.h"
 #include "reliability/reply_code.h"
 #include "reliability/sealed_frame.h"
@@ -53,62 +55,6 @@ class FastReceiver final : public FrameReceiver {
   std::vector<Reception> receptions_;
 };
 
-// Readings of the reply's twelve tones -> answers. Unkeyed, named replies: ACK(sequence) or
-// NACK, counted once two windows in a row read the same (a window straddling a chord's start
-// reads a tone or two wrong). Keyed, a NACK so, and every reading of kTagTonesNeeded tones or
-// more as a tagged ACK whose tones the sender checks against the tag it waits for, within its
-// guess budget (link/answer_wait.h): one window may be the only one a notch leaves clear. The same answer
-// again within a reply's length is that reply, passed once.
-class FastAnswerListener final : public AnswerListener {
- public:
-  FastAnswerListener(const LinkProfile& profile, bool keyed)
-      : keyed_(keyed),
-        needed_(profile.hops.reply_tones_needed),
-        reply_ms_(1000.0 * profile.hops.reply_samples() / profile.sample_rate_hz),
-        listener_(profile, profile.hops.reply_tones_needed) {}
-  std::span<const Answer> feed(std::span<const float> samples) override {
-    answers_.clear();
-    for (const signal::HeardReading& h : listener_.feed(samples)) {
-      std::optional<Answer> now;
-      const auto named = reliability::read_reply(h.tones, needed_);
-      if (keyed_) {
-        if (named && !named->ack)
-          now = Answer{false, std::nullopt, std::nullopt, h.heard_ms};
-        else if (reliability::heard_tones(h.tones) >= reliability::kTagTonesNeeded)
-          pass(Answer{true, std::nullopt, h.tones, h.heard_ms});
-      } else if (named) {
-        now = Answer{named->ack, named->ack ? std::optional(named->sequence) : std::nullopt, std::nullopt, h.heard_ms};
-      }
-      if (now && previous_ && h.window == previous_window_ + 1 && same(*previous_, *now)) pass(*now);
-      previous_ = now;
-      previous_window_ = h.window;
-    }
-    return answers_;
-  }
-
- private:
-  static bool same(const Answer& a, const Answer& b) {
-    return a.ack == b.ack && a.sequence == b.sequence && a.tag_reading == b.tag_reading;
-  }
-  void pass(const Answer& a) {
-    for (const Answer& before : recent_) {
-      if (same(before, a) && a.heard_ms - before.heard_ms < reply_ms_) return;
-    }
-    recent_[next_++ % recent_.size()] = a;
-    answers_.push_back(a);
-  }
-
-  bool keyed_;
-  int needed_;
-  double reply_ms_;
-  signal::HopReplyListener listener_;
-  std::optional<Answer> previous_;
-  long long previous_window_ = -10;
-  std::array<Answer, 4> recent_{};
-  std::size_t next_ = 0;
-  std::vector<Answer> answers_;
-};
-
 }  // namespace
 
 FastLink::FastLink(const LinkProfile& profile, LinkOptions options)
@@ -124,6 +70,7 @@ TransmitFrame FastLink::plain_frame(std::uint32_t payload) {
   f.bit_count = reliability::kCommandFrameBits;
   f.check_bit_count = reliability::kCommandCrcBits;
   f.sequence = frame.sequence;
+  f.answer_lane = answer_lane(frame.sequence);
   const auto symbols = reliability::encode_symbols(f.bits.low64());
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
@@ -148,6 +95,7 @@ TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation
   f.synchronisation = synchronisation;
   f.counter = counter;
   f.answer_tag = reply_tag(*options_.key, input, frame.mac);
+  f.answer_lane = answer_lane(counter);
   const auto symbols = reliability::encode_sealed_symbols(f.bits);
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
@@ -207,15 +155,17 @@ std::unique_ptr<FrameReceiver> FastLink::receiver() const {
 }
 
 std::vector<float> FastLink::answer_audio(const Reception& r) const {
-  reliability::ReplyTones tones = reliability::reply_codeword({false, 0});  // NACK
   if (r.acknowledged() && r.counter && options_.key) {
     const auto input = sealed_mac_input(r.bits, *r.counter);
     const std::uint32_t mac = reliability::unpack_sealed(r.bits)->mac;
-    tones = reliability::tag_tones(reply_tag(*options_.key, input, mac));
-  } else if (r.acknowledged()) {
-    tones = reliability::reply_codeword({true, r.sequence.value_or(0)});
+    return signal::synthesize_hopped_reply(profile(), reliability::tag_tones(reply_tag(*options_.key, input, mac)),
+                                           answer_lane(*r.counter));
   }
-  return signal::synthesize_hopped_reply(profile(), tones);
+  if (r.acknowledged()) {
+    return signal::synthesize_hopped_reply(profile(), reliability::reply_codeword({true, r.sequence.value_or(0)}),
+                                           answer_lane(r.sequence.value_or(0)));
+  }
+  return signal::synthesize_hopped_reply(profile(), reliability::reply_codeword({false, 0}), kNackLane);
 }
 
 int FastLink::receiver_block_samples() const { return profile().hops.hop_samples; }
@@ -228,6 +178,7 @@ int FastLink::answer_block_samples() const { return profile().hops.reply_hop_sam
 
 bool FastLink::answers(const Answer& answer, const TransmitFrame& frame) const {
   if (!answer.ack) return true;  // a NACK answers whatever frame is on air
+  if (answer.lane != frame.answer_lane) return false;
   if (frame.authenticated) return answer.tag_reading && reliability::spells_tag(*answer.tag_reading, frame.answer_tag);
   return answer.sequence && answer.sequence == frame.sequence;
 }

@@ -73,6 +73,7 @@ struct Answer {
   // link checks against the tag the frame on air waits for (Link::answers).
   std::optional<reliability::ReplyReading> tag_reading;
   double heard_ms = 0;
+  int lane = 0;  // where it sounded: an ACK answers only a frame whose answer_lane it is
 };
 
 }  // namespace dtmf::link

@@ -21,6 +21,7 @@ struct TransmitFrame {
   bool synchronisation = false;          // a counter synchronisation, no command
   std::optional<std::uint64_t> counter;  // authenticated frames: the freshness counter
   std::uint32_t answer_tag = 0;          // authenticated frames: the tag its ACK must carry
+  int answer_lane = 0;                   // where its ACK sounds (fast: the reply lane, signal/hop_reply.h)
   std::vector<double> tones_hz;          // every tone, chord after chord, in order
   std::vector<float> audio;              // what the loudspeaker plays, tone_ms long
   double tone_ms = 0;                    // sound on air

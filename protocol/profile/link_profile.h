@@ -126,8 +126,11 @@ struct HopLink {
   // (a reply window wholly inside each, read with a Hann window) of one tone in each of
   // kReplyBands bands of kReplyToneValues (signal/hop_reply.h); which tones is the reliability
   // layer's reply code (reliability/reply_code.h). reply_tone_bin[b][v]: band b's tone v, in
-  // bins of the reply window.
+  // bins of the reply window, in lane 0; lane l lies l * reply_lane_step_bins higher. Answers
+  // to consecutive frames go in alternate lanes (reliability::reply_lane), so one answer's
+  // reverberant tail never sits on the bins of the next.
   static constexpr int kReplyBands = 6;
+  static constexpr int kReplyLanes = 2;
   static constexpr int kReplyToneValues = 4;
   static constexpr int kReplyChords = 2;
   static constexpr int kReplyTones = kReplyBands * kReplyChords;
@@ -136,6 +139,7 @@ struct HopLink {
   int reply_edge_samples = 0;
   int reply_tones_per_band = 0;
   std::array<std::array<int, kReplyToneValues>, kReplyBands> reply_tone_bin{};
+  int reply_lane_step_bins = 0;
   double reply_amplitude = 0;  // linear, per tone
   double reply_presence_db = 0;
   double reply_onset_db = 0;
@@ -148,6 +152,9 @@ struct HopLink {
   // One whole reply window fits in each reply chord, which is a whole number of reply hops.
   int reply_chord_samples() const { return reply_window_samples + 2 * reply_edge_samples + reply_hop_samples; }
   int reply_samples() const { return kReplyChords * reply_chord_samples(); }
+  int reply_bin(int lane, int band, int tone) const {
+    return reply_tone_bin[static_cast<std::size_t>(band)][static_cast<std::size_t>(tone)] + lane * reply_lane_step_bins;
+  }
 };
 
 struct LinkProfile {

@@ -22,7 +22,9 @@ HopReplyListener::HopReplyListener(const LinkProfile& profile, int min_heard)
       lo_bin_(profile.hops.reply_tone_bin.front().front() - kMarginBins),
       hops_per_chord_(profile.hops.reply_chord_samples() / profile.hops.reply_hop_samples),
       bins_(profile.hops.reply_window_samples, lo_bin_,
-            profile.hops.reply_tone_bin.back().back() + kMarginBins + 1 - lo_bin_, Weighting::Hann),
+            profile.hops.reply_bin(HopLink::kReplyLanes - 1, HopLink::kReplyBands - 1, HopLink::kReplyToneValues - 1) +
+                kMarginBins + 1 - lo_bin_,
+            Weighting::Hann),
       window_(static_cast<std::size_t>(profile.hops.reply_window_samples),
               static_cast<std::size_t>(profile.hops.reply_hop_samples)),
       background_(SteadyBackground::for_power(
@@ -34,7 +36,7 @@ HopReplyListener::HopReplyListener(const LinkProfile& profile, int min_heard)
   const auto bins = static_cast<std::size_t>(bins_.bins());
   power_ring_.assign(static_cast<std::size_t>(2 * hops_per_chord_ + 1), std::vector<float>(bins, 0.0f));
   excess_ring_ = power_ring_;
-  heard_.reserve(64);  // a reading per window: 20 in a block of 4096 samples
+  heard_.reserve(64);  // a reading per window and lane: 40 in a block of 4096 samples
 }
 
 std::span<const HeardReading> HopReplyListener::feed(std::span<const float> samples) {
@@ -43,16 +45,15 @@ std::span<const HeardReading> HopReplyListener::feed(std::span<const float> samp
   return heard_;
 }
 
-// Band `band`'s tone in a window: the strongest of its bins that rose since `before` (tone
-// `exclude` aside), or -1 when none rose or the strongest that did stands too little over the
-// band's floor.
+// Band `band`'s tone in lane `lane` in a window: the strongest of its bins that rose since
+// `before` (tone `exclude` aside), or -1 when none rose or the strongest that did stands too
+// little over the band's floor.
 int HopReplyListener::read_band(const std::vector<float>& excess, const std::vector<float>& power,
-                                const std::vector<float>& before, int band, int exclude) {
-  const auto& tone_bins = hops_.reply_tone_bin[static_cast<std::size_t>(band)];
+                                const std::vector<float>& before, int lane, int band, int exclude) {
   int best = -1;
   float best_excess = 0;
   for (int v = 0; v < hops_.reply_tones_per_band; ++v) {
-    const auto at = static_cast<std::size_t>(tone_bins[static_cast<std::size_t>(v)] - lo_bin_);
+    const auto at = static_cast<std::size_t>(hops_.reply_bin(lane, band, v) - lo_bin_);
     if (v != exclude && power[at] > onset_ratio_ * before[at] && (best < 0 || excess[at] > best_excess)) {
       best = v;
       best_excess = excess[at];
@@ -61,8 +62,8 @@ int HopReplyListener::read_band(const std::vector<float>& excess, const std::vec
   if (best < 0) return -1;
   // The band's floor: the median of the raw power of its bins, from its first tone to its
   // last (the tones and the bins between them).
-  const auto from = static_cast<std::size_t>(tone_bins.front() - lo_bin_);
-  const auto to = static_cast<std::size_t>(tone_bins.back() + 1 - lo_bin_);
+  const auto from = static_cast<std::size_t>(hops_.reply_bin(lane, band, 0) - lo_bin_);
+  const auto to = static_cast<std::size_t>(hops_.reply_bin(lane, band, hops_.reply_tones_per_band - 1) + 1 - lo_bin_);
   return over_median(std::span<const float>(power).subspan(from, to - from), best_excess, presence_ratio_) ? best : -1;
 }
 
@@ -77,7 +78,12 @@ void HopReplyListener::analyze_window() {
   const std::size_t first =
       (newest_ + power_ring_.size() - static_cast<std::size_t>(hops_per_chord_)) % power_ring_.size();
   const std::size_t before = (newest_ + 1) % power_ring_.size();  // two chords ago: before the reply
+  for (int lane = 0; lane < HopLink::kReplyLanes; ++lane) read_lane(lane, first, before);
+}
+
+void HopReplyListener::read_lane(int lane, std::size_t first, std::size_t before) {
   HeardReading r;
+  r.lane = lane;
   for (int chord = 0; chord < HopLink::kReplyChords; ++chord) {
     const std::size_t w = chord == 0 ? first : newest_;
     // The second chord's tones must rise over the first chord's window, and a band's tone of
@@ -87,7 +93,7 @@ void HopReplyListener::analyze_window() {
     const std::size_t reference = chord == 0 ? before : first;
     for (int b = 0; b < HopLink::kReplyBands; ++b) {
       const int exclude = chord == 0 ? -1 : r.tones[static_cast<std::size_t>(b)];
-      const int tone = read_band(excess_ring_[w], power_ring_[w], power_ring_[reference], b, exclude);
+      const int tone = read_band(excess_ring_[w], power_ring_[w], power_ring_[reference], lane, b, exclude);
       r.tones[static_cast<std::size_t>(chord * HopLink::kReplyBands + b)] = tone;
       r.heard += tone >= 0 ? 1 : 0;
     }

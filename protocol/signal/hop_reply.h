@@ -2,7 +2,7 @@
 // the reply's twelve tones out.
 //
 // A reply is two chords, each one tone in each of six bands of 4 tones 125 Hz apart
-// (0.56-3.44 kHz, below the chords, so the robot may answer while a chord sounds), read in
+// (0.53-3.47 kHz, below the chords, so the robot may answer while a chord sounds), read in
 // 32 ms windows (in a room a shorter tone smears into the bins beside it); which
 // tones is the reliability layer's reply code (reliability/reply_code.h). Every hop the
 // latest window is read through a Hann window: the sender's own frames, 20 dB louder at its
@@ -13,9 +13,10 @@
 // first; a band's tone is the strongest of its bins that rose `reply_onset_db` since the
 // chord before (for the first chord, the window before the reply; for the second, the first
 // chord's: a tail holds or falls, and no reply repeats a band's tone), heard when its excess
-// stands `reply_presence_db` over the band's median. A window whose two chords hear at least
-// `min_heard` tones gives a reading. Times are milliseconds since the first sample
-// fed. Feeding allocates nothing.
+// stands `reply_presence_db` over the band's median. Each window is read once per reply lane
+// (answers alternate lanes two bins apart: profile/link_profile.h, link/reply_lane.h), and a
+// lane's reading whose two chords hear at least `min_heard` tones is given. Times are
+// milliseconds since the first sample fed. Feeding allocates nothing.
 #pragma once
 
 #include <span>
@@ -35,6 +36,7 @@ struct HeardReading {
   double start_ms = 0;                // when the reply began (within a hop)
   double heard_ms = 0;                // end of the window inside its second chord
   long long window = 0;               // the window's number: readings of consecutive windows are one reply
+  int lane = 0;                       // the reply lane read
 };
 
 class HopReplyListener {
@@ -46,7 +48,8 @@ class HopReplyListener {
  private:
   void analyze_window();
   int read_band(const std::vector<float>& excess, const std::vector<float>& power, const std::vector<float>& before,
-                int band, int exclude);
+                int lane, int band, int exclude);
+  void read_lane(int lane, std::size_t first, std::size_t before);
 
   const HopLink& hops_;
   int min_heard_;

@@ -58,7 +58,7 @@ std::vector<float> synthesize_hopped_frame(const LinkProfile& profile, std::span
   return audio;
 }
 
-std::vector<float> synthesize_hopped_reply(const LinkProfile& profile, const reliability::ReplyTones& tones) {
+std::vector<float> synthesize_hopped_reply(const LinkProfile& profile, const reliability::ReplyTones& tones, int lane) {
   const HopLink& h = profile.hops;
   std::vector<float> audio(static_cast<std::size_t>(h.reply_samples()), 0.0f);
   for (int c = 0; c < HopLink::kReplyChords; ++c) {
@@ -66,8 +66,8 @@ std::vector<float> synthesize_hopped_reply(const LinkProfile& profile, const rel
                                                  static_cast<std::size_t>(h.reply_chord_samples()));
     for (int b = 0; b < HopLink::kReplyBands; ++b) {
       const std::uint8_t tone = tones[static_cast<std::size_t>(c * HopLink::kReplyBands + b)];
-      add_tone(chord, h.reply_tone_bin[static_cast<std::size_t>(b)][tone], h.reply_window_samples, h.reply_edge_samples,
-               h.reply_amplitude, newman_phase(b, HopLink::kReplyBands));
+      add_tone(chord, h.reply_bin(lane, b, tone), h.reply_window_samples, h.reply_edge_samples, h.reply_amplitude,
+               newman_phase(b, HopLink::kReplyBands));
     }
   }
   return audio;

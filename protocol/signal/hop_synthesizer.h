@@ -6,7 +6,7 @@
 // window + 2 * edge + hop samples with raised-cosine fades of `edge_samples`, so one analysis
 // window of the grid lies wholly inside it. The tones of a chord start at fixed, spread
 // phases (Newman's b^2 pi / 8) rather than all at zero, so eight tones of 0.1 rarely add up
-// to more than half their 0.8 worst case. A reply is two chords of five tones, one per reply
+// to more than half their 0.8 worst case. A reply is two chords of six tones, one per reply
 // band (signal/hop_reply.h).
 #pragma once
 
@@ -27,8 +27,8 @@ using HoppedSymbols = std::array<std::uint8_t, kHoppedFrameTones>;  // first cho
 std::vector<double> frame_tones_hz(const LinkProfile& profile, std::span<const std::uint8_t> symbols);
 // The frame's chords, symbols.size() / 8 of them, each hops.chord_samples() long.
 std::vector<float> synthesize_hopped_frame(const LinkProfile& profile, std::span<const std::uint8_t> symbols);
-// A reply: two chords of five tones, tones[5 c + b] in reply band b of chord c
-// (hops.reply_samples() long).
-std::vector<float> synthesize_hopped_reply(const LinkProfile& profile, const reliability::ReplyTones& tones);
+// A reply: two chords of six tones, tones[6 c + b] in reply band b of chord c, in reply lane
+// `lane` (hops.reply_samples() long).
+std::vector<float> synthesize_hopped_reply(const LinkProfile& profile, const reliability::ReplyTones& tones, int lane);
 
 }  // namespace dtmf::signal

@@ -133,7 +133,7 @@ TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFram
   std::vector<float> replies;
   for (int s = 0; s <= 16; ++s) {
     const auto r = signal::synthesize_hopped_reply(
-        profile, reliability::reply_codeword({s < 16, static_cast<std::uint8_t>(s % 16)}));
+        profile, reliability::reply_codeword({s < 16, static_cast<std::uint8_t>(s % 16)}), s % 2);
     replies.insert(replies.end(), r.begin(), r.end());
     replies.resize(replies.size() + 2400, 0.0f);
   }
