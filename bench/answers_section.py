@@ -17,8 +17,9 @@ def answers_section(w, data, profiles, ok):
     first = data[shown[0]]["answers"]
     # A slot holds one answer and the ear's lockout after it (the seed's ear locks 900 ms).
     slots = ", ".join(f"`{p}` {data[p]['answers']['slot_ms']:.0f} ms" for p in shown)
-    w(f"`dtmf-bench-answers`: the robot's ACK to a random frame the sender waits for, {first['answers_per_case']} per "
-      f"case, one per slot ({slots}), through the case's room to the sender's ear; heard means the "
+    w(f"`dtmf-bench-answers`: the robot's ACK to a random command's frame the sender waits for (planned one after "
+      f"another, so numbered consecutively and answered in alternate reply lanes), {first['answers_per_case']} per "
+      f"case, one per slot ({slots}: the round trip's cadence, so each answer meets the last one's tail), through the case's room to the sender's ear; heard means the "
       "ear gave an answer that answers that frame within its slot (with a key: a tag read with at most one tone "
       f"unheard and none wrong, within the guess budget of {first['guess_budget']} per transmission). "
       "\"own frames +20 dB\": one of the sender's frames sounds across every answer, from a chord before it to a "

@@ -27,6 +27,7 @@ from answers_section import answers_section  # noqa: E402
 from targets_section import targets_section  # noqa: E402
 from teleop_section import teleop_section  # noqa: E402
 from robot_section import robot_section  # noqa: E402
+from round_trip_rooms_section import load_rooms, round_trip_rooms_section, round_trip_targets_section  # noqa: E402
 
 BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "answers", "talkoff_speech", "talkoff_music",
            "talkoff_noise", "roundtrip", "roundtrip_room", "e2e", "e2e_room", "teleop"]
@@ -500,9 +501,12 @@ def main() -> int:
           f"| {d['latency_ms_max']:.0f} ms | {d['payload_bits']} bits | {d['wall_s']:.1f} s | {d['throughput_bps']:.2f} bit/s "
           f"| {d['frames_acked_first_attempt']} of {d['frames_first_attempt']} | {d['retransmissions']} |")
     w("")
+    rooms_round_trip = load_rooms(args.directory, profiles)
+    round_trip_rooms_section(w, rooms_round_trip, profiles)
     teleop_section(w, data, profiles, ok)
     robot_section(w, args.directory)
     targets_section(w, data, profiles, ok, decoder_factor)
+    round_trip_targets_section(w, rooms_round_trip, profiles)
     with open(args.out, "w") as f:
         f.write("\n".join(out))
     print(f"wrote {args.out} and its plots in {png_dir}")

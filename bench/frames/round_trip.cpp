@@ -26,6 +26,8 @@
 #include "link/answer_wait.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
+#include "reliability/reply_code.h"
+#include "signal/hop_reply.h"
 #include "sim/acoustic_channel.h"
 #include "sim/room_model.h"
 
@@ -41,6 +43,9 @@ struct Options {
   std::string rir;  // a measured room both ways instead of the simulated one
   std::size_t block_samples = 240;
   std::uint64_t seed = 1;
+  double own_speaker_m = 0.1;  // 0: the sender's microphone does not hear its own loudspeaker
+  bool trace = false;
+  double answer_delay_ms = 0;
 };
 
 // A speaker playing queued buffers one after another, silence in between.
@@ -95,7 +100,7 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   sim::AcousticChannel& to_robot = *to_robot_channel;
   sim::AcousticChannel& to_sender = *to_sender_channel;
   to_robot.add_transmitter(o.distance_m);
-  to_sender.add_transmitter(0.1);  // its own loudspeaker
+  if (o.own_speaker_m > 0) to_sender.add_transmitter(o.own_speaker_m);  // its own loudspeaker
   to_sender.add_transmitter(o.distance_m);
 
   link::LinkOptions keyed;  // each side its own counters, in memory
@@ -130,6 +135,9 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   };
   next_command(0);
 
+  // With --trace, every reading of the reply bands with half its tones heard (hopped profiles).
+  std::optional<signal::HopReplyListener> trace_ear;
+  if (o.trace && profile.hops.reply_hop_samples > 0) trace_ear.emplace(profile, 6);
   std::vector<float> speaker_block(o.block_samples), robot_block(o.block_samples), heard;
   long long samples = 0;
   while (command_index < o.commands) {
@@ -141,6 +149,16 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
       if (attempt > 1) ++retransmissions;
       wait.emplace(link, frames[frame]);
       frame_started_ms = now_ms;
+      if (o.trace) {
+        std::printf("frame at %.1f ms, attempt %d, %zu samples; expect", now_ms, attempt, frames[frame].audio.size());
+        const reliability::ReplyTones expect =
+            frames[frame].authenticated
+                ? reliability::tag_tones(frames[frame].answer_tag)
+                : reliability::reply_codeword(reliability::NamedReply{true, frames[frame].sequence.value_or(0)});
+        for (int t : expect) std::printf(" %2d", t);
+        std::printf(" (lane %d)", frames[frame].answer_lane);
+        std::printf("\n");
+      }
       const double chord_ms = static_cast<double>(frames[frame].audio.size()) * ms_per_sample;
       channel_free_ms = now_ms + chord_ms + profile.timing.gap_ms;
       awaiting = true;
@@ -153,12 +171,28 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
 
     heard.clear();
     to_robot.process(speaker_block, heard);
-    for (auto& answer : robot.feed(heard)) robot_speaker.queue(std::move(answer));
+    for (auto& answer : robot.feed(heard)) {
+      if (o.trace) std::printf("  %9.1f robot answers (%zu samples)\n", end_ms - frame_started_ms, answer.size());
+      if (o.answer_delay_ms > 0)
+        answer.insert(answer.begin(), static_cast<std::size_t>(o.answer_delay_ms / ms_per_sample), 0.0f);
+      robot_speaker.queue(std::move(answer));
+    }
 
     heard.clear();
-    const std::array<std::span<const float>, 2> both{std::span<const float>(speaker_block),
-                                                     std::span<const float>(robot_block)};
-    to_sender.process(both, heard);
+    if (o.own_speaker_m > 0) {
+      const std::array<std::span<const float>, 2> both{std::span<const float>(speaker_block),
+                                                       std::span<const float>(robot_block)};
+      to_sender.process(both, heard);
+    } else {
+      to_sender.process(std::span<const float>(robot_block), heard);
+    }
+    if (trace_ear) {
+      for (const auto& r : trace_ear->feed(heard)) {
+        std::printf("  %9.1f reading lane %d, heard %2d:", r.heard_ms - frame_started_ms, r.lane, r.heard);
+        for (int t : r.tones) std::printf(" %2d", t);
+        std::printf("\n");
+      }
+    }
     for (const link::Answer& a : sender_ear->feed(heard)) {
       if (!awaiting) continue;
       if (!wait->answered_by(a)) continue;  // names another frame, or a wrong tag
@@ -234,6 +268,11 @@ int main(int argc, char** argv) {
   app.add_option("--block-samples", o.block_samples, "audio block of both sides")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app.add_option("--own-speaker-m", o.own_speaker_m,
+                 "the sender's own loudspeaker's distance from its microphone (0: unheard)")
+      ->capture_default_str();
+  app.add_option("--answer-delay-ms", o.answer_delay_ms, "the robot waits this long before it answers");
+  app.add_flag("--trace", o.trace, "print every transmission, the robot's answers and the reply readings");
   app.add_option("--seed", o.seed, "random seed (noise)")->capture_default_str();
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
   return program::run(
