@@ -102,7 +102,7 @@ int run_decode_replies(const DecodeOptions& o) {
       // A tagged ACK's tag, when all its tones were heard (the sender checks 11 of 12 against
       // the tag it waits for; offline there is no frame to wait for).
       long long tag = -1;
-      if (const auto full = a.tag_reading ? reliability::read_tag(*a.tag_reading) : std::nullopt) tag = *full;
+      if (const auto full = a.tag_reading ? reliability::read_tag(a.tag_reading->plain) : std::nullopt) tag = *full;
       if (o.json) {
         nlohmann::json j{{"t_ms", a.heard_ms}, {"reply", a.ack ? "ack" : "nack"}};
         if (a.sequence) j["sequence"] = *a.sequence;

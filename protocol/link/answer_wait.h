@@ -25,7 +25,9 @@ class AnswerWait {
     const bool tagged = answer.tag_reading.has_value();
     if (tagged && guesses_ >= reliability::kTagGuessesPerAttempt) return false;  // the budget is spent
     if (link_.answers(answer, frame_)) return true;
-    if (tagged) ++guesses_;
+    // A guess: a tagged reading that heard as many tones as a tag needs and spelt another
+    // (read plainly: how it reads for this frame's tag decides only whether it answers).
+    if (tagged && reliability::heard_tones(answer.tag_reading->plain) >= reliability::kTagTonesNeeded) ++guesses_;
     return false;
   }
   int guesses() const { return guesses_; }

@@ -17,7 +17,7 @@ FastAnswerListener::FastAnswerListener(const LinkProfile& profile, bool keyed)
     : keyed_(keyed),
       needed_(profile.hops.reply_tones_needed),
       reply_ms_(1000.0 * profile.hops.reply_samples() / profile.sample_rate_hz),
-      listener_(profile, profile.hops.reply_tones_needed) {}
+      listener_(profile, profile.hops.reply_tones_needed, keyed) {}
 
 std::span<const Answer> FastAnswerListener::feed(std::span<const float> samples) {
   answers_.clear();
@@ -31,7 +31,9 @@ std::span<const Answer> FastAnswerListener::feed(std::span<const float> samples)
       if (named && !named->ack)
         now = Answer{false, std::nullopt, std::nullopt, h.heard_ms, h.lane};
       else if (reliability::heard_tones(h.tones) >= reliability::kTagTonesNeeded)
-        pass(Answer{true, std::nullopt, h.tones, h.heard_ms, h.lane});
+        // Read for the awaited tag it hears no more tones than plainly (a band set aside
+        // leaves weaker ones), so the plain count is the gate; Link::answers decides.
+        pass(Answer{true, std::nullopt, reliability::TagEvidence{h.tones, h.second_beside}, h.heard_ms, h.lane});
     } else if (named) {
       now = Answer{named->ack, named->ack ? std::optional(named->sequence) : std::nullopt, std::nullopt, h.heard_ms,
                    h.lane};

@@ -71,7 +71,7 @@ struct Answer {
   std::optional<std::uint8_t> sequence;  // named by the ACK, in formats that name frames
   // The ACK to an authenticated frame: its tones as heard (-1 where unheard), which the
   // link checks against the tag the frame on air waits for (Link::answers).
-  std::optional<reliability::ReplyReading> tag_reading;
+  std::optional<reliability::TagEvidence> tag_reading;
   double heard_ms = 0;
   int lane = 0;  // where it sounded: an ACK answers only a frame whose answer_lane it is
 };

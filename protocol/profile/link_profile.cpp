@@ -141,20 +141,24 @@ LinkProfile make_fast_profile() {
   h.reply_hop_samples = 204;
   h.reply_edge_samples = 48;
   h.reply_tones_per_band = HopLink::kReplyToneValues;
-  // Six bands of four tones four bins (125 Hz) apart, from 531.25 Hz: no tone of a reply lies
-  // within three bins of another, whatever the room smears. Two lanes two bins (62.5 Hz)
-  // apart, on odd bins: answers to consecutive frames alternate lanes, and a Hann window reads
-  // nothing of a steady tone two bins away (its zeros lie at whole bins from 2 on), so the
-  // last answer's reverberant tail, in a reverberant room as loud as the next answer's direct
-  // sound 200 ms later, no longer sits on that answer's bins (docs/protocol.md, "Answers in
-  // reverberant rooms"). No tone is 2000, 2500, 3000 or 3500 Hz (bins 64, 80, 96, 112: the
-  // seed profile's ACK and NACK tones, all even), so no fast reply sounds like a seed answer.
-  // The top tone, 3468.75 Hz, lies 21 bins of the robot's 25 Hz grid below its lowest band.
+  // Six bands of four tones four bins (125 Hz) apart, lane 0 from 531.25 Hz, lane 1 two bins
+  // (62.5 Hz) lower: no tone of a reply lies within three bins of another, whatever the room
+  // smears. Answers to consecutive frames alternate lanes, and a Hann window reads nothing of a
+  // steady tone two bins away (its zeros lie at whole bins from 2 on), so the last answer's
+  // reverberant tail, in a reverberant room as loud as the next answer's direct sound 200 ms
+  // later, no longer sits on that answer's bins (docs/protocol.md, "Answers in reverberant
+  // rooms"). Every tone lies on an odd bin, so none is 2000, 2500, 3000 or 3500 Hz (bins 64,
+  // 80, 96, 112: the seed profile's ACK and NACK tones) and no fast reply sounds like a seed
+  // answer. Two lanes two bins apart cannot both keep two bins from every seed tone; this
+  // placement leaves one tone of each lane a bin from a seed ACK tone (lane 0 bin 81, lane 1
+  // bin 79), so a seed ACK beside the sender costs an answer at most one tone, which a reading
+  // may lose (9 of 12 named, 11 of 12 tagged). The top tone, 3406.25 Hz, lies 16 bins of the
+  // robot's 25 Hz grid below its lowest band.
   for (int b = 0; b < HopLink::kReplyBands; ++b) {
     for (int v = 0; v < HopLink::kReplyToneValues; ++v)
       h.reply_tone_bin[static_cast<std::size_t>(b)][static_cast<std::size_t>(v)] = 17 + 16 * b + 4 * v;
   }
-  h.reply_lane_step_bins = 2;
+  h.reply_lane_step_bins = -2;
   h.reply_amplitude = 0.8 / HopLink::kReplyBands;  // the tones of a chord sum to at most 0.8 full scale
   h.reply_presence_db = 3;
   h.reply_onset_db = 3;

@@ -90,6 +90,16 @@ std::optional<std::uint32_t> read_tag(const ReplyReading& reading) {
   return first * kOffsets + offsets;
 }
 
+ReplyReading reading_for(const TagEvidence& evidence, std::uint32_t tag) {
+  const ReplyTones expected = tag_tones(tag);
+  ReplyReading r = evidence.plain;
+  for (std::size_t b = 0; b < kReplyBandsPerChord; ++b)
+    r[kReplyBandsPerChord + b] = evidence.second_beside[b][expected[b]];
+  return r;
+}
+
+bool spells_tag(const TagEvidence& evidence, std::uint32_t tag) { return spells_tag(reading_for(evidence, tag), tag); }
+
 int heard_tones(const ReplyReading& reading) {
   return static_cast<int>(std::count_if(reading.begin(), reading.end(), [](int t) { return t >= 0; }));
 }

@@ -46,6 +46,19 @@ using ReplyTones = std::array<std::uint8_t, kReplyTones>;
 // A reading: each band's tone, or -1 where the band was not heard.
 using ReplyReading = std::array<int, kReplyTones>;
 
+// What the ear heard of a reply, for a sender that knows which tag it waits for: the plain
+// reading, and each band's second-chord tone read again with each possible first-chord tone
+// set aside. The first chord's tone rings on into the second, and where the reverberation
+// outweighs the direct sound (the smoking room: 13 dB) its tail can stand over the second
+// chord's own tone; the plain reading sets aside the first-chord tone it heard, which misses
+// when that tone was not heard. Setting aside the tag's own first-chord tone tells a forger
+// nothing: a second-chord tone is never it.
+struct TagEvidence {
+  ReplyReading plain{};
+  std::array<std::array<std::int8_t, kReplyToneValues>, kReplyBandsPerChord> second_beside{};  // [band][first]
+  bool operator==(const TagEvidence&) const = default;
+};
+
 ReplyTones reply_codeword(const NamedReply& reply);
 // The named reply that at least `tones_needed` of the reading's tones agree with, or nothing.
 std::optional<NamedReply> read_reply(const ReplyReading& reading, int tones_needed);
@@ -59,5 +72,10 @@ std::optional<std::uint32_t> read_tag(const ReplyReading& reading);
 int heard_tones(const ReplyReading& reading);
 // Whether the reading spells `tag`: kTagTonesNeeded tones or more heard, and all of them agree.
 bool spells_tag(const ReplyReading& reading, std::uint32_t tag);
+// The reading of `evidence` for a sender waiting for `tag`: the second chord read with the
+// tag's own first-chord tones set aside.
+ReplyReading reading_for(const TagEvidence& evidence, std::uint32_t tag);
+// Whether the evidence, read for `tag`, spells it.
+bool spells_tag(const TagEvidence& evidence, std::uint32_t tag);
 
 }  // namespace dtmf::reliability

@@ -2,7 +2,7 @@
 // the reply's twelve tones out.
 //
 // A reply is two chords, each one tone in each of six bands of 4 tones 125 Hz apart
-// (0.53-3.47 kHz, below the chords, so the robot may answer while a chord sounds), read in
+// (0.47-3.41 kHz, below the chords, so the robot may answer while a chord sounds), read in
 // 32 ms windows (in a room a shorter tone smears into the bins beside it); which
 // tones is the reliability layer's reply code (reliability/reply_code.h). Every hop the
 // latest window is read through a Hann window: the sender's own frames, 20 dB louder at its
@@ -19,6 +19,8 @@
 // milliseconds since the first sample fed. Feeding allocates nothing.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -37,11 +39,15 @@ struct HeardReading {
   double heard_ms = 0;                // end of the window inside its second chord
   long long window = 0;               // the window's number: readings of consecutive windows are one reply
   int lane = 0;                       // the reply lane read
+  // With evidence asked for: the second chord read again beside each first-chord tone
+  // (reliability::TagEvidence; tones is its plain reading).
+  std::array<std::array<std::int8_t, reliability::kReplyToneValues>, HopLink::kReplyBands> second_beside{};
 };
 
 class HopReplyListener {
  public:
-  HopReplyListener(const LinkProfile& profile, int min_heard);
+  // `evidence`: fill HeardReading::second_beside (a keyed sender's ear).
+  HopReplyListener(const LinkProfile& profile, int min_heard, bool evidence = false);
   std::span<const HeardReading> feed(std::span<const float> samples);
   double hop_ms() const { return 1000.0 * hops_.reply_hop_samples / sample_rate_hz_; }
 
@@ -53,6 +59,7 @@ class HopReplyListener {
 
   const HopLink& hops_;
   int min_heard_;
+  bool evidence_;
   int sample_rate_hz_;
   float presence_ratio_;
   float onset_ratio_;

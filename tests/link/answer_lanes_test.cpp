@@ -1,6 +1,6 @@
 // Why answers were lost in reverberant rooms, pinned offline: the robot's answers through a
-// measured room at the round trip's cadence (one every 190 ms: a frame, the robot's
-// decision, its answer), heard by the sender's ear. In the smoking room (RT60 0.74 s, its
+// measured room at the round trip's cadence (one every 190 ms, keyed 240 ms: a frame, the
+// robot's decision, its answer), heard by the sender's ear. In the smoking room (RT60 0.74 s, its
 // reverberation 13 dB over the direct sound) the last answer's tail is still as loud as the
 // next answer's direct sound, and where both sit on the same bins the ear reads the old
 // tones. Answers to consecutive frames now alternate reply lanes (link/fast_link.cpp);
@@ -28,7 +28,9 @@ using namespace dtmf;
 namespace {
 
 const LinkProfile& p = profile_by_name("fast");
-constexpr double kCadenceMs = 190;  // answer to answer in the smoking room's round trip
+// Answer to answer in the smoking room's round trip: a frame, the robot's decision, its
+// answer (keyed: the three-chord frame).
+constexpr double kCadenceMs = 190, kKeyedCadenceMs = 240;
 constexpr int kAnswers = 40;
 
 struct Heard {
@@ -50,7 +52,7 @@ Heard answers_heard(bool keyed, bool every_second) {
   const auto sender = link::make_link(p, sender_options);
   const auto robot = link::make_link(p, robot_options);
   const double samples_per_ms = p.sample_rate_hz / 1000.0;
-  const auto cadence = static_cast<std::size_t>(kCadenceMs * samples_per_ms);
+  const auto cadence = static_cast<std::size_t>((keyed ? kKeyedCadenceMs : kCadenceMs) * samples_per_ms);
   const auto lead = static_cast<std::size_t>(1000 * samples_per_ms);
   std::vector<float> track(lead + (kAnswers + 2) * cadence, 0.0f);
   std::vector<link::TransmitFrame> frames;

@@ -247,3 +247,28 @@ TEST(ReplyCode, ATaggedAckSpellsItsTagAndNeedsEveryTone) {
     for (std::size_t b = 0; b < 6; ++b) EXPECT_NE(word[b], word[b + 6]) << "reply " << r;
   }
 }
+
+// A second-chord tone read as its band's first-chord tail (the first chord's tone unheard, so
+// the plain reading set nothing aside) spells the tag once read beside the tag's own first
+// tones; a reading for another tag gains nothing from it.
+TEST(ReplyCode, EvidenceReadForTheTagSetsItsOwnFirstTonesAside) {
+  const std::uint32_t tag = 1234567u % kReplyTagSpace;
+  const ReplyTones tones = tag_tones(tag);
+  TagEvidence e;
+  for (std::size_t t = 0; t < tones.size(); ++t) e.plain[t] = tones[t];
+  for (std::size_t b = 0; b < 6; ++b) {
+    for (std::size_t x = 0; x < 4; ++x)  // beside any first tone but the tag's, the tail of the tag's own wins
+      e.second_beside[b][x] = static_cast<std::int8_t>(x == tones[b] ? tones[b + 6] : tones[b]);
+  }
+  e.plain[0] = -1;        // the first chord's tone in band 0 was not heard...
+  e.plain[6] = tones[0];  // ... so its tail was read as the second chord's
+  EXPECT_FALSE(spells_tag(e.plain, tag));
+  EXPECT_TRUE(spells_tag(e, tag));
+  EXPECT_EQ(reading_for(e, tag)[6], tones[6]);
+  std::mt19937 rng(4);
+  for (int i = 0; i < 1000; ++i) {
+    const std::uint32_t other = static_cast<std::uint32_t>(rng() % kReplyTagSpace);
+    if (other == tag) continue;
+    EXPECT_FALSE(spells_tag(e, other)) << other;
+  }
+}
