@@ -110,15 +110,7 @@ Counts run_stream(const LinkProfile& profile, const AnswerCase& c, const program
     frames.push_back(next_frame());
     if (every_second) frames.back() = next_frame();
     const link::TransmitFrame& f = frames.back();
-    link::Reception r;  // the robot took the frame intact
-    r.bits = f.bits;
-    r.bit_count = f.bit_count;
-    r.intact = true;
-    r.event = link::ReceptionEvent::Command;
-    r.authenticated = f.authenticated;
-    r.sequence = f.sequence;
-    r.counter = f.counter;
-    const std::vector<float> answer = robot->answer_audio(r);
+    const std::vector<float> answer = robot->answer_audio(link::intact_reception(f));
     const std::size_t at = lead + k * slot + slot / 8;
     answer_start_ms.push_back(static_cast<double>(at) / samples_per_ms);
     // A slot need not hold all of a long frame of the sender's (the seed's: 0.8 s): the tracks

@@ -57,6 +57,20 @@ class FrameReceiver {
   virtual std::span<const Reception> feed(std::span<const float> samples) = 0;
 };
 
+// The reception of `frame` taken intact and executed, as the robot's receiver would give it:
+// what benchmarks and tests answer when they play the robot without its receiver.
+inline Reception intact_reception(const TransmitFrame& frame) {
+  Reception r;
+  r.bits = frame.bits;
+  r.bit_count = frame.bit_count;
+  r.intact = true;
+  r.event = ReceptionEvent::Command;
+  r.authenticated = frame.authenticated;
+  r.sequence = frame.sequence;
+  r.counter = frame.counter;
+  return r;
+}
+
 // The sender's ear: audio in, answers out.
 class AnswerListener {
  public:

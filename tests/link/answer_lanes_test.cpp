@@ -68,15 +68,7 @@ Heard answers_heard(bool keyed, bool every_second) {
     link::TransmitFrame f = plan_confirmed();
     if (every_second) f = plan_confirmed();
     lane_mask |= 1 << f.answer_lane;
-    link::Reception r;  // the robot took the frame intact
-    r.bits = f.bits;
-    r.bit_count = f.bit_count;
-    r.intact = true;
-    r.event = link::ReceptionEvent::Command;
-    r.authenticated = f.authenticated;
-    r.sequence = f.sequence;
-    r.counter = f.counter;
-    const std::vector<float> answer = robot->answer_audio(r);
+    const std::vector<float> answer = robot->answer_audio(link::intact_reception(f));
     std::copy(answer.begin(), answer.end(), track.begin() + static_cast<long>(lead + k * cadence));
     frames.push_back(std::move(f));
   }
