@@ -64,8 +64,6 @@ class TeleopService final : public v1::TeleopService::Service {
   grpc::Status end_run(const std::string& run_id);
   // The request's target for the robot model; throws RequestError naming the field.
   command::Velocity teleop_target(const v1::TeleopRequest& request) const;
-  // The teleop slot: false if another stream holds it.
-  bool claim_teleop(const std::shared_ptr<TeleopSession>& session);
   // FAILED_PRECONDITION naming `rpc` while a Teleop stream drives.
   std::optional<grpc::Status> refuse_while_teleop(const char* rpc);
   // Stop overtook: the driving stream sends nothing more and ends.
@@ -77,7 +75,7 @@ class TeleopService final : public v1::TeleopService::Service {
   std::mutex runs_mutex_;
   std::optional<store::TestRunRow> active_run_;
   std::mutex teleop_mutex_;
-  std::weak_ptr<TeleopSession> teleop_;
+  std::weak_ptr<TeleopSession> teleop_;  // the slot (teleop_stream.h: TeleopSlot)
 };
 
 }  // namespace dtmf::server

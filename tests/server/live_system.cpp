@@ -7,6 +7,20 @@
 
 namespace dtmf::test_support {
 
+class LiveSystem::SendObserver : public server::ProgressObserver {
+ public:
+  SendObserver(server::ProgressObserver& next, std::function<void(const server::ProgressEvent&)> before)
+      : next_(next), before_(std::move(before)) {}
+  void observe(const server::Job& job, const server::ProgressEvent& event) override {
+    if (before_) before_(event);
+    next_.observe(job, event);
+  }
+
+ private:
+  server::ProgressObserver& next_;
+  std::function<void(const server::ProgressEvent&)> before_;
+};
+
 namespace {
 class Mute : public agent::ReplyPlayer {
  public:
@@ -95,11 +109,11 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   server_db.spill_path = ::testing::TempDir() + "/live-system-" + std::to_string(::getpid()) + ".spill";
   store_ = std::make_unique<store::Store>(server_db);
   recorder_of_sends_ = std::make_unique<server::StoreRecorder>(*store_, "test");
+  send_observer_ = std::make_unique<SendObserver>(*recorder_of_sends_, options_.before_recording);
   link::LinkOptions sender_links;
   sender_links.key = options_.sender_key;
   transmitter_ = std::make_unique<server::Transmitter>(
-      link::make_links(sender_links), profile, std::move(sender.speaker), std::move(sender.microphone),
-      *recorder_of_sends_,
+      link::make_links(sender_links), profile, std::move(sender.speaker), std::move(sender.microphone), *send_observer_,
       server::TransmitterOptions{.max_queue = options_.max_queue,
                                  .allow_unauthenticated = options_.allow_unauthenticated});
   server::ServiceOptions service_options;

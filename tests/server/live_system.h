@@ -43,6 +43,10 @@ struct LiveSystemOptions {
   // A third loudspeaker in the room, 0.3 m from the sender's microphone (a stranger's
   // phone): forger_speaker() plays what a test gives it.
   bool forger = false;
+  // Called with each progress event the transmitter emits, before it is recorded, on the
+  // transmitter's threads (Queued: the submitting caller's). A test may throw from it on a
+  // Queued event: the transmitter's submit() then throws what it threw.
+  std::function<void(const server::ProgressEvent&)> before_recording;
 };
 
 // What the robot heard, in order: seed words of intact frames, and commands executed.
@@ -86,11 +90,13 @@ class LiveSystem {
 
  private:
   class Recorder;
+  class SendObserver;
   LiveSystemOptions options_;
   HeardWords heard_;
   sim::SimulatedAir air_;
   std::unique_ptr<store::Store> store_;
   std::unique_ptr<server::StoreRecorder> recorder_of_sends_;
+  std::unique_ptr<SendObserver> send_observer_;
   std::unique_ptr<server::Transmitter> transmitter_;
   std::unique_ptr<server::TeleopService> service_;
   std::unique_ptr<grpc::Server> server_;

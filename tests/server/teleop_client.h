@@ -88,6 +88,26 @@ class TeleopClient {
     return found;
   }
 
+  // Waits for a status carrying a frame event `event`.
+  std::optional<v1::TeleopResponse> event(v1::FrameEvent event, std::chrono::milliseconds within) {
+    std::unique_lock lock(mutex_);
+    std::optional<v1::TeleopResponse> found;
+    changed_.wait_for(lock, within, [&] {
+      for (const auto& r : responses_) {
+        if (r.has_progress() && r.progress().event() == event) found = r;
+      }
+      return found.has_value() || read_done_;
+    });
+    return found;
+  }
+
+  // Waits until the server ended the stream, repeating the target meanwhile as dtmfctl
+  // teleop does (the server's reader sees the end at the next message).
+  bool ended(std::chrono::milliseconds within) {
+    std::unique_lock lock(mutex_);
+    return changed_.wait_for(lock, within, [&] { return read_done_; });
+  }
+
   // Ends the stream as a client that is done (half-close), and returns the final status.
   grpc::Status close() {
     {
