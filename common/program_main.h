@@ -1,7 +1,12 @@
 // What every dtmf-teleop program's main() shares: the exit codes (0 success, 1 something
 // needed could not be had, 2 bad usage) applied to CLI11 parsing and to the program's body.
-// Header-only: each program includes it once.
+// Log lines go to standard error in every program, so that standard output holds only what a
+// program prints on purpose (with --json, JSON lines alone; spdlog's default writes to
+// standard output). Header-only: each program includes it once.
 #pragma once
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
@@ -19,6 +24,8 @@ inline constexpr int kExitUsage = 2;
 // Parses the command line; the exit code to leave with when that is all (help or --version:
 // 0, a bad flag: 2 after CLI11 has said what was wrong), nothing when the program should go on.
 inline std::optional<int> parse(CLI::App& app, int argc, char** argv) {
+  auto& sinks = spdlog::default_logger()->sinks();
+  sinks.assign({std::make_shared<spdlog::sinks::stderr_color_sink_mt>()});
   const std::string program = argc > 0 ? std::filesystem::path(argv[0]).filename().string() : "dtmf-teleop";
   app.set_version_flag("--version", program + " " + DTMF_VERSION, "print the version and exit");
   try {

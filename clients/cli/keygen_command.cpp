@@ -3,6 +3,7 @@
 // over a channel an eavesdropper cannot read (docs/security.md, "Pairing").
 #include <cstdio>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "offline_commands.h"
@@ -10,15 +11,19 @@
 
 namespace dtmf::cli {
 
-void add_keygen_command(CLI::App& app, Action& run) {
+void add_keygen_command(CLI::App& app, Action& run, const GlobalOptions& global) {
   auto file = std::make_shared<std::string>();
   CLI::App* keygen = app.add_subcommand(
       "keygen", "Write a new random link key with its key id to FILE (mode 0600); never overwrites a file");
   keygen->add_option("file", *file, "where to write the key")->required();
-  keygen->callback([file, &run] {
-    run = [file] {
+  keygen->callback([file, &run, &global] {
+    run = [file, &global] {
       const auto key = security::LinkKey::generate();
       key->save(*file);
+      if (global.json) {
+        std::printf("%s\n", nlohmann::json{{"key_id", key->id_hex()}, {"file", *file}}.dump().c_str());
+        return 0;
+      }
       std::printf(
           "wrote key %s to %s (mode 0600)\n"
           "give the same file to the sender (dtmf-server --key) and to the robot (dtmf-agent --key) over a channel\n"

@@ -52,11 +52,11 @@ int main(int argc, char** argv) {
   dtmf::cli::add_encode_command(app, run, global);
   dtmf::cli::add_decode_command(app, run, global);
 #if DTMF_CLI_SIMULATE
-  dtmf::cli::add_simulate_command(app, run);
+  dtmf::cli::add_simulate_command(app, run, global);
 #else
   app.footer(app.get_footer() + "\nThis dtmfctl was built without the simulator (cmake -DDTMF_BUILD_SIMULATOR=OFF).");
 #endif
-  dtmf::cli::add_keygen_command(app, run);
+  dtmf::cli::add_keygen_command(app, run, global);
 #if DTMF_CLI_LIVE
   dtmf::cli::add_live_commands(app, run, global);
   dtmf::cli::add_run_commands(app, run, global);

@@ -20,8 +20,8 @@ using Action = std::function<int()>;
 
 void add_encode_command(CLI::App& app, Action& run, const GlobalOptions& global);
 void add_decode_command(CLI::App& app, Action& run, const GlobalOptions& global);
-void add_simulate_command(CLI::App& app, Action& run);
-void add_keygen_command(CLI::App& app, Action& run);
+void add_simulate_command(CLI::App& app, Action& run, const GlobalOptions& global);
+void add_keygen_command(CLI::App& app, Action& run, const GlobalOptions& global);
 
 // Live subcommands (through dtmf-server): drive, turn, stop, reset, sequence (live_commands.cpp);
 // runs, report, health (report_view.cpp).

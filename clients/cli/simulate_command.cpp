@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "channel_flags.h"
@@ -23,7 +24,7 @@ struct SimulateOptions {
   double tail_s = 0.5;
 };
 
-int run_simulate(const SimulateOptions& o) {
+int run_simulate(const SimulateOptions& o, bool json) {
   const LinkProfile& profile = profile_by_name(o.profile);
   const program::ChannelSetup setup = program::channel_setup(o.channel);
   const auto channel = program::make_channel(setup, profile.sample_rate_hz);
@@ -49,9 +50,18 @@ int run_simulate(const SimulateOptions& o) {
     samples += static_cast<long long>(heard.size());
   }
   sink.drain();
-  std::printf("wrote %s: %.2f s heard through %s\n", o.output.c_str(),
-              static_cast<double>(samples) / profile.sample_rate_hz,
-              program::describe_channel(setup, *channel).c_str());
+  const double heard_s = static_cast<double>(samples) / profile.sample_rate_hz;
+  if (json) {
+    std::printf("%s\n", nlohmann::json{{"output", o.output},
+                                       {"heard_s", heard_s},
+                                       {"channel", program::describe_channel(setup, *channel)},
+                                       {"clipped_samples", clipped}}
+                            .dump()
+                            .c_str());
+  } else {
+    std::printf("wrote %s: %.2f s heard through %s\n", o.output.c_str(), heard_s,
+                program::describe_channel(setup, *channel).c_str());
+  }
   // A clipped recording fails for its level, not for the room: say so.
   if (clipped > 0) {
     std::fprintf(
@@ -66,7 +76,7 @@ int run_simulate(const SimulateOptions& o) {
 
 }  // namespace
 
-void add_simulate_command(CLI::App& app, Action& run) {
+void add_simulate_command(CLI::App& app, Action& run, const GlobalOptions& global) {
   auto o = std::make_shared<SimulateOptions>();
   CLI::App* sim =
       app.add_subcommand("simulate", "Play a recording through the simulated acoustic channel into another");
@@ -90,7 +100,7 @@ void add_simulate_command(CLI::App& app, Action& run) {
       "floor=0.98 \\\n"
       "      --speaker-at 3,4,0.8 --mic-at 1,1.5,0.05 --whine 9000:-45 --radial-speed-mps 0.22\n"
       "docs/protocol.md section 7 says what each effect models and why.");
-  sim->callback([o, &run] { run = [o] { return run_simulate(*o); }; });
+  sim->callback([o, &run, &global] { run = [o, &global] { return run_simulate(*o, global.json); }; });
 }
 
 }  // namespace dtmf::cli

@@ -18,8 +18,8 @@
 #include "support/processes.h"
 #include "support/run_command.h"
 
-using dtmf::test_support::json_lines;
 using dtmf::test_support::run_command;
+using dtmf::test_support::whole_json_lines;
 namespace fs = std::filesystem;
 
 namespace {
@@ -87,7 +87,7 @@ TEST_F(DtmfctlLive, JsonGivesOneObjectPerEvent) {
   const auto r = run_command(ctl("turn --rotation -40 --duration 1 --json") + " < /dev/null", false);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   std::vector<std::string> events;
-  for (const auto& line : json_lines(r.out)) {
+  for (const auto& line : whole_json_lines(r.out)) {
     events.push_back(line["event"]);
     EXPECT_EQ(line["frame_count"], 3);
     // A queued command has no frames yet: they are numbered as they go on air.
@@ -204,7 +204,7 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
 
   const auto json = run_command(ctl("report --json"), false);
   ASSERT_EQ(json.exit_code, 0) << json.out;
-  const auto report = json_lines(json.out);
+  const auto report = whole_json_lines(json.out);
   ASSERT_EQ(report.size(), 1u);
   EXPECT_EQ(report[0]["label"], "general");
   EXPECT_EQ(report[0]["transmissions_sent"], 65);
@@ -237,7 +237,7 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   EXPECT_EQ(std::count(csv.out.begin(), csv.out.end(), '\n'), 2);
   EXPECT_EQ(csv.out.rfind("run_number,run_id,label", 0), 0u) << csv.out;
   const auto runs = run_command(ctl("runs --json"), false);
-  EXPECT_EQ(json_lines(runs.out).front()["label"], "general");
+  EXPECT_EQ(whole_json_lines(runs.out).front()["label"], "general");
   if (HasFailure()) {  // what each side did and when, to tell a split chord from a wrong frame
     for (const char* log : {"agent.log", "server.log"}) {
       std::ifstream in(kDir / log);

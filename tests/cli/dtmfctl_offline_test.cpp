@@ -16,6 +16,7 @@ namespace {
 
 using Result = dtmf::test_support::CommandResult;
 using dtmf::test_support::json_lines;
+using dtmf::test_support::whole_json_lines;
 
 Result run(const std::string& args) { return dtmf::test_support::run_command(std::string(DTMFCTL_PATH) + " " + args); }
 
@@ -39,6 +40,31 @@ TEST_F(Dtmfctl, EncodeWordPrintsTheSeedsExampleFrame) {
   EXPECT_EQ(lines[0]["crc"], "1101");
   ASSERT_EQ(lines[0]["tones_hz"].size(), 4u);
   EXPECT_NEAR(lines[0]["tones_hz"][0].get<double>(), 4500 + 11 * 2500.0 / 15, 1e-6);
+}
+
+// With --json, standard output is JSON Lines and nothing else, whatever the subcommand logs
+// (a keyed encode once logged "key ... counters in ..." there, and jq failed on it).
+TEST_F(Dtmfctl, EveryJsonCommandPrintsJsonOnly) {
+  const std::string key = path("link.key");
+  const std::string state = " --state-dir " + path("state");
+  const std::vector<std::string> commands = {
+      "keygen " + key,
+      "encode --word 2861",
+      "encode --key " + key + state + " --profile fast drive --speed 10",
+      "encode --profile fast --wav " + path("f.wav") + " sequence",
+      "encode --key " + key + state + " --profile fast --wav " + path("k.wav") + " stop",
+      "decode --profile fast " + path("f.wav"),
+      "decode --key " + key + " --profile fast " + path("k.wav"),
+      "simulate --profile fast " + path("f.wav") + " " + path("heard.wav") + " --distance 2",
+      "decode --profile fast " + path("heard.wav"),
+  };
+  for (const auto& command : commands) {
+    const Result r = dtmf::test_support::run_command(std::string(DTMFCTL_PATH) + " --json " + command, false);
+    EXPECT_EQ(r.exit_code, 0) << command << ": " << r.out;
+    std::vector<nlohmann::json> lines;
+    EXPECT_NO_THROW(lines = whole_json_lines(r.out)) << command << ":\n" << r.out;
+    EXPECT_FALSE(lines.empty()) << command;
+  }
 }
 
 TEST_F(Dtmfctl, EncodeThenDecodeGivesBackTheSameFramesInOrder) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,19 @@ inline std::vector<nlohmann::json> json_lines(const std::string& out) {
   for (std::string line; std::getline(in, line);) {
     if (line.empty() || line.front() != '{') continue;
     lines.push_back(nlohmann::json::parse(line));
+  }
+  return lines;
+}
+
+// Every line of `out`, each of which must be a JSON object (what a JSON Lines reader such as
+// jq takes): std::runtime_error naming the first line that is not.
+inline std::vector<nlohmann::json> whole_json_lines(const std::string& out) {
+  std::vector<nlohmann::json> lines;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) {
+    const auto parsed = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+    if (!parsed.is_object()) throw std::runtime_error("not a JSON object: \"" + line + "\"");
+    lines.push_back(parsed);
   }
   return lines;
 }
