@@ -2,7 +2,11 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <fstream>
+#include <sstream>
 #include <thread>
+#include <vector>
 
 #include "database.h"
 #include "temp_database.h"
@@ -133,4 +137,83 @@ TEST(MigrateCommand, MigratesReportsStatusAndFailsClearly) {
   EXPECT_EQ(run(std::string(DTMF_MIGRATE_PATH) + " --db postgresql://postgres@127.0.0.1:1/x"), 1);
   EXPECT_EQ(run(std::string(DTMF_MIGRATE_PATH) + " --db none"), 2);
   EXPECT_EQ(run(std::string(DTMF_MIGRATE_PATH) + " --no-such-flag"), 2);
+}
+
+// run_report() is restated by several migrations (each kept as it shipped). The newest
+// statement is the one live, there is one function per signature, and its columns are the
+// ones docs/database.md defines.
+namespace {
+
+// The body between the $$ of the newest migration's `FUNCTION run_report(run uuid`.
+std::string newest_report_body() {
+  const auto& all = known_migrations();
+  for (auto m = all.rbegin(); m != all.rend(); ++m) {
+    const auto at = m->sql.rfind("FUNCTION run_report(run uuid");
+    if (at == std::string::npos) continue;
+    const auto open = m->sql.find("$$", at), close = m->sql.find("$$", open + 2);
+    return std::string(m->sql.substr(open + 2, close - open - 2));
+  }
+  return {};
+}
+
+// The column names of docs/database.md's report table, braces expanded: `a_{x,y}_b`.
+std::vector<std::string> documented_report_columns() {
+  std::ifstream in(std::string(DTMF_SOURCE_DIR) + "/docs/database.md");
+  std::vector<std::string> names;
+  bool in_table = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("| column | definition", 0) == 0)
+      in_table = true;
+    else if (in_table && line.rfind("|", 0) != 0)
+      break;
+    if (!in_table || line.rfind("| `", 0) != 0) continue;
+    const std::string cell = line.substr(2, line.find(" |", 2) - 2);
+    for (std::size_t at = cell.find('`'); at != std::string::npos; at = cell.find('`', cell.find('`', at + 1) + 1)) {
+      const std::string name = cell.substr(at + 1, cell.find('`', at + 1) - at - 1);
+      const auto brace = name.find('{');
+      if (brace == std::string::npos) {
+        names.push_back(name);
+        continue;
+      }
+      const auto end = name.find('}');
+      std::istringstream parts(name.substr(brace + 1, end - brace - 1));
+      for (std::string part; std::getline(parts, part, ',');)
+        names.push_back(name.substr(0, brace) + part + name.substr(end + 1));
+    }
+  }
+  return names;
+}
+
+}  // namespace
+
+TEST(Migrations, TheNewestRunReportIsTheOneLiveAndDocumented) {
+  TempDatabase db;
+  auto c = connect(db.url());
+  migrate(*c);
+  EXPECT_EQ(db.query<long>("SELECT count(*) FROM pg_proc WHERE proname = 'run_report'"), 2) << "by id and by number";
+  const std::string body = newest_report_body();
+  ASSERT_FALSE(body.empty());
+  EXPECT_EQ(
+      db.query<std::string>(
+          "SELECT prosrc FROM pg_proc WHERE oid = 'run_report(uuid,double precision,double precision)'::regprocedure"),
+      body)
+      << "the live run_report(uuid) is not the newest migration's";
+
+  const std::vector<std::string> documented = documented_report_columns();
+  ASSERT_GE(documented.size(), 20u);
+  const auto live = db.query<std::string>(
+      "SELECT string_agg(attname, ',' ORDER BY attnum) FROM pg_attribute WHERE attrelid = "
+      "(SELECT typrelid FROM pg_type WHERE typname = 'run_report_row') AND attnum > 0 AND NOT attisdropped");
+  std::vector<std::string> columns;
+  std::istringstream in(live);
+  for (std::string name; std::getline(in, name, ',');) columns.push_back(name);
+  // Which run it is comes first; the table defines the figures.
+  const std::vector<std::string> identity = {"run_id", "run_number", "label", "profile", "started_at", "ended_at"};
+  ASSERT_GT(columns.size(), identity.size());
+  EXPECT_EQ(std::vector<std::string>(columns.begin(), columns.begin() + 6), identity);
+  std::vector<std::string> figures(columns.begin() + 6, columns.end());
+  std::vector<std::string> documented_sorted = documented;
+  std::sort(figures.begin(), figures.end());
+  std::sort(documented_sorted.begin(), documented_sorted.end());
+  EXPECT_EQ(figures, documented_sorted) << "docs/database.md's report table and run_report_row differ";
 }
