@@ -29,7 +29,7 @@ DTMF_PACKAGES=(
 DTMF_ROBOT_CMAKE_OPTIONS=(-DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF -DDTMF_BUILD_SERVER=OFF -DDTMF_CLI_LIVE=OFF
   -DDTMF_BUILD_SIMULATOR=OFF)
 # What a robot needs to build it: no gRPC, Protocol Buffers or GoogleTest.
-# scripts/robot-build-check proves it in a fresh Debian root; the README lists the same.
+# scripts/robot-build-check proves it in a fresh Debian root; docs/robot.md lists the same.
 DTMF_ROBOT_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libfftw3-dev libsndfile1-dev libsamplerate0-dev portaudio19-dev libasound2-dev libjack-jackd2-dev

@@ -46,7 +46,7 @@ constexpr double kLease_s = 1.0;  // carried exactly (docs/protocol.md §10)
 constexpr auto kStopMargin = 200ms;
 // ... plus what this test's air adds to the way: the room's bridges (parec | dtmf-room |
 // pacat, tests/e2e/room_fixture.sh) delay a chord by about 100 ms more than a sound card
-// (README), and the lease runs from when the robot hears the frame start. The bound itself is
+// (docs/simulation.md), and the lease runs from when the robot hears the frame start. The bound itself is
 // measured with a device's latency by dtmf-bench-teleop (docs/benchmarks.md).
 constexpr auto kBridgeDelay = 100ms;
 
