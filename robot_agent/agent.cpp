@@ -50,7 +50,7 @@ void Agent::execute(const command::Command& command, double start_ms, double hea
   provider_.apply(command, heard_ms / 1000.0, start_ms / 1000.0);
   row.command = command::describe(command);
   row.linear_mps = provider_.target().linear_mps;
-  row.angular_rps = provider_.target().angular_rps;
+  row.angular_radps = provider_.target().angular_radps;
 }
 
 void Agent::told(const HeardFrame& frame) const {
@@ -90,14 +90,11 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
   row.event = link::event_name(r.event);
   row.reason = link::reason_name(r.refusal);
   row.authenticated = r.authenticated;
-  std::optional<command::Word> word;
   if (r.seed_word) {
-    word = r.seed_word->word;
     row.word = r.seed_word->word;
     if (!r.seed_word->state_after.empty()) row.command_state = r.seed_word->state_after;
   }
-  HeardFrame heard{&profile,  r.start_ms,      r.heard_ms, r.bits, r.intact,    r.event,
-                   r.refusal, r.authenticated, r.counter,  word,   std::nullopt};
+  HeardFrame heard{&profile, r, std::nullopt};
 
   const std::string bits = r.bits.bit_string(r.bit_count);
   const std::string number = r.counter    ? " counter " + std::to_string(*r.counter)
@@ -128,10 +125,10 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
   }
   if (r.command) {
     execute(*r.command, r.start_ms, r.heard_ms, row);
-    heard.command = r.command;
+    heard.executed = r.command;
   }
   spdlog::info("t={:.3f}s {} frame {}{}{}{}: ACK ({}), {}", r.heard_ms / 1000.0, profile.name, bits, number,
-               word ? " word " + std::to_string(*word) : "", r.authenticated ? " authenticated" : "",
+               r.seed_word ? " word " + std::to_string(r.seed_word->word) : "", r.authenticated ? " authenticated" : "",
                link::event_name(r.event), r.detail);
   store_.write(row);
   told(heard);

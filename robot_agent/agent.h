@@ -66,19 +66,13 @@ class Timeline {
   double block_end_ms_ = 0;
 };
 
-// A frame the agent heard and answered, whatever its profile.
+// A frame the agent heard and answered, whatever its profile: its link's reception of it
+// (link/reception.h), under which profile, and the command it executed (none for a frame
+// refused, broken, or repeated after a lost ACK).
 struct HeardFrame {
   const LinkProfile* profile = nullptr;
-  double start_ms = 0;
-  double heard_ms = 0;
-  reliability::FrameBits bits;
-  bool intact = false;
-  link::ReceptionEvent event = link::ReceptionEvent::Broken;
-  link::RefusalReason refusal = link::RefusalReason::None;
-  bool authenticated = false;
-  std::optional<std::uint64_t> counter;     // authenticated frames
-  std::optional<command::Word> word;        // seed frames
-  std::optional<command::Command> command;  // the command it completed (seed) or carried (fast, new frames)
+  link::Reception reception;
+  std::optional<command::Command> executed;
 };
 
 struct AgentOptions {

@@ -189,7 +189,7 @@ int run(const Flags& f) {
   std::string names;
   for (const LinkProfile* p : profiles) names += (names.empty() ? "" : ", ") + p->name;
   spdlog::info("robot {} ({:.2f} m/s, {:.2f} rad/s), listening with profiles {}, publishing at {:.0f} Hz", model.name,
-               model.max_linear_mps, model.max_angular_rps, names, f.publish_rate_hz);
+               model.max_linear_mps, model.max_angular_radps, names, f.publish_rate_hz);
   std::vector<float> block(static_cast<std::size_t>(agent.block_samples()));
   int exit_code = 0;
   const auto started = std::chrono::steady_clock::now();

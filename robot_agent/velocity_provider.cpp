@@ -28,7 +28,7 @@ Velocity VelocityProvider::drive(double speed_percent) const {
 }
 
 Velocity VelocityProvider::turn(double rotation_percent) const {
-  return {0.0, model_.max_angular_rps * rotation_percent / 100.0};
+  return {0.0, model_.max_angular_radps * rotation_percent / 100.0};
 }
 
 void VelocityProvider::apply(const command::Command& command, double now_s, std::optional<double> spoken_s) {
@@ -71,7 +71,7 @@ void VelocityProvider::ramp(double now_s) {
     return std::abs(to - from) <= step + 1e-12 ? to : std::clamp(to, from - step, from + step);
   };
   velocity_.linear_mps = approach(velocity_.linear_mps, target_.linear_mps, model_.linear_accel_mps2);
-  velocity_.angular_rps = approach(velocity_.angular_rps, target_.angular_rps, model_.angular_accel_rps2);
+  velocity_.angular_radps = approach(velocity_.angular_radps, target_.angular_radps, model_.angular_accel_rps2);
 }
 
 bool VelocityProvider::changing_by_itself() const {
@@ -85,8 +85,9 @@ void VelocityProvider::stop() {
 
 std::optional<double> VelocityProvider::settles_at_s() const {
   if (velocity_ != target_) {
-    return ramped_at_s_ + std::max(std::abs(target_.linear_mps - velocity_.linear_mps) / model_.linear_accel_mps2,
-                                   std::abs(target_.angular_rps - velocity_.angular_rps) / model_.angular_accel_rps2);
+    return ramped_at_s_ +
+           std::max(std::abs(target_.linear_mps - velocity_.linear_mps) / model_.linear_accel_mps2,
+                    std::abs(target_.angular_radps - velocity_.angular_radps) / model_.angular_accel_rps2);
   }
   if (state_ == MotionState::Leased) return end_s_;
   return std::nullopt;
@@ -94,7 +95,7 @@ std::optional<double> VelocityProvider::settles_at_s() const {
 
 double VelocityProvider::stopping_time_s(const Velocity& from) const {
   return std::max(std::abs(from.linear_mps) / model_.linear_accel_mps2,
-                  std::abs(from.angular_rps) / model_.angular_accel_rps2);
+                  std::abs(from.angular_radps) / model_.angular_accel_rps2);
 }
 
 Velocity VelocityProvider::update(double now_s) {

@@ -220,7 +220,7 @@ int main(int argc, char** argv) {
                 system, sent,
                 [&](const agent::Velocity& v) {
                   return std::abs(v.linear_mps - wanted.linear_mps) < 1e-6 &&
-                         std::abs(v.angular_rps - wanted.angular_rps) < 1e-6;
+                         std::abs(v.angular_radps - wanted.angular_radps) < 1e-6;
                 },
                 kPressTimeout);
             if (reached) {

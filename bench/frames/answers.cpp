@@ -29,6 +29,7 @@
 
 #include "channel_flags.h"
 #include "command/random_command.h"
+#include "command/word_codec.h"
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "frames/channel_case.h"
@@ -99,10 +100,22 @@ Counts run_stream(const LinkProfile& profile, const AnswerCase& c, const program
   std::vector<link::TransmitFrame> frames;
   std::vector<double> answer_start_ms;
   std::mt19937_64 rng(seed);
+  // A random command the profile can carry: the seed's 12-bit words carry no Velocity (plan()
+  // throws for it), and a sender sends only what its profile carries.
+  const auto next_command = [&] {
+    for (;;) {
+      command::Command command = command::random_command(rng);
+      try {
+        sender->frame_count(command);
+        return command;
+      } catch (const command::ParameterError&) {
+      }
+    }
+  };
   // Planned and confirmed as a sender does, so numbered one after another (a keyed sender's
   // first plan adds a synchronisation frame, confirmed too).
   const auto next_frame = [&] {
-    const auto planned = sender->plan(command::random_command(rng));
+    const auto planned = sender->plan(next_command());
     for (const auto& f : planned) sender->confirmed(f);
     return planned.back();
   };
@@ -212,8 +225,9 @@ int main(int argc, char** argv) {
         options.first_sequence = 0;
         if (slot_ms == 0) {
           const double frame_ms = link::make_link(profile, options)->random_frame(seed).tone_ms;
-          slot_ms =
-              std::max({200.0, frame_ms + profile.timing.ack_ms, profile.timing.ack_ms + profile.debounce.lockout_ms});
+          const auto* words = std::get_if<WordPlan>(&profile.plan);
+          const double lockout_ms = words ? words->debounce.lockout_ms : 0;  // the hopped ear has none
+          slot_ms = std::max({200.0, frame_ms + profile.timing.ack_ms, profile.timing.ack_ms + lockout_ms});
         }
         std::vector<AnswerCase> cases;
         for (const auto& t : case_texts) cases.push_back({parse_channel_case(t), own_frames});

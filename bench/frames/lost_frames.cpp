@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
   return program::run(
       [&] {
         const LinkProfile& profile = profile_by_name(profile_name);
-        if (profile.frame_format != FrameFormat::HoppedCommand) {
+        if (!std::holds_alternative<HopPlan>(profile.plan)) {
           throw std::invalid_argument("profile " + profile.name + " has no hopped frames to take apart; use fast");
         }
         FrameTrials trials(profile);
@@ -111,10 +111,10 @@ int main(int argc, char** argv) {
         std::mt19937_64 rng(seed);
         GaussianNoise noise(seed);
         Autopsy a;
-        a.doubted = profile.hops.chase_tones;
-        a.max_erasures = profile.hops.max_erasures;
+        a.doubted = profile.hops().chase_tones;
+        a.max_erasures = profile.hops().max_erasures;
         // "Near its start": within a hop (a start the grid guessed lies up to a hop off) and 2 ms.
-        const double near_ms = 1000.0 * profile.hops.hop_samples / profile.sample_rate_hz + 2;
+        const double near_ms = 1000.0 * profile.hops().hop_samples / profile.sample_rate_hz + 2;
         for (std::size_t i = 0; i < frames; ++i) {
           const link::TransmitFrame frame = trials.random_frame(rng);
           std::vector<float> stream(lead + frame.audio.size() + lead, 0.0f);

@@ -62,7 +62,7 @@ std::vector<ChannelCase> default_cases(const LinkProfile& profile, const std::st
   cases.push_back(
       {"seminar_room_clap -2000 ppm", "--rir " + rirs + "/seminar_room_clap.wav --clock-ppm -2000" + kQuiet});
   // 6 dB over one tone as heard at 1 m: a tone of amplitude A is 20 log10(A / sqrt 2) dBFS RMS.
-  const double whine_dbfs = units::db_from_amplitude_ratio(profile.tones.tone_amplitude / std::sqrt(2.0)) + 6;
+  const double whine_dbfs = units::db_from_amplitude_ratio(profile.tone_amplitude() / std::sqrt(2.0)) + 6;
   for (double hz : {5000.0, 6012.5, 9000.0, 12000.0, 15000.0, 16012.5}) {
     cases.push_back({"whine " + number(hz) + " Hz +6 dB", "--whine " + number(hz) + ":" + number(whine_dbfs) + kQuiet});
   }

@@ -137,7 +137,7 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
 
   // With --trace, every reading of the reply bands with half its tones heard (hopped profiles).
   std::optional<signal::HopReplyListener> trace_ear;
-  if (o.trace && profile.hops.reply_hop_samples > 0) trace_ear.emplace(profile, 6);
+  if (o.trace && profile.hops().reply_hop_samples > 0) trace_ear.emplace(profile, 6);
   std::vector<float> speaker_block(o.block_samples), robot_block(o.block_samples), heard;
   long long samples = 0;
   while (command_index < o.commands) {

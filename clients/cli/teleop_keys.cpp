@@ -30,12 +30,12 @@ KeyEffect apply_key(int key, TeleopTarget& target, const command::RobotModel& mo
     case 'a':
     case 'A':
       target.angular_radps =
-          step(target.angular_radps, kAngularStep_radps, model.max_angular_rps, kAngularStep_radps / 100);
+          step(target.angular_radps, kAngularStep_radps, model.max_angular_radps, kAngularStep_radps / 100);
       break;
     case 'd':
     case 'D':
       target.angular_radps =
-          step(target.angular_radps, -kAngularStep_radps, model.max_angular_rps, kAngularStep_radps / 100);
+          step(target.angular_radps, -kAngularStep_radps, model.max_angular_radps, kAngularStep_radps / 100);
       break;
     case 's':
     case 'S':

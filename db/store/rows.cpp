@@ -125,7 +125,7 @@ nlohmann::json to_json(const ReceptionRow& r) {
           {"command_state", text_or_null(r.command_state)},
           {"command", text_or_null(r.command)},
           {"linear_mps", optional_json(r.linear_mps)},
-          {"angular_rps", optional_json(r.angular_rps)}};
+          {"angular_rps", optional_json(r.angular_radps)}};
 }
 
 }  // namespace dtmf::store

@@ -86,7 +86,7 @@ struct ReceptionRow {
   std::string command_state;
   std::string command;
   std::optional<double> linear_mps;
-  std::optional<double> angular_rps;
+  std::optional<double> angular_radps;  // the column angular_rps (rad/s)
 };
 
 nlohmann::json to_json(const TestRunRow& row);

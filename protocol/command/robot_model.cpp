@@ -45,7 +45,7 @@ double fraction_of(const RobotModel& model, const char* field, double value, dou
 
 Velocity velocity_command(const RobotModel& model, double linear, double angular, double lease_s) {
   Velocity v{fraction_of(model, "linear_mps", linear, model.max_linear_mps, "m/s"),
-             fraction_of(model, "angular_radps", angular, model.max_angular_rps, "rad/s"), lease_s};
+             fraction_of(model, "angular_radps", angular, model.max_angular_radps, "rad/s"), lease_s};
   if (!std::isfinite(lease_s) || lease_s < kMinLease_s || lease_s > kMaxLease_s) {
     char buf[120];
     std::snprintf(buf, sizeof buf, "lease_s %g is out of range: allowed %g..%g s", lease_s, kMinLease_s, kMaxLease_s);
@@ -59,7 +59,7 @@ double linear_mps(const RobotModel& model, const Velocity& velocity) {
 }
 
 double angular_radps(const RobotModel& model, const Velocity& velocity) {
-  return velocity.angular_fraction * model.max_angular_rps;
+  return velocity.angular_fraction * model.max_angular_radps;
 }
 
 }  // namespace dtmf::command

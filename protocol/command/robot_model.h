@@ -20,7 +20,7 @@ namespace dtmf::command {
 struct RobotModel {
   std::string name;
   double max_linear_mps;
-  double max_angular_rps;
+  double max_angular_radps;
   double linear_accel_mps2 = 2.5;
   double angular_accel_rps2 = 25.0;
 };

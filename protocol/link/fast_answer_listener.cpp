@@ -15,9 +15,9 @@ bool same(const Answer& a, const Answer& b) {
 
 FastAnswerListener::FastAnswerListener(const LinkProfile& profile, bool keyed)
     : keyed_(keyed),
-      needed_(profile.hops.reply_tones_needed),
-      reply_ms_(1000.0 * profile.hops.reply_samples() / profile.sample_rate_hz),
-      listener_(profile, profile.hops.reply_tones_needed, keyed) {}
+      needed_(profile.hops().reply_tones_needed),
+      reply_ms_(1000.0 * profile.hops().reply_samples() / profile.sample_rate_hz),
+      listener_(profile, profile.hops().reply_tones_needed, keyed) {}
 
 std::span<const Answer> FastAnswerListener::feed(std::span<const float> samples) {
   answers_.clear();

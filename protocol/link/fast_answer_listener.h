@@ -34,7 +34,7 @@ class FastAnswerListener final : public AnswerListener {
     std::optional<Answer> answer;
     long long window = -10;
   };
-  std::array<Previous, HopLink::kReplyLanes> previous_{};  // the last reading of each lane
+  std::array<Previous, HopPlan::kReplyLanes> previous_{};  // the last reading of each lane
   std::array<Answer, 4> recent_{};
   std::size_t next_ = 0;
   std::vector<Answer> answers_;

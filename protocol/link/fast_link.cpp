@@ -1,4 +1,4 @@
-// The `fast` profile's link (FrameFormat::HoppedCommand): address, a number and the 27-bit
+// The `fast` profile's link (HopPlan): address, a number and the 27-bit
 // command, checked by a CRC (and with a key authenticated by a MAC over a freshness
 // counter), as a Reed-Solomon codeword of hopped 32-ary tones; ACK / NACK replies below the
 // chords.
@@ -141,7 +141,7 @@ TransmitFrame FastLink::random_frame(std::uint64_t seed) {
 }
 
 double FastLink::frame_start_ms(std::size_t index) const {
-  const int samples = keyed() ? profile().hops.sealed_frame_samples() : profile().hops.frame_samples();
+  const int samples = keyed() ? profile().hops().sealed_frame_samples() : profile().hops().frame_samples();
   const double frame_ms = 1000.0 * samples / profile().sample_rate_hz;
   return static_cast<double>(index) * (frame_ms + kAnswerWaitMs);
 }
@@ -168,13 +168,13 @@ std::vector<float> FastLink::answer_audio(const Reception& r) const {
   return signal::synthesize_hopped_reply(profile(), reliability::reply_codeword({false, 0}), kNackLane);
 }
 
-int FastLink::receiver_block_samples() const { return profile().hops.hop_samples; }
+int FastLink::receiver_block_samples() const { return profile().hops().hop_samples; }
 
 std::unique_ptr<AnswerListener> FastLink::answer_listener() const {
   return std::make_unique<FastAnswerListener>(profile(), keyed());
 }
 
-int FastLink::answer_block_samples() const { return profile().hops.reply_hop_samples; }
+int FastLink::answer_block_samples() const { return profile().hops().reply_hop_samples; }
 
 bool FastLink::answers(const Answer& answer, const TransmitFrame& frame) const {
   if (!answer.ack) return true;  // a NACK answers whatever frame is on air

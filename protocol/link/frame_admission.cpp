@@ -49,7 +49,7 @@ std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
   r.heard_ms = heard.heard_ms;
   r.bits = heard.bits;
   r.intact = heard.intact;
-  const bool sealed = heard.chords == profile_.hops.sealed_chords_per_frame;
+  const bool sealed = heard.chords == profile_.hops().sealed_chords_per_frame;
   r.bit_count = sealed ? reliability::kSealedFrameBits : reliability::kCommandFrameBits;
   r.check_bit_count = sealed ? reliability::kSealedCheckBits : reliability::kCommandCrcBits;
   const std::vector<double> tones =

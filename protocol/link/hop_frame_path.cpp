@@ -10,13 +10,13 @@
 namespace dtmf::link {
 
 HopFramePath::HopFramePath(const LinkProfile& profile, reliability::SealedCheck authentic, bool plain_taken)
-    : hops_(profile.hops),
+    : hops_(profile.hops()),
       authentic_(std::move(authentic)),
       plain_taken_(plain_taken),
-      plain_chase_tones_(plain_taken ? profile.hops.chase_tones : 0),
+      plain_chase_tones_(plain_taken ? profile.hops().chase_tones : 0),
       // Without a key nothing sealed is authentic: runner-up swaps could find nothing the
       // robot may take (a refusal keeps more parity).
-      sealed_chase_tones_(authentic_ ? profile.hops.chase_tones : 0),
+      sealed_chase_tones_(authentic_ ? profile.hops().chase_tones : 0),
       budgeted_([this](const reliability::FrameBits& bits) { return checked_authentic(bits); }),
       listener_(profile),
       // Candidates of one frame come from its inner window and a hop or two either side:
@@ -25,8 +25,8 @@ HopFramePath::HopFramePath(const LinkProfile& profile, reliability::SealedCheck 
       // authenticated frame's start and its three-chord reading a chord later), and a failed
       // cluster waits two chords and three hops before its NACK, so that an accept of the
       // frame's longer reading can close it silently.
-      gate_(profile.hops.lockout_hops * listener_.hop_ms(), profile.hops.cluster_gap_hops * listener_.hop_ms(),
-            profile.hops.nack_settle_hops * listener_.hop_ms()) {
+      gate_(profile.hops().lockout_hops * listener_.hop_ms(), profile.hops().cluster_gap_hops * listener_.hop_ms(),
+            profile.hops().nack_settle_hops * listener_.hop_ms()) {
   received_.reserve(8);
 }
 

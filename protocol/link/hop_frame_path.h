@@ -68,7 +68,7 @@ class HopFramePath final : private signal::CandidateSink {
   bool rose_with_its_chords(const signal::HopCandidate& c) const;
   bool shadow_of_accepted(const signal::HopCandidate& c) const;
 
-  const HopLink& hops_;
+  const HopPlan& hops_;
   reliability::SealedCheck authentic_;
   bool plain_taken_;
   int plain_chase_tones_;              // the profile's chase_tones, or 0 where plain frames are refused

@@ -62,8 +62,7 @@ std::vector<float> Link::render(std::span<const TransmitFrame> frames) const {
 }
 
 std::unique_ptr<Link> make_link(const LinkProfile& profile, LinkOptions options) {
-  if (profile.frame_format == FrameFormat::HoppedCommand)
-    return std::make_unique<FastLink>(profile, std::move(options));
+  if (std::holds_alternative<HopPlan>(profile.plan)) return std::make_unique<FastLink>(profile, std::move(options));
   return std::make_unique<SeedLink>(profile, std::move(options));
 }
 

@@ -11,7 +11,7 @@
 
 namespace dtmf::link {
 
-inline int answer_lane(std::uint64_t number) { return static_cast<int>(number % HopLink::kReplyLanes); }
+inline int answer_lane(std::uint64_t number) { return static_cast<int>(number % HopPlan::kReplyLanes); }
 inline constexpr int kNackLane = 0;
 
 }  // namespace dtmf::link

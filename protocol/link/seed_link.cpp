@@ -59,7 +59,7 @@ class SeedReceiver final : public FrameReceiver {
       r.bit_count = reliability::kSeedFrameBits;
       r.check_bit_count = reliability::kCrcBits;
       r.intact = f.crc_ok;
-      const signal::Chord chord = signal::chord_for(profile_.tones, f.frame);
+      const signal::Chord chord = signal::chord_for(profile_.words().tones, f.frame);
       r.tones_hz.assign(chord.begin(), chord.end());
       if (f.crc_ok) r.seed_word = SeedWordReading{reliability::frame_word(f.frame), {}};
       if (f.crc_ok && refuse_) {

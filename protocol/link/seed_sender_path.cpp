@@ -8,7 +8,7 @@ namespace dtmf::link {
 SeedPlannedFrame plan_word(const LinkProfile& profile, command::Word word) {
   const reliability::SeedFrame frame = reliability::make_frame(word & command::kWordMask);
   return SeedPlannedFrame{static_cast<command::Word>(word & command::kWordMask), frame,
-                          signal::chord_for(profile.tones, frame)};
+                          signal::chord_for(profile.words().tones, frame)};
 }
 
 std::vector<SeedPlannedFrame> plan_command(const LinkProfile& profile, const command::Command& command) {

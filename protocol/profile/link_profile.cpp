@@ -1,7 +1,9 @@
 #include "profile/link_profile.h"
+#include "profile/profile_registry.h"
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <stdexcept>
 
 namespace dtmf {
@@ -10,6 +12,7 @@ namespace {
 
 LinkProfile make_seed_profile() {
   LinkProfile p;
+  WordPlan& w = p.plan.emplace<WordPlan>();
   p.name = "seed";
   p.description = "the seed report's link: 0.8 s four-tone chords, about 17 bit/s";
   // 48 kHz: what the PulseAudio air and most USB microphones run at; 16 kHz tones
@@ -17,13 +20,13 @@ LinkProfile make_seed_profile() {
   p.sample_rate_hz = 48000;
 
   // Seed section 8: bands of 2500 Hz, 0000 = lowest, 1111 = highest tone of the band.
-  p.tones.band_low_hz = {4500, 7500, 10500, 13500};
-  p.tones.step_hz = 2500.0 / 15.0;
-  p.tones.tones_per_band = 16;
-  p.tones.ack_hz = {2500, 3500};  // seed section 9
-  p.tones.nack_hz = {2000, 3000};
-  p.tones.tone_amplitude = 0.2;  // four tones sum to at most 0.8 full scale
-  p.tones.edge_ms = 5;           // long enough to keep clicks out of the tone bands
+  w.tones.band_low_hz = {4500, 7500, 10500, 13500};
+  w.tones.step_hz = 2500.0 / 15.0;
+  w.tones.tones_per_band = 16;
+  w.tones.ack_hz = {2500, 3500};  // seed section 9
+  w.tones.nack_hz = {2000, 3000};
+  w.tones.tone_amplitude = 0.2;  // four tones sum to at most 0.8 full scale
+  w.tones.edge_ms = 5;           // long enough to keep clicks out of the tone bands
 
   p.timing.chord_ms = 800;  // seed section 9
   p.timing.gap_ms = 200;
@@ -31,47 +34,47 @@ LinkProfile make_seed_profile() {
   p.timing.ack_timeout_ms = 1500;
   p.timing.auto_retransmissions = 1;  // seed section 7, Fig. 8
 
-  p.analysis.fft_size = 4096;  // seed section 8
-  p.analysis.analyses_per_s = 20;
+  w.analysis.fft_size = 4096;  // seed section 8
+  w.analysis.analyses_per_s = 20;
 
-  p.robot_detector.bandpass_low_hz = 4000;  // seed section 8
-  p.robot_detector.bandpass_high_hz = 17000;
-  p.robot_detector.peak_count = 10;
-  p.robot_detector.noise_gate_dbfs = -60;
-  p.robot_detector.tone_tolerance_hz = 25;
-  p.robot_detector.dominance_db = 8;  // spandsp's DTMF relative-peak test
+  w.robot_detector.bandpass_low_hz = 4000;  // seed section 8
+  w.robot_detector.bandpass_high_hz = 17000;
+  w.robot_detector.peak_count = 10;
+  w.robot_detector.noise_gate_dbfs = -60;
+  w.robot_detector.tone_tolerance_hz = 25;
+  w.robot_detector.dominance_db = 8;  // spandsp's DTMF relative-peak test
   // Receiver choices of ours (docs/protocol.md §10, "What the seed receiver changed for real
   // rooms"): a moving robot and two sound cards put 16 kHz tones up to 48 Hz off at 3000 ppm,
   // twice the tolerance; a fast profile's sixteen-tone chords must not read as seed chords; a
   // fan's whine on a plan tone must not win its band. A 0.8 s chord lifts its bins'
   // background by 8 dB at most; a whine 50 dB over the floor is learnt in 5 s.
-  p.robot_detector.max_offset_ppm = 3000;
-  p.robot_detector.crowding_peaks = 3;
-  p.robot_detector.background_rise_db_per_s = 10;
+  w.robot_detector.max_offset_ppm = 3000;
+  w.robot_detector.crowding_peaks = 3;
+  w.robot_detector.background_rise_db_per_s = 10;
 
-  p.sender_detector.bandpass_low_hz = 1500;
-  p.sender_detector.bandpass_high_hz = 4000;
-  p.sender_detector.peak_count = 5;
-  p.sender_detector.noise_gate_dbfs = -60;
-  p.sender_detector.tone_tolerance_hz = 25;
-  p.sender_detector.dominance_db = 8;
+  w.sender_detector.bandpass_low_hz = 1500;
+  w.sender_detector.bandpass_high_hz = 4000;
+  w.sender_detector.peak_count = 5;
+  w.sender_detector.noise_gate_dbfs = -60;
+  w.sender_detector.tone_tolerance_hz = 25;
+  w.sender_detector.dominance_db = 8;
   // ACK tones sit below 3.5 kHz: 3000 ppm moves them 10.5 Hz, within the tolerance.
-  p.sender_detector.background_rise_db_per_s = 10;
+  w.sender_detector.background_rise_db_per_s = 10;
 
-  p.debounce.min_detections = 2;  // seed section 8
-  p.debounce.window_ms = 300;
+  w.debounce.min_detections = 2;  // seed section 8
+  w.debounce.window_ms = 300;
   // The seed's 0.8 s, plus 0.1 s: a chord passes 0.1-0.15 s after it starts, so 0.8 s let
   // a reverberant tail 8-10 dB down pass it again just after it ended (2 frames in 1000 in
   // the smoking room, RT60 0.76 s). A repeat of the same chord starts 1 s after it.
-  p.debounce.lockout_ms = 900;
-  p.debounce.rearm_drop_db = 10;  // a reverberant tail must not pass a chord twice
+  w.debounce.lockout_ms = 900;
+  w.debounce.rearm_drop_db = 10;  // a reverberant tail must not pass a chord twice
   // A sender starved of the CPU plays a chord with a hole in it (a CI machine: up to 460 ms);
   // the rest, heard after the lockout, passed as a second chord, and the seed's words, having
   // no sequence number, then put the robot's state machine one word off. One chord sounds
   // for at most 0.8 s plus about 0.15 s of window overlap and reverberation; a chord that
   // comes back within 0.6 s of silence must sound 0.3 s more than that before it is new.
-  p.debounce.max_dropout_ms = 600;
-  p.debounce.presence_margin_ms = 300;
+  w.debounce.max_dropout_ms = 600;
+  w.debounce.presence_margin_ms = 300;
   return p;
 }
 
@@ -83,9 +86,7 @@ LinkProfile make_fast_profile() {
   p.name = "fast";
   p.description = "a whole command per frame in 102.5 ms, hopped 32-ary tones, Reed-Solomon, named ACKs";
   p.sample_rate_hz = 48000;
-  p.frame_format = FrameFormat::HoppedCommand;
-
-  HopLink& h = p.hops;
+  HopPlan& h = p.plan.emplace<HopPlan>();
   h.window_samples = 1920;  // 40 ms; tones 25 Hz apart
   h.edge_samples = 24;      // 0.5 ms fades
   h.hop_samples = 492;      // 10.25 ms; chord = 1920 + 2 * 24 + 492 = 2460 = 5 hops (51.25 ms)
@@ -95,7 +96,7 @@ LinkProfile make_fast_profile() {
   // Sixteen bands of 32 tones and 2 guard bins from 4 kHz: band k starts at bin 160 + 34 k;
   // the first chord sends on the even bands, the second on the odd ones (4.0-17.5 kHz).
   for (int c = 0; c < 2; ++c) {
-    for (int b = 0; b < HopLink::kBandsPerChord; ++b) h.band_first_bin[c][b] = 160 + 34 * (2 * b + c);
+    for (int b = 0; b < HopPlan::kBandsPerChord; ++b) h.band_first_bin[c][b] = 160 + 34 * (2 * b + c);
   }
   h.tone_amplitude = 0.1;  // eight tones sum to at most 0.8 full scale
   h.gate_db = 7.5;         // noise bands pass 1 in 5, a frame's at -10 dB SNR 24 in 25
@@ -140,7 +141,7 @@ LinkProfile make_fast_profile() {
   h.reply_window_samples = 1536;
   h.reply_hop_samples = 204;
   h.reply_edge_samples = 48;
-  h.reply_tones_per_band = HopLink::kReplyToneValues;
+  h.reply_tones_per_band = HopPlan::kReplyToneValues;
   // Six bands of four tones four bins (125 Hz) apart, lane 0 from 531.25 Hz, lane 1 two bins
   // (62.5 Hz) lower: no tone of a reply lies within three bins of another, whatever the room
   // smears. Answers to consecutive frames alternate lanes, and a Hann window reads nothing of a
@@ -154,12 +155,12 @@ LinkProfile make_fast_profile() {
   // bin 79), so a seed ACK beside the sender costs an answer at most one tone, which a reading
   // may lose (9 of 12 named, 11 of 12 tagged). The top tone, 3406.25 Hz, lies 16 bins of the
   // robot's 25 Hz grid below its lowest band.
-  for (int b = 0; b < HopLink::kReplyBands; ++b) {
-    for (int v = 0; v < HopLink::kReplyToneValues; ++v)
+  for (int b = 0; b < HopPlan::kReplyBands; ++b) {
+    for (int v = 0; v < HopPlan::kReplyToneValues; ++v)
       h.reply_tone_bin[static_cast<std::size_t>(b)][static_cast<std::size_t>(v)] = 17 + 16 * b + 4 * v;
   }
   h.reply_lane_step_bins = -2;
-  h.reply_amplitude = 0.8 / HopLink::kReplyBands;  // the tones of a chord sum to at most 0.8 full scale
+  h.reply_amplitude = 0.8 / HopPlan::kReplyBands;  // the tones of a chord sum to at most 0.8 full scale
   h.reply_presence_db = 3;
   h.reply_onset_db = 3;
   h.reply_background_rise_db_per_s = 10;
@@ -167,31 +168,54 @@ LinkProfile make_fast_profile() {
 
   // The shared fields, in the units the rest of the code base reads them in.
   const double ms_per_sample = 1000.0 / p.sample_rate_hz;
-  p.tones.step_hz = static_cast<double>(p.sample_rate_hz) / h.window_samples;
-  for (int i = 0; i < 4; ++i) p.tones.band_low_hz[i] = h.band_first_bin[0][2 * i] * p.tones.step_hz;
-  p.tones.tones_per_band = h.tones_per_band;
-  p.tones.tone_amplitude = h.tone_amplitude;
-  p.tones.edge_ms = h.edge_samples * ms_per_sample;
   p.timing.chord_ms = h.chord_samples() * ms_per_sample;
   p.timing.gap_ms = 0;
   p.timing.ack_ms = h.reply_samples() * ms_per_sample;
   p.timing.ack_timeout_ms = 500;  // an answer comes about 130 ms after the frame starts
   p.timing.auto_retransmissions = 2;
-  p.analysis.fft_size = h.window_samples;
-  p.analysis.analyses_per_s = static_cast<double>(p.sample_rate_hz) / h.hop_samples;
   return p;
 }
 
 }  // namespace
 
-int LinkProfile::hop_samples() const { return static_cast<int>(std::lround(sample_rate_hz / analysis.analyses_per_s)); }
+namespace {
+template <class Plan>
+Plan& plan_of(const LinkProfile& profile, const std::variant<WordPlan, HopPlan>& plan, const char* what) {
+  if (!std::holds_alternative<Plan>(plan))
+    throw std::invalid_argument("profile '" + profile.name + "' has no " + what + " (another wire format)");
+  return const_cast<Plan&>(std::get<Plan>(plan));
+}
+}  // namespace
+
+const WordPlan& LinkProfile::words() const { return plan_of<WordPlan>(*this, plan, "word plan"); }
+WordPlan& LinkProfile::words() { return plan_of<WordPlan>(*this, plan, "word plan"); }
+const HopPlan& LinkProfile::hops() const { return plan_of<HopPlan>(*this, plan, "hopped plan"); }
+HopPlan& LinkProfile::hops() { return plan_of<HopPlan>(*this, plan, "hopped plan"); }
+
+int LinkProfile::hop_samples() const {
+  if (const auto* w = std::get_if<WordPlan>(&plan))
+    return static_cast<int>(std::lround(sample_rate_hz / w->analysis.analyses_per_s));
+  return hops().hop_samples;
+}
 
 int LinkProfile::samples_for_ms(double ms) const { return static_cast<int>(std::lround(ms * sample_rate_hz / 1000.0)); }
 
+double LinkProfile::tone_amplitude() const {
+  if (const auto* w = std::get_if<WordPlan>(&plan)) return w->tones.tone_amplitude;
+  return hops().tone_amplitude;
+}
+
 int LinkProfile::min_recording_rate_hz() const {
-  double top_hz = tones.band_low_hz[3] + (tones.tones_per_band - 1) * tones.step_hz;
-  for (const auto& chord : hops.band_first_bin) {
-    for (int first_bin : chord) top_hz = std::max(top_hz, (first_bin + hops.tones_per_band - 1) * tones.step_hz);
+  double top_hz = 0;
+  if (const auto* w = std::get_if<WordPlan>(&plan)) {
+    top_hz = w->tones.band_low_hz[3] + (w->tones.tones_per_band - 1) * w->tones.step_hz;
+  } else {
+    const HopPlan& h = hops();
+    for (const auto& chord : h.band_first_bin) {
+      for (int first_bin : chord)
+        top_hz = std::max(top_hz,
+                          (first_bin + h.tones_per_band - 1) * static_cast<double>(sample_rate_hz) / h.window_samples);
+    }
   }
   return static_cast<int>(2 * top_hz) + 1;
 }
@@ -206,9 +230,23 @@ const LinkProfile& fast_profile() {
   return profile;
 }
 
-const std::vector<const LinkProfile*>& all_profiles() {
-  static const std::vector<const LinkProfile*> profiles = {&seed_profile(), &fast_profile()};
+namespace {
+std::vector<const LinkProfile*>& known_profiles() {
+  static std::vector<const LinkProfile*> profiles = {&seed_profile(), &fast_profile()};
   return profiles;
+}
+}  // namespace
+
+const std::vector<const LinkProfile*>& all_profiles() { return known_profiles(); }
+
+const LinkProfile& register_profile(LinkProfile profile) {
+  if (profile.name.empty()) throw std::invalid_argument("a profile needs a name");
+  for (const LinkProfile* p : known_profiles()) {
+    if (p->name == profile.name) throw std::invalid_argument("a profile called '" + profile.name + "' exists already");
+  }
+  static std::deque<LinkProfile> registered;  // a deque: the addresses handed out stay valid
+  known_profiles().push_back(&registered.emplace_back(std::move(profile)));
+  return registered.back();
 }
 
 std::string profile_names() {

@@ -10,6 +10,7 @@
 #include <array>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 namespace dtmf {
@@ -76,20 +77,28 @@ struct DebounceParams {
   double presence_margin_ms = 0;
 };
 
-// How a command travels. Word16: the seed's — RESET, mode and parameter words, one 16-bit
-// CRC-4 frame each, one four-tone chord per frame. HoppedCommand: the fast profile's — a whole
-// command in one 50-bit frame (address, sequence number, command, CRC-16) coded as a
-// Reed–Solomon codeword of sixteen 32-ary tones on two chords with disjoint tone sets,
-// answered by an ACK that names the frame's sequence number. Layouts in docs/protocol.md.
-// Only protocol/link reads this: it picks the link that implements the format.
-enum class FrameFormat { Word16, HoppedCommand };
+// How a command travels: each wire format has a plan of its own, and a profile holds one
+// (LinkProfile::plan). Only protocol/link reads which: it picks the link that implements it.
+//
+// WordPlan (the seed's): RESET, mode and parameter words, one 16-bit CRC-4 frame each, one
+// four-tone chord per frame, found by an FFT's peaks and debounced.
+struct WordPlan {
+  TonePlan tones;
+  AnalysisParams analysis;
+  DetectorParams robot_detector;   // hears command chords
+  DetectorParams sender_detector;  // hears ACK / NACK chords
+  DebounceParams debounce;
+};
 
-// The fast profile's plan (FrameFormat::HoppedCommand). Every tone sits on a bin of a
+// HopPlan (the fast profile's): a whole command in one 50-bit frame (address, sequence
+// number, command, CRC-16) coded as a Reed–Solomon codeword of sixteen 32-ary tones on two
+// chords with disjoint tone sets, answered by an ACK that names the frame's sequence number.
+// Layouts in docs/protocol.md. Every tone sits on a bin of a
 // rectangular analysis window (frequency = bin * rate / window_samples), so a window lying
 // wholly inside a chord sees each tone in one bin. The two chords of a frame use disjoint
 // sets of bands (frequency hopping, as NATO's JANUS does): one chord's reverberant tail
 // lies in bands the next chord's symbols are not read from.
-struct HopLink {
+struct HopPlan {
   static constexpr int kBandsPerChord = 8;
   int window_samples = 0;           // W; also the tone spacing: rate / W
   int hop_samples = 0;              // one analysis every hop; a chord lasts W + 2 * edge + hop
@@ -157,21 +166,25 @@ struct HopLink {
   }
 };
 
+// What every profile has, whatever its format, and its format's own plan.
 struct LinkProfile {
   std::string name;
   std::string description;
   int sample_rate_hz = 0;
-  TonePlan tones;
   LinkTiming timing;
-  AnalysisParams analysis;
-  DetectorParams robot_detector;   // hears command chords
-  DetectorParams sender_detector;  // hears ACK / NACK chords
-  DebounceParams debounce;
-  FrameFormat frame_format = FrameFormat::Word16;
-  HopLink hops;  // HoppedCommand only
+  std::variant<WordPlan, HopPlan> plan;
 
+  // The format's plan; std::invalid_argument naming the profile if it has another format.
+  const WordPlan& words() const;
+  WordPlan& words();
+  const HopPlan& hops() const;
+  HopPlan& hops();
+
+  // The receiver's analysis hop: the audio block that suits it.
   int hop_samples() const;
   int samples_for_ms(double ms) const;
+  // The loudest a command chord's tone sounds (linear, full scale = 1.0).
+  double tone_amplitude() const;
   // The slowest sample rate a recording may have and still carry the highest plan tone.
   int min_recording_rate_hz() const;
 };

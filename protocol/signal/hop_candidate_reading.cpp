@@ -29,7 +29,7 @@ int HopListener::blind_offset_ppm(int chords) const {
   for (int c = 0; c < chords; ++c) {
     const Window& w = chord_window(chords, c);
     const auto set = static_cast<std::size_t>(band_set(c));
-    for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
+    for (int b = 0; b < HopPlan::kBandsPerChord; ++b) {
       const int lo = hops_.band_first_bin[set][static_cast<std::size_t>(b)] - lo_bin_ - kMarginBins + 1;
       const int n = hops_.tones_per_band + 2 * kMarginBins - 2;
       const auto* e = w.excess.data() + lo;
@@ -49,7 +49,7 @@ int HopListener::blind_offset_ppm(int chords) const {
   for (int ppm = -hops_.max_offset_ppm; ppm <= hops_.max_offset_ppm; ppm += kOffsetStepPpm) {
     const float scale = 1.0f / (1.0f + static_cast<float>(ppm) * 1e-6f);
     float cost = 0;
-    for (std::size_t t = 0; t < static_cast<std::size_t>(chords * HopLink::kBandsPerChord); ++t) {
+    for (std::size_t t = 0; t < static_cast<std::size_t>(chords * HopPlan::kBandsPerChord); ++t) {
       const float at = position[t] * scale;
       const float r = at - std::round(at);
       cost += weight[t] * std::min(r * r, 0.06f);
@@ -91,7 +91,7 @@ std::optional<long long> HopListener::first_chord_start_sample(const HopCandidat
   std::size_t placed = 0;
   double earliest = std::numeric_limits<double>::max();
   const auto windows = std::span(onset_amplitude_).first(static_cast<std::size_t>(back + 1));
-  for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
+  for (int b = 0; b < HopPlan::kBandsPerChord; ++b) {
     const ToneReading& r = c.tones[static_cast<std::size_t>(tone_index(0, b))];
     if (!r.heard) continue;
     const auto bin = static_cast<std::size_t>(
@@ -105,7 +105,7 @@ std::optional<long long> HopListener::first_chord_start_sample(const HopCandidat
       ++placed;
     }
   }
-  if (placed < HopLink::kBandsPerChord / 2) return std::nullopt;
+  if (placed < HopPlan::kBandsPerChord / 2) return std::nullopt;
   const long long floor_window_start =
       window_.samples_fed() - static_cast<long long>(back) * hop_ - hops_.window_samples;
   const long long start = floor_window_start + std::llround(earliest) - hops_.edge_samples;
@@ -128,7 +128,7 @@ HopCandidate HopListener::read_candidate(int chords, int offset_ppm,
     const ChordPowers& w = *windows[static_cast<std::size_t>(chord + 1)];
     const ChordPowers& before = *windows[static_cast<std::size_t>(chord)];
     const auto set = static_cast<std::size_t>(band_set(chord));
-    for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
+    for (int b = 0; b < HopPlan::kBandsPerChord; ++b) {
       const std::size_t t = static_cast<std::size_t>(tone_index(chord, b));
       scratch_.clear();
       floor_.clear();
@@ -182,7 +182,7 @@ void HopListener::confirm(const HopCandidate& candidate, std::span<const std::ui
   std::size_t n = 0;
   for (int chord = 0; chord < candidate.chords; ++chord) {
     const auto set = static_cast<std::size_t>(band_set(chord));
-    for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
+    for (int b = 0; b < HopPlan::kBandsPerChord; ++b) {
       const std::size_t t = static_cast<std::size_t>(tone_index(chord, b));
       if (t >= symbols.size() || candidate.tones[t].symbol != symbols[t] || !candidate.tones[t].heard) continue;
       const float sent_bin = static_cast<float>(hops_.band_first_bin[set][static_cast<std::size_t>(b)] + symbols[t]);

@@ -15,34 +15,34 @@ constexpr int kSameHypothesisPpm = 150;
 }  // namespace
 
 HopListener::HopListener(const LinkProfile& profile)
-    : hops_(profile.hops),
+    : hops_(profile.hops()),
       sample_rate_hz_(profile.sample_rate_hz),
-      hop_(profile.hops.hop_samples),
-      hops_per_chord_(profile.hops.chord_samples() / profile.hops.hop_samples),
-      presence_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.presence_db))),
-      onset_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.onset_db))),
-      gate_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.gate_db))),
+      hop_(profile.hops().hop_samples),
+      hops_per_chord_(profile.hops().chord_samples() / profile.hops().hop_samples),
+      presence_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops().presence_db))),
+      onset_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops().onset_db))),
+      gate_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops().gate_db))),
       lo_bin_([&] {
         int lo = std::numeric_limits<int>::max();
-        for (const auto& chord : profile.hops.band_first_bin)
+        for (const auto& chord : profile.hops().band_first_bin)
           lo = std::min(lo, *std::min_element(chord.begin(), chord.end()));
         return lo - kMarginBins;
       }()),
       hi_bin_([&] {
         int hi = 0;
-        for (const auto& chord : profile.hops.band_first_bin)
+        for (const auto& chord : profile.hops().band_first_bin)
           hi = std::max(hi, *std::max_element(chord.begin(), chord.end()));
-        const int top = hi + profile.hops.tones_per_band;
-        return top + kMarginBins + static_cast<int>(std::ceil(top * profile.hops.max_offset_ppm * 1e-6));
+        const int top = hi + profile.hops().tones_per_band;
+        return top + kMarginBins + static_cast<int>(std::ceil(top * profile.hops().max_offset_ppm * 1e-6));
       }()),
-      bins_(profile.hops.window_samples, lo_bin_, hi_bin_ - lo_bin_),
-      window_(static_cast<std::size_t>(profile.hops.window_samples),
-              static_cast<std::size_t>(profile.hops.hop_samples)),
-      background_(SteadyBackground::for_power(static_cast<std::size_t>(hi_bin_ - lo_bin_),
-                                              profile.hops.background_rise_db_per_s,
-                                              static_cast<double>(profile.sample_rate_hz) / profile.hops.hop_samples)),
-      reread_(profile.hops, lo_bin_, hi_bin_ - lo_bin_, kMaxFrameChords) {
-  if (profile.frame_format != FrameFormat::HoppedCommand || hops_.chords_per_frame != 2 ||
+      bins_(profile.hops().window_samples, lo_bin_, hi_bin_ - lo_bin_),
+      window_(static_cast<std::size_t>(profile.hops().window_samples),
+              static_cast<std::size_t>(profile.hops().hop_samples)),
+      background_(SteadyBackground::for_power(
+          static_cast<std::size_t>(hi_bin_ - lo_bin_), profile.hops().background_rise_db_per_s,
+          static_cast<double>(profile.sample_rate_hz) / profile.hops().hop_samples)),
+      reread_(profile.hops(), lo_bin_, hi_bin_ - lo_bin_, kMaxFrameChords) {
+  if (!std::holds_alternative<HopPlan>(profile.plan) || hops_.chords_per_frame != 2 ||
       hops_.chord_samples() % hop_ != 0) {
     throw std::invalid_argument("profile '" + profile.name +
                                 "' has no two-chord hopped plan with chords a whole number of hops long");
@@ -92,7 +92,7 @@ void HopListener::analyze_window(CandidateSink& sink) {
   // A steady tone (a whine) becomes background within seconds, a chord's tone never does.
   background_.remove_power(now.power, now.excess);
   for (int c = 0; c < 2; ++c) {
-    for (int b = 0; b < HopLink::kBandsPerChord; ++b) {
+    for (int b = 0; b < HopPlan::kBandsPerChord; ++b) {
       // The band's best excess (a whine is background, not excess) over the mean of the
       // other bins' raw power (the excess is zero wherever a bin just fell to a new low, so
       // its mean is no floor to measure noise against).
@@ -229,18 +229,18 @@ std::optional<HopCandidate> HopListener::read_whole_chords(const Pending& p, lon
 HopListener::Gate HopListener::gate(int chords) const {
   // Counted, not summed: two loud tones (a seed chord, a whistle) must not carry a chord
   // whose other bands hold nothing.
-  int weakest = HopLink::kBandsPerChord, total = 0;
+  int weakest = HopPlan::kBandsPerChord, total = 0;
   for (int c = 0; c < chords; ++c) {
     const Window& w = chord_window(chords, c);
     int loud = 0;
-    for (int b = 0; b < HopLink::kBandsPerChord; ++b)
+    for (int b = 0; b < HopPlan::kBandsPerChord; ++b)
       loud += w.band_score[static_cast<std::size_t>(tone_index(band_set(c), b))] >= gate_ratio_ ? 1 : 0;
     weakest = std::min(weakest, loud);
     total += loud;
   }
   if (weakest >= hops_.gate_bands) return Gate::Open;
   const bool reread = hops_.reread_delay_hops > 0 && weakest >= hops_.reread_gate_bands &&
-                      total >= chords * HopLink::kBandsPerChord / 2;
+                      total >= chords * HopPlan::kBandsPerChord / 2;
   return reread ? Gate::RereadOnly : Gate::Closed;
 }
 

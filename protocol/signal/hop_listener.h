@@ -53,7 +53,7 @@
 namespace dtmf::signal {
 
 inline constexpr int kMaxFrameChords = 3;
-inline constexpr int kMaxFrameTones = kMaxFrameChords * HopLink::kBandsPerChord;  // 24
+inline constexpr int kMaxFrameTones = kMaxFrameChords * HopPlan::kBandsPerChord;  // 24
 // Offset hypotheses a candidate window is read at: the tracked offset, none, and its own estimate.
 inline constexpr std::size_t kOffsetHypotheses = 3;
 
@@ -74,7 +74,7 @@ struct HopCandidate {
   bool second_look = false;   // offered again after `reread_delay_hops` with nothing taken (so are re-reads)
   std::array<ToneReading, kMaxFrameTones> tones{};  // first chord's bands, then the next chord's
   std::array<float, kMaxFrameTones> peak_bins{};    // each band's peak, in fractional bins (offset tracking)
-  std::size_t tone_count() const { return static_cast<std::size_t>(chords * HopLink::kBandsPerChord); }
+  std::size_t tone_count() const { return static_cast<std::size_t>(chords * HopPlan::kBandsPerChord); }
 };
 
 // Where a window's candidates go, hypothesis after hypothesis.
@@ -113,7 +113,7 @@ class HopListener {
   // power: raw |X|^2 of bins [lo_bin_, hi_bin_); excess: power over the background.
   struct Window : ChordPowers {
     // The band's best excess over its mean power, band set s, band b at [s * 8 + b].
-    std::array<float, 2 * HopLink::kBandsPerChord> band_score{};
+    std::array<float, 2 * HopPlan::kBandsPerChord> band_score{};
   };
   void analyze_window(CandidateSink& sink);
   // The candidates of the frame shape of `chords` ending in the newest window.
@@ -144,13 +144,13 @@ class HopListener {
   std::optional<HopCandidate> read_whole_chords(const Pending& p, long long now);
   int blind_offset_ppm(int chords) const;
   // chord c of a frame, band b -> index into its tones; the band set chord c sounds on
-  static int tone_index(int chord, int band) { return chord * HopLink::kBandsPerChord + band; }
+  static int tone_index(int chord, int band) { return chord * HopPlan::kBandsPerChord + band; }
   static int band_set(int chord) { return chord % 2; }
 
   // Room either side of a band for tones moved by a frequency offset, and for a guard bin.
   static constexpr int kMarginBins = 4;
 
-  const HopLink& hops_;
+  const HopPlan& hops_;
   int sample_rate_hz_;
   int hop_;
   int hops_per_chord_;

@@ -14,27 +14,27 @@ constexpr int kMarginBins = 2;
 }  // namespace
 
 HopReplyListener::HopReplyListener(const LinkProfile& profile, int min_heard, bool evidence)
-    : hops_(profile.hops),
+    : hops_(profile.hops()),
       min_heard_(min_heard),
       evidence_(evidence),
       sample_rate_hz_(profile.sample_rate_hz),
-      presence_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.reply_presence_db))),
-      onset_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops.reply_onset_db))),
-      lo_bin_(std::min(profile.hops.reply_bin(0, 0, 0), profile.hops.reply_bin(HopLink::kReplyLanes - 1, 0, 0)) -
+      presence_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops().reply_presence_db))),
+      onset_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops().reply_onset_db))),
+      lo_bin_(std::min(profile.hops().reply_bin(0, 0, 0), profile.hops().reply_bin(HopPlan::kReplyLanes - 1, 0, 0)) -
               kMarginBins),
-      hops_per_chord_(profile.hops.reply_chord_samples() / profile.hops.reply_hop_samples),
-      bins_(profile.hops.reply_window_samples, lo_bin_,
-            std::max(profile.hops.reply_bin(0, HopLink::kReplyBands - 1, HopLink::kReplyToneValues - 1),
-                     profile.hops.reply_bin(HopLink::kReplyLanes - 1, HopLink::kReplyBands - 1,
-                                            HopLink::kReplyToneValues - 1)) +
+      hops_per_chord_(profile.hops().reply_chord_samples() / profile.hops().reply_hop_samples),
+      bins_(profile.hops().reply_window_samples, lo_bin_,
+            std::max(profile.hops().reply_bin(0, HopPlan::kReplyBands - 1, HopPlan::kReplyToneValues - 1),
+                     profile.hops().reply_bin(HopPlan::kReplyLanes - 1, HopPlan::kReplyBands - 1,
+                                              HopPlan::kReplyToneValues - 1)) +
                 kMarginBins + 1 - lo_bin_,
             Weighting::Hann),
-      window_(static_cast<std::size_t>(profile.hops.reply_window_samples),
-              static_cast<std::size_t>(profile.hops.reply_hop_samples)),
+      window_(static_cast<std::size_t>(profile.hops().reply_window_samples),
+              static_cast<std::size_t>(profile.hops().reply_hop_samples)),
       background_(SteadyBackground::for_power(
-          static_cast<std::size_t>(bins_.bins()), profile.hops.reply_background_rise_db_per_s,
-          static_cast<double>(profile.sample_rate_hz) / profile.hops.reply_hop_samples)) {
-  if (profile.hops.reply_chord_samples() % profile.hops.reply_hop_samples != 0) {
+          static_cast<std::size_t>(bins_.bins()), profile.hops().reply_background_rise_db_per_s,
+          static_cast<double>(profile.sample_rate_hz) / profile.hops().reply_hop_samples)) {
+  if (profile.hops().reply_chord_samples() % profile.hops().reply_hop_samples != 0) {
     throw std::invalid_argument("profile '" + profile.name + "': a reply chord must be a whole number of reply hops");
   }
   const auto bins = static_cast<std::size_t>(bins_.bins());
@@ -82,29 +82,29 @@ void HopReplyListener::analyze_window() {
   const std::size_t first =
       (newest_ + power_ring_.size() - static_cast<std::size_t>(hops_per_chord_)) % power_ring_.size();
   const std::size_t before = (newest_ + 1) % power_ring_.size();  // two chords ago: before the reply
-  for (int lane = 0; lane < HopLink::kReplyLanes; ++lane) read_lane(lane, first, before);
+  for (int lane = 0; lane < HopPlan::kReplyLanes; ++lane) read_lane(lane, first, before);
 }
 
 void HopReplyListener::read_lane(int lane, std::size_t first, std::size_t before) {
   HeardReading r;
   r.lane = lane;
-  for (int chord = 0; chord < HopLink::kReplyChords; ++chord) {
+  for (int chord = 0; chord < HopPlan::kReplyChords; ++chord) {
     const std::size_t w = chord == 0 ? first : newest_;
     // The second chord's tones must rise over the first chord's window, and a band's tone of
     // the first chord is no tone of the second: no reply repeats it (reply_code.h), and in a
     // room it rings on into the second chord, its reverberation often louder than when it
     // was read.
     const std::size_t reference = chord == 0 ? before : first;
-    for (int b = 0; b < HopLink::kReplyBands; ++b) {
+    for (int b = 0; b < HopPlan::kReplyBands; ++b) {
       const int exclude = chord == 0 ? -1 : r.tones[static_cast<std::size_t>(b)];
       const int tone = read_band(excess_ring_[w], power_ring_[w], power_ring_[reference], lane, b, exclude);
-      r.tones[static_cast<std::size_t>(chord * HopLink::kReplyBands + b)] = tone;
+      r.tones[static_cast<std::size_t>(chord * HopPlan::kReplyBands + b)] = tone;
       r.heard += tone >= 0 ? 1 : 0;
     }
   }
   if (r.heard < min_heard_) return;
   if (evidence_) {
-    for (int b = 0; b < HopLink::kReplyBands; ++b) {
+    for (int b = 0; b < HopPlan::kReplyBands; ++b) {
       for (int first_tone = 0; first_tone < reliability::kReplyToneValues; ++first_tone) {
         r.second_beside[static_cast<std::size_t>(b)][static_cast<std::size_t>(first_tone)] = static_cast<std::int8_t>(
             read_band(excess_ring_[newest_], power_ring_[newest_], power_ring_[first], lane, b, first_tone));

@@ -32,6 +32,11 @@
 
 namespace dtmf::signal {
 
+// The profile's reply plan and the reliability layer's reply code count the same tones.
+static_assert(HopPlan::kReplyTones == reliability::kReplyTones);
+static_assert(HopPlan::kReplyBands == reliability::kReplyBandsPerChord);
+static_assert(HopPlan::kReplyToneValues == reliability::kReplyToneValues);
+
 struct HeardReading {
   reliability::ReplyReading tones{};  // -1 where not heard
   int heard = 0;                      // tones heard
@@ -41,7 +46,7 @@ struct HeardReading {
   int lane = 0;                       // the reply lane read
   // With evidence asked for: the second chord read again beside each first-chord tone
   // (reliability::TagEvidence; tones is its plain reading).
-  std::array<std::array<std::int8_t, reliability::kReplyToneValues>, HopLink::kReplyBands> second_beside{};
+  std::array<std::array<std::int8_t, reliability::kReplyToneValues>, HopPlan::kReplyBands> second_beside{};
 };
 
 class HopReplyListener {
@@ -57,7 +62,7 @@ class HopReplyListener {
                 int lane, int band, int exclude);
   void read_lane(int lane, std::size_t first, std::size_t before);
 
-  const HopLink& hops_;
+  const HopPlan& hops_;
   int min_heard_;
   bool evidence_;
   int sample_rate_hz_;

@@ -32,42 +32,42 @@ double newman_phase(int index, int count) { return std::numbers::pi * index * in
 }  // namespace
 
 std::vector<double> frame_tones_hz(const LinkProfile& profile, std::span<const std::uint8_t> symbols) {
-  const HopLink& h = profile.hops;
+  const HopPlan& h = profile.hops();
   const double step_hz = static_cast<double>(profile.sample_rate_hz) / h.window_samples;
   std::vector<double> hz(symbols.size());
   for (std::size_t t = 0; t < symbols.size(); ++t) {
-    const std::size_t c = t / HopLink::kBandsPerChord, b = t % HopLink::kBandsPerChord;
+    const std::size_t c = t / HopPlan::kBandsPerChord, b = t % HopPlan::kBandsPerChord;
     hz[t] = (h.band_first_bin[c % 2][b] + symbols[t]) * step_hz;
   }
   return hz;
 }
 
 std::vector<float> synthesize_hopped_frame(const LinkProfile& profile, std::span<const std::uint8_t> symbols) {
-  const HopLink& h = profile.hops;
-  const std::size_t chords = symbols.size() / HopLink::kBandsPerChord;
+  const HopPlan& h = profile.hops();
+  const std::size_t chords = symbols.size() / HopPlan::kBandsPerChord;
   std::vector<float> audio(chords * static_cast<std::size_t>(h.chord_samples()), 0.0f);
   for (std::size_t c = 0; c < chords; ++c) {
     auto chord = std::span<float>(audio).subspan(c * static_cast<std::size_t>(h.chord_samples()),
                                                  static_cast<std::size_t>(h.chord_samples()));
-    for (std::size_t b = 0; b < HopLink::kBandsPerChord; ++b) {
-      const std::size_t t = c * HopLink::kBandsPerChord + b;
+    for (std::size_t b = 0; b < HopPlan::kBandsPerChord; ++b) {
+      const std::size_t t = c * HopPlan::kBandsPerChord + b;
       add_tone(chord, h.band_first_bin[c % 2][b] + symbols[t], h.window_samples, h.edge_samples, h.tone_amplitude,
-               newman_phase(static_cast<int>(b), HopLink::kBandsPerChord));
+               newman_phase(static_cast<int>(b), HopPlan::kBandsPerChord));
     }
   }
   return audio;
 }
 
 std::vector<float> synthesize_hopped_reply(const LinkProfile& profile, const reliability::ReplyTones& tones, int lane) {
-  const HopLink& h = profile.hops;
+  const HopPlan& h = profile.hops();
   std::vector<float> audio(static_cast<std::size_t>(h.reply_samples()), 0.0f);
-  for (int c = 0; c < HopLink::kReplyChords; ++c) {
+  for (int c = 0; c < HopPlan::kReplyChords; ++c) {
     auto chord = std::span<float>(audio).subspan(static_cast<std::size_t>(c * h.reply_chord_samples()),
                                                  static_cast<std::size_t>(h.reply_chord_samples()));
-    for (int b = 0; b < HopLink::kReplyBands; ++b) {
-      const std::uint8_t tone = tones[static_cast<std::size_t>(c * HopLink::kReplyBands + b)];
+    for (int b = 0; b < HopPlan::kReplyBands; ++b) {
+      const std::uint8_t tone = tones[static_cast<std::size_t>(c * HopPlan::kReplyBands + b)];
       add_tone(chord, h.reply_bin(lane, b, tone), h.reply_window_samples, h.reply_edge_samples, h.reply_amplitude,
-               newman_phase(b, HopLink::kReplyBands));
+               newman_phase(b, HopPlan::kReplyBands));
     }
   }
   return audio;

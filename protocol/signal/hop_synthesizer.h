@@ -20,7 +20,7 @@
 
 namespace dtmf::signal {
 
-inline constexpr int kHoppedFrameTones = 2 * HopLink::kBandsPerChord;
+inline constexpr int kHoppedFrameTones = 2 * HopPlan::kBandsPerChord;
 using HoppedSymbols = std::array<std::uint8_t, kHoppedFrameTones>;  // first chord's eight, then the second's
 
 // Frequencies of the frame's tones (eight per chord), first chord first.

@@ -35,17 +35,18 @@ void add_chord(std::span<float> out, std::span<const double> tones_hz, double am
 
 std::vector<float> synthesize_chord(const LinkProfile& profile, std::span<const double> tones_hz, double duration_ms) {
   std::vector<float> samples(static_cast<std::size_t>(profile.samples_for_ms(duration_ms)), 0.0f);
-  add_chord(samples, tones_hz, profile.tones.tone_amplitude, profile.tones.edge_ms, profile.sample_rate_hz);
+  add_chord(samples, tones_hz, profile.words().tones.tone_amplitude, profile.words().tones.edge_ms,
+            profile.sample_rate_hz);
   return samples;
 }
 
 std::vector<float> synthesize_frame(const LinkProfile& profile, std::uint16_t frame) {
-  const Chord chord = chord_for(profile.tones, frame);
+  const Chord chord = chord_for(profile.words().tones, frame);
   return synthesize_chord(profile, chord, profile.timing.chord_ms);
 }
 
 std::vector<float> synthesize_reply(const LinkProfile& profile, Reply reply) {
-  return synthesize_chord(profile, reply_tones(profile.tones, reply), profile.timing.ack_ms);
+  return synthesize_chord(profile, reply_tones(profile.words().tones, reply), profile.timing.ack_ms);
 }
 
 }  // namespace dtmf::signal

@@ -13,20 +13,22 @@ DebounceParams for_symbols_of(DebounceParams params, double symbol_ms) {
 
 ToneListener::ToneListener(const LinkProfile& profile, const DetectorParams& detector, double symbol_ms, Decode decode)
     : sample_rate_hz_(profile.sample_rate_hz),
-      fft_size_(profile.analysis.fft_size),
-      analyzer_(profile.analysis.fft_size, profile.sample_rate_hz),
-      background_(static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1), detector.background_rise_db_per_s,
+      fft_size_(profile.words().analysis.fft_size),
+      analyzer_(profile.words().analysis.fft_size, profile.sample_rate_hz),
+      background_(static_cast<std::size_t>(profile.words().analysis.fft_size / 2 + 1),
+                  detector.background_rise_db_per_s,
                   static_cast<double>(profile.sample_rate_hz) / profile.hop_samples(),
                   static_cast<float>(amplitude_from_dbfs(detector.noise_gate_dbfs))),
-      peaks_(detector, analyzer_.bin_hz(), static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1)),
+      peaks_(detector, analyzer_.bin_hz(), static_cast<std::size_t>(profile.words().analysis.fft_size / 2 + 1)),
       // Only the bins the peak detector reads: the rest of the spectrum is never looked at.
-      phasors_(static_cast<std::size_t>(profile.analysis.fft_size / 2 + 1), peaks_.first_read_bin(),
+      phasors_(static_cast<std::size_t>(profile.words().analysis.fft_size / 2 + 1), peaks_.first_read_bin(),
                peaks_.end_read_bin(), detector.background_rise_db_per_s,
                static_cast<double>(profile.sample_rate_hz) / profile.hop_samples(),
                static_cast<float>(amplitude_from_dbfs(detector.noise_gate_dbfs))),
       decode_(std::move(decode)),
-      debouncer_(for_symbols_of(profile.debounce, symbol_ms)),
-      window_(static_cast<std::size_t>(profile.analysis.fft_size), static_cast<std::size_t>(profile.hop_samples())) {
+      debouncer_(for_symbols_of(profile.words().debounce, symbol_ms)),
+      window_(static_cast<std::size_t>(profile.words().analysis.fft_size),
+              static_cast<std::size_t>(profile.hop_samples())) {
   // Room for the passes of any usual block; a huge block may grow it once.
   heard_.reserve(64);
 }
@@ -55,8 +57,8 @@ void ToneListener::analyze_window() {
 }
 
 ToneListener chord_listener(const LinkProfile& profile) {
-  return ToneListener(profile, profile.robot_detector, profile.timing.chord_ms,
-                      [plan = profile.tones, rules = profile.robot_detector](
+  return ToneListener(profile, profile.words().robot_detector, profile.timing.chord_ms,
+                      [plan = profile.words().tones, rules = profile.words().robot_detector](
                           std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
                         const auto chord = decode_chord(plan, peaks, rules);
                         if (!chord) return std::nullopt;
@@ -65,9 +67,9 @@ ToneListener chord_listener(const LinkProfile& profile) {
 }
 
 ToneListener reply_listener(const LinkProfile& profile) {
-  return ToneListener(profile, profile.sender_detector, profile.timing.ack_ms,
-                      [plan = profile.tones, tolerance = profile.sender_detector.tone_tolerance_hz,
-                       dominance = profile.sender_detector.dominance_db](
+  return ToneListener(profile, profile.words().sender_detector, profile.timing.ack_ms,
+                      [plan = profile.words().tones, tolerance = profile.words().sender_detector.tone_tolerance_hz,
+                       dominance = profile.words().sender_detector.dominance_db](
                           std::span<const Peak> peaks) -> std::optional<Debouncer::Detection> {
                         const auto reply = decode_reply(plan, peaks, tolerance, dominance);
                         if (!reply) return std::nullopt;

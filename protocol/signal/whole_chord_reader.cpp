@@ -16,7 +16,7 @@ constexpr int kCoarseOffsetPpm = 250;
 constexpr float kOffsetMargin = 1.05f;  // 0.2 dB
 }  // namespace
 
-WholeChordReader::WholeChordReader(const HopLink& hops, int lo_bin, int bins, int max_chords)
+WholeChordReader::WholeChordReader(const HopPlan& hops, int lo_bin, int bins, int max_chords)
     : hops_(hops),
       lo_bin_(lo_bin),
       bins_(bins),

@@ -54,7 +54,7 @@ class WholeChordReader {
  public:
   // The grid's bins [lo_bin, lo_bin + bins), as the frame listener analyses them, for frames
   // of up to `max_chords` chords.
-  WholeChordReader(const HopLink& hops, int lo_bin, int bins, int max_chords);
+  WholeChordReader(const HopPlan& hops, int lo_bin, int bins, int max_chords);
 
   // Appends the stream's newest samples to the history.
   void push(std::span<const float> samples);
@@ -87,7 +87,7 @@ class WholeChordReader {
   // The start search's measure: the chords' bands' strongest half bins, steady parts from `start`.
   float start_score(long long start, int chords);
 
-  const HopLink& hops_;
+  const HopPlan& hops_;
   int lo_bin_;
   int bins_;
   int steady_samples_;  // W + hop

@@ -78,7 +78,7 @@ std::string topic_string(dds_return_t (*get)(dds_entity_t, char*, size_t), dds_e
 geometry_msgs_msg_dds__Twist_ twist(const Velocity& v) {
   geometry_msgs_msg_dds__Twist_ t{};
   t.linear.x = v.linear_mps;
-  t.angular.z = v.angular_rps;
+  t.angular.z = v.angular_radps;
   return t;
 }
 

@@ -10,7 +10,10 @@ void LogCmdVel::publish(const Velocity& velocity, double audio_ms, std::chrono::
   const nlohmann::json line{{"t_ms", audio_ms},
                             {"stamp", store::iso_time(stamp)},
                             {"linear_mps", velocity.linear_mps},
-                            {"angular_rps", velocity.angular_rps}};
+                            {"angular_radps", velocity.angular_radps},
+                            // The old name, kept for readers of the log for one release (until 0.2):
+                            // "rps" read as revolutions per second; the value is rad/s.
+                            {"angular_rps", velocity.angular_radps}};
   std::fprintf(out_, "%s\n", line.dump().c_str());
   std::fflush(out_);
 }

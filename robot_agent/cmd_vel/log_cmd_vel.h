@@ -1,5 +1,6 @@
 // cmd_vel output `log`: one JSON object per published velocity, one per line.
-//   {"t_ms":2150.0,"stamp":"2026-…Z","linear_mps":0.11,"angular_rps":0.0}
+//   {"t_ms":2150.0,"stamp":"2026-…Z","linear_mps":0.11,"angular_radps":0.0,"angular_rps":0.0}  (angular_rps: the old
+//   name, until 0.2)
 #pragma once
 
 #include <cstdio>

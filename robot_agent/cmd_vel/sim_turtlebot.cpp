@@ -21,7 +21,7 @@ void SimTurtlebot::say(double audio_ms, const char* what) {
 void SimTurtlebot::publish(const Velocity& requested, double audio_ms, std::chrono::system_clock::time_point) {
   if (last_ms_ >= 0) {
     const double dt = (audio_ms - last_ms_) / 1000.0;
-    const double v = velocity_.linear_mps, w = velocity_.angular_rps;
+    const double v = velocity_.linear_mps, w = velocity_.angular_radps;
     if (std::abs(w) < 1e-9) {
       pose_.x_m += v * dt * std::cos(pose_.theta_rad);
       pose_.y_m += v * dt * std::sin(pose_.theta_rad);
@@ -34,7 +34,7 @@ void SimTurtlebot::publish(const Velocity& requested, double audio_ms, std::chro
     distance_m_ += std::abs(v) * dt;
   }
   const Velocity held{std::clamp(requested.linear_mps, -model_.max_linear_mps, model_.max_linear_mps),
-                      std::clamp(requested.angular_rps, -model_.max_angular_rps, model_.max_angular_rps)};
+                      std::clamp(requested.angular_radps, -model_.max_angular_radps, model_.max_angular_radps)};
   const bool was_moving = velocity_ != Velocity{};
   const bool moving = held != Velocity{};
   velocity_ = held;

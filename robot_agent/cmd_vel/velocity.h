@@ -6,8 +6,8 @@
 namespace dtmf::agent {
 
 struct Velocity {
-  double linear_mps = 0;   // forward, m/s (geometry_msgs Twist linear.x)
-  double angular_rps = 0;  // counter-clockwise, rad/s (Twist angular.z)
+  double linear_mps = 0;     // forward, m/s (geometry_msgs Twist linear.x)
+  double angular_radps = 0;  // counter-clockwise, rad/s (Twist angular.z)
   bool operator==(const Velocity&) const = default;
 };
 

@@ -53,7 +53,7 @@ TEST_F(AgentOffline, DrivesAbout011MpsForAbout2SecondsThenZeroAndAcksEveryFrame)
       if (first_move < 0) first_move = line["t_ms"];
       last_move = line["t_ms"];
     }
-    EXPECT_EQ(line["angular_rps"], 0.0);
+    EXPECT_EQ(line["angular_radps"], 0.0);
   }
   ASSERT_GE(first_move, 0) << r.out;
   const double moved_s = (last_move - first_move) / 1000.0 + 0.05;  // plus the last period
@@ -76,7 +76,7 @@ TEST_F(AgentOffline, AVelocityHoldsForItsLeaseThenTheWheelsStop) {
   const auto lines = json_lines(r.out);
   double first_move = -1, last_move = -1;
   for (const auto& line : lines) {
-    const double linear = line["linear_mps"], angular = line["angular_rps"];
+    const double linear = line["linear_mps"], angular = line["angular_radps"];
     if (linear == 0 && angular == 0) continue;
     if (first_move < 0) first_move = line["t_ms"];
     last_move = line["t_ms"];
@@ -100,12 +100,12 @@ TEST_F(AgentOffline, AVelocityHoldsForItsLeaseThenTheWheelsStop) {
   EXPECT_LE(last_move, 500) << r.out;
   // The standstill itself is published when it comes, not at the next 50 ms tick (550 ms).
   const auto zero = std::find_if(lines.begin(), lines.end(), [&](const nlohmann::json& line) {
-    return line["t_ms"].get<double>() > last_move && line["linear_mps"] == 0.0 && line["angular_rps"] == 0.0;
+    return line["t_ms"].get<double>() > last_move && line["linear_mps"] == 0.0 && line["angular_radps"] == 0.0;
   });
   ASSERT_NE(zero, lines.end()) << r.out;
   EXPECT_LT((*zero)["t_ms"].get<double>(), 530) << r.out;
   EXPECT_EQ(lines.back()["linear_mps"], 0.0);
-  EXPECT_EQ(lines.back()["angular_rps"], 0.0);
+  EXPECT_EQ(lines.back()["angular_radps"], 0.0);
   EXPECT_NE(r.out.find("stop: lease ended"), std::string::npos) << r.out;
 }
 
@@ -142,14 +142,14 @@ TEST_F(AgentOffline, ACorruptedChordIsNackedAndNothingMoves) {
   ASSERT_EQ(frames.size(), 3u);
   auto audio = physical::read_audio_file(path("good.wav"), 48000);
   std::vector<double> tones = frames[2]["tones_hz"];
-  const double step = seed_profile().tones.step_hz;
+  const double step = seed_profile().words().tones.step_hz;
   tones[3] += tones[3] + step < 16001 ? step : -step;  // the CRC nibble one off
   const LinkProfile& p = seed_profile();
   const auto start = static_cast<std::size_t>(p.samples_for_ms(2000));
   std::fill(audio.begin() + static_cast<long>(start), audio.begin() + static_cast<long>(start) + p.samples_for_ms(800),
             0.0f);
   signal::add_chord(std::span(audio).subspan(start, static_cast<std::size_t>(p.samples_for_ms(800))), tones,
-                    p.tones.tone_amplitude, p.tones.edge_ms, p.sample_rate_hz);
+                    p.words().tones.tone_amplitude, p.words().tones.edge_ms, p.sample_rate_hz);
   physical::write_wav_file(path("bad.wav"), audio, 48000);
 
   const auto r = agent(path("bad.wav"), "--ack-out wav:" + path("acks.wav"));
@@ -170,7 +170,7 @@ TEST_F(AgentOffline, StereoAnd44kRecordingsWork) {
   ASSERT_EQ(r.exit_code, 0) << r.out;
   bool turned = false;
   for (const auto& line : json_lines(r.out))
-    turned = turned || std::abs(line["angular_rps"].get<double>() - 1.42) < 0.05;
+    turned = turned || std::abs(line["angular_radps"].get<double>() - 1.42) < 0.05;
   EXPECT_TRUE(turned) << r.out;
 }
 

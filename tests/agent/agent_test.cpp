@@ -139,7 +139,7 @@ TEST(Agent, ACorruptedChordGetsANackAndNoMotion) {
   const LinkProfile& p = seed_profile();
   std::vector<link::SeedPlannedFrame> frames = link::plan_command(p, command::DriveForward{80});
   frames[2].frame ^= 0x0001;  // the parameter frame's CRC no longer fits
-  frames[2].tones_hz = signal::chord_for(p.tones, frames[2].frame);
+  frames[2].tones_hz = signal::chord_for(p.words().tones, frames[2].frame);
   AgentRun run;
   run_agent(test_support::seed_audio(p, frames), run);
   ASSERT_EQ(run.replies.replies.size(), 3u);
@@ -197,19 +197,19 @@ TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) 
   const auto named_ack = answer(fast, true, frame.sequence);
   for (int i : {0, 1}) {
     EXPECT_EQ(heard[i].profile, &fast);
-    EXPECT_TRUE(heard[i].intact);
-    EXPECT_EQ(heard[i].bits, frame.bits);
-    EXPECT_FALSE(heard[i].word);
+    EXPECT_TRUE(heard[i].reception.intact);
+    EXPECT_EQ(heard[i].reception.bits, frame.bits);
+    EXPECT_FALSE(heard[i].reception.seed_word);
     EXPECT_EQ(replies.answers[i], named_ack) << "the ACK names the frame's sequence number";
   }
-  EXPECT_TRUE(heard[0].command.has_value());
-  EXPECT_FALSE(heard[1].command.has_value()) << "a retransmission is answered, not executed again";
+  EXPECT_TRUE(heard[0].executed.has_value());
+  EXPECT_FALSE(heard[1].executed.has_value()) << "a retransmission is answered, not executed again";
   for (int i : {2, 3, 4}) {
     EXPECT_EQ(heard[i].profile, &seed);
-    EXPECT_TRUE(heard[i].word.has_value());
+    EXPECT_TRUE(heard[i].reception.seed_word.has_value());
     EXPECT_EQ(replies.answers[i], answer(seed, true));
   }
-  EXPECT_TRUE(heard[4].command.has_value());
+  EXPECT_TRUE(heard[4].executed.has_value());
   EXPECT_GT(output.published.back().velocity.linear_mps, 0) << "the seed's DRIVE_FORWARD runs on";
 }
 
@@ -245,10 +245,10 @@ TEST(Agent, AFastFrameFailingWhileASeedFrameSoundsIsNotAnswered) {
 
   ASSERT_EQ(heard.size(), 2u) << "the seed frame, and the damaged fast frame on the quiet air";
   EXPECT_EQ(heard[0].profile, &seed);
-  EXPECT_TRUE(heard[0].intact);
+  EXPECT_TRUE(heard[0].reception.intact);
   EXPECT_EQ(heard[1].profile, &fast);
-  EXPECT_FALSE(heard[1].intact);
-  EXPECT_GT(heard[1].start_ms, 2400);
+  EXPECT_FALSE(heard[1].reception.intact);
+  EXPECT_GT(heard[1].reception.start_ms, 2400);
   EXPECT_EQ(replies.answers.size(), 2u);
   EXPECT_EQ(replies.answers[1], answer(fast, false));
 }

@@ -98,7 +98,7 @@ TEST_F(DdsCmdVelTest, TwistStampedArrivesInOrderWithItsStamp) {
   for (int i = 0; i < 5; ++i) {
     SCOPED_TRACE(i);
     EXPECT_EQ(samples[i].linear.x, kVelocities[i].linear_mps);
-    EXPECT_EQ(samples[i].angular.z, kVelocities[i].angular_rps);
+    EXPECT_EQ(samples[i].angular.z, kVelocities[i].angular_radps);
     EXPECT_EQ(samples[i].linear.y, 0);
     EXPECT_EQ(samples[i].linear.z, 0);
     EXPECT_EQ(samples[i].angular.x, 0);
@@ -136,7 +136,7 @@ TEST_F(DdsCmdVelTest, TwistArrivesInOrder) {
   for (int i = 0; i < 5; ++i) {
     SCOPED_TRACE(i);
     EXPECT_EQ(samples[i].linear.x, kVelocities[i].linear_mps);
-    EXPECT_EQ(samples[i].angular.z, kVelocities[i].angular_rps);
+    EXPECT_EQ(samples[i].angular.z, kVelocities[i].angular_radps);
     EXPECT_EQ(samples[i].linear.y, 0);
     EXPECT_EQ(samples[i].angular.x, 0);
   }

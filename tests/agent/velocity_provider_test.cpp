@@ -23,7 +23,7 @@ TEST(VelocityProvider, DriveForDurationMovesThenStopsAtItsEndTime) {
   EXPECT_EQ(p.state(), MotionState::Duration);
   EXPECT_DOUBLE_EQ(p.update(10.0).linear_mps, 0.11);
   EXPECT_DOUBLE_EQ(p.update(11.99).linear_mps, 0.11);
-  EXPECT_DOUBLE_EQ(p.update(11.99).angular_rps, 0.0);
+  EXPECT_DOUBLE_EQ(p.update(11.99).angular_radps, 0.0);
   EXPECT_EQ(p.update(12.0), Velocity{});
   EXPECT_EQ(p.state(), MotionState::Idle);
   EXPECT_EQ(p.take_stop_reason(), "duration ended");
@@ -33,11 +33,11 @@ TEST(VelocityProvider, DriveForDurationMovesThenStopsAtItsEndTime) {
 TEST(VelocityProvider, TurnsScaleToTheModelsTurnRateBothWays) {
   VelocityProvider p(burger(), 30);
   p.apply(command::TurnForDuration{-100, 1}, 0);
-  EXPECT_DOUBLE_EQ(p.update(0.5).angular_rps, -2.84);
+  EXPECT_DOUBLE_EQ(p.update(0.5).angular_radps, -2.84);
   EXPECT_DOUBLE_EQ(p.update(0.5).linear_mps, 0.0);
   p.apply(command::Turn{25}, 2);
   EXPECT_EQ(p.state(), MotionState::Continuous);
-  EXPECT_DOUBLE_EQ(p.update(3).angular_rps, 0.71);
+  EXPECT_DOUBLE_EQ(p.update(3).angular_radps, 0.71);
 }
 
 TEST(VelocityProvider, WaffleHasItsOwnLimits) {
@@ -45,7 +45,7 @@ TEST(VelocityProvider, WaffleHasItsOwnLimits) {
   p.apply(command::DriveForward{100}, 0);
   EXPECT_DOUBLE_EQ(p.update(1).linear_mps, 0.26);
   p.apply(command::Turn{100}, 1);
-  EXPECT_DOUBLE_EQ(p.update(2).angular_rps, 1.82);
+  EXPECT_DOUBLE_EQ(p.update(2).angular_radps, 1.82);
   EXPECT_THROW(robot_model_by_name("roomba"), std::invalid_argument);
   EXPECT_EQ(robot_model_by_name("waffle_pi").name, "waffle");
 }
@@ -62,7 +62,7 @@ TEST(VelocityProvider, ContinuousMotionStopsAtTheSafetyLimit) {
 TEST(VelocityProvider, ALimitOfZeroNeverStops) {
   VelocityProvider p(burger(), 0);
   p.apply(command::Turn{-10}, 0);
-  EXPECT_NEAR(p.update(86400).angular_rps, -0.284, 1e-12);
+  EXPECT_NEAR(p.update(86400).angular_radps, -0.284, 1e-12);
   EXPECT_EQ(p.state(), MotionState::Continuous);
 }
 
@@ -82,7 +82,7 @@ TEST(VelocityProvider, ANewCommandReplacesTheRunningOne) {
   p.apply(command::TurnForDuration{50, 1}, 1);
   const Velocity v = p.update(1.5);
   EXPECT_DOUBLE_EQ(v.linear_mps, 0.0);
-  EXPECT_DOUBLE_EQ(v.angular_rps, 1.42);
+  EXPECT_DOUBLE_EQ(v.angular_radps, 1.42);
   EXPECT_EQ(p.update(2.0), Velocity{});  // the turn's end, not the drive's
 }
 
@@ -93,9 +93,9 @@ TEST(VelocityProvider, AVelocityRampsAtTheAccelerationLimitsAndHoldsForItsLease)
   EXPECT_EQ(p.state(), MotionState::Leased);
   // 2.5 m/s² and 25 rad/s²: after 20 ms, 0.05 m/s and -0.5 rad/s.
   EXPECT_NEAR(p.update(0.02).linear_mps, 0.05, 1e-9);
-  EXPECT_NEAR(p.update(0.02).angular_rps, -0.5, 1e-9);
+  EXPECT_NEAR(p.update(0.02).angular_radps, -0.5, 1e-9);
   EXPECT_NEAR(p.update(0.1).linear_mps, 0.11, 1e-9);
-  EXPECT_NEAR(p.update(0.1).angular_rps, -1.42, 1e-9);
+  EXPECT_NEAR(p.update(0.1).angular_radps, -1.42, 1e-9);
   EXPECT_NEAR(p.update(0.94).linear_mps, 0.11, 1e-9) << "held within the lease";
   EXPECT_EQ(p.state(), MotionState::Leased);
   EXPECT_TRUE(p.changing_by_itself());
@@ -103,7 +103,7 @@ TEST(VelocityProvider, AVelocityRampsAtTheAccelerationLimitsAndHoldsForItsLease)
   // stop, 1.42 / 25 = 56.8 ms, so the ramp down begins at 0.9432 s.
   const Velocity after = p.update(0.97);
   EXPECT_NEAR(after.linear_mps, 0.11 - 2.5 * (0.97 - 0.9432), 1e-9);
-  EXPECT_NEAR(after.angular_rps, -1.42 + 25 * (0.97 - 0.9432), 1e-9);
+  EXPECT_NEAR(after.angular_radps, -1.42 + 25 * (0.97 - 0.9432), 1e-9);
   EXPECT_EQ(p.state(), MotionState::Idle);
   EXPECT_EQ(p.take_stop_reason(), "lease ended");
   EXPECT_EQ(p.update(1.0), Velocity{}) << "zero at the lease's end, exactly";

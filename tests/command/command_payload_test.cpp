@@ -60,7 +60,7 @@ TEST(CommandPayload, VelocityCarriesBothSpeedsAndTheLeaseFinerThanTurtlebot3Tele
   const RobotModel& model = burger();
   // turtlebot3_teleop steps 0.01 m/s and 0.1 rad/s: the payload's steps must be finer.
   EXPECT_LT(field_step(kLinearFraction12) * model.max_linear_mps, 0.01 / 2);
-  EXPECT_LT(field_step(kAngularFraction8) * model.max_angular_rps, 0.1 / 2);
+  EXPECT_LT(field_step(kAngularFraction8) * model.max_angular_radps, 0.1 / 2);
   const std::uint32_t payload = encode_payload(velocity_command(model, -0.07, 0.3, 0.5));
   EXPECT_EQ(payload >> 24, 6u) << "kind VELOCITY";
   const auto decoded = decode_payload(payload);

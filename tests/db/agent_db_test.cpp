@@ -18,7 +18,7 @@ TEST(AgentDatabase, EveryReceptionIsLoggedWithItsVerdictAnswerAndEffect) {
   std::vector<link::SeedPlannedFrame> frames = link::plan_command(p, command::DriveForDuration{50, 1});
   link::SeedPlannedFrame bad = link::plan_word(p, 0x123);
   bad.frame ^= 0x0002;  // fails the CRC
-  bad.tones_hz = signal::chord_for(p.tones, bad.frame);
+  bad.tones_hz = signal::chord_for(p.words().tones, bad.frame);
   frames.push_back(bad);
   const std::string wav = ::testing::TempDir() + "/agent-db-" + std::to_string(::getpid()) + ".wav";
   physical::write_wav_file(wav, test_support::seed_audio(p, frames), p.sample_rate_hz);

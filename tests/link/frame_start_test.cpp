@@ -34,7 +34,7 @@ using Air = std::function<std::vector<float>(const std::vector<float>&)>;
 // first, through `air` (which delays by `delay_ms`) into a robot without a key.
 StartErrors start_errors(int count, std::size_t step, double delay_ms, const Air& air) {
   const auto link = link::make_link(p);
-  const std::size_t frame = static_cast<std::size_t>(p.hops.frame_samples());
+  const std::size_t frame = static_cast<std::size_t>(p.hops().frame_samples());
   const std::size_t slot = frame + 4800 + step * static_cast<std::size_t>(count);
   std::vector<float> audio(3000 + static_cast<std::size_t>(count) * slot + 9600, 0.0f);
   std::vector<double> sent_ms;
@@ -88,7 +88,7 @@ TEST(FrameStart, ACleanFrameIsDatedFromItsFirstChordNotFromTheWindowThatDecodedI
 // direct sound rises late, and the earliest of eight can still be: in the smoking room up to
 // 22 ms (a Velocity's lease then runs that much long, well within lease + 0.2 s).
 TEST(FrameStart, InNoiseAndInRoomsTheStartIsWithinAHop) {
-  const double hop_ms = 1000.0 * p.hops.hop_samples / p.sample_rate_hz;
+  const double hop_ms = 1000.0 * p.hops().hop_samples / p.sample_rate_hz;
   {
     // White noise 0 dB under the frames' power (the power of a chord: the synthesizer's RMS).
     const auto e = start_errors(100, 5, 0, [](const std::vector<float>& audio) {

@@ -119,7 +119,7 @@ SnrRun frames_at_snr(const LinkProfile& profile, double snr_db, int frames, unsi
       power += static_cast<double>(f.audio[k]) * f.audio[k];
     }
   }
-  power /= static_cast<double>(frames) * static_cast<double>(profile.hops.frame_samples());  // the frames' own power
+  power /= static_cast<double>(frames) * static_cast<double>(profile.hops().frame_samples());  // the frames' own power
   audio.insert(audio.begin(), 5000, 0.0f);
   audio.resize(audio.size() + 5000, 0.0f);
   std::normal_distribution<float> noise(0.0f,
@@ -168,7 +168,7 @@ TEST(HopFramePath, AtMinusTwelveDbSnrWholeChordRereadsHearMostFramesTheGridLoses
   constexpr int kFrames = 500;
   static const LinkProfile without = [] {
     LinkProfile copy = p;
-    copy.hops.reread_delay_hops = 0;
+    copy.hops().reread_delay_hops = 0;
     return copy;
   }();
   const SnrRun grid = frames_at_snr(without, -12, kFrames, 12);
@@ -203,14 +203,14 @@ TEST(HopFramePath, RunnerUpSwapsWaitForASecondLook) {
     EXPECT_EQ(got[0].bits, frame.bits);
     heard_ms[doubtful] = got[0].heard_ms;
   }
-  EXPECT_NEAR(heard_ms[1] - heard_ms[0], p.hops.reread_delay_hops * p.hops.hop_samples / 48.0, 0.01)
+  EXPECT_NEAR(heard_ms[1] - heard_ms[0], p.hops().reread_delay_hops * p.hops().hop_samples / 48.0, 0.01)
       << "clean decided at " << heard_ms[0] << " ms, doubtful at " << heard_ms[1] << " ms";
 }
 
 TEST(HopFramePath, AHeldChordOrSilenceExecutesNothing) {
   const auto frame = frame_audio(command::Turn{50}, 3);
   // The first chord held for a second: its tones never start again, so nothing is heard.
-  const auto chord = static_cast<std::size_t>(p.hops.chord_samples());
+  const auto chord = static_cast<std::size_t>(p.hops().chord_samples());
   std::vector<float> held(2000, 0.0f);
   for (int i = 0; i < 19; ++i) held.insert(held.end(), frame.begin(), frame.begin() + static_cast<long>(chord));
   held.insert(held.end(), 5000, 0.0f);

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdlib>
 #include <memory>
 #include <ostream>
@@ -18,6 +19,7 @@
 #include "link/link.h"
 #include "sim/acoustic_channel.h"
 #include "sim/room_model.h"
+#include "support/third_profile.h"
 
 using namespace dtmf;
 
@@ -38,11 +40,18 @@ std::string case_name(const Case& c) {
                                  : "_keyed_lenient") +
          (c.room ? "_seminar_room" : "_clean");
 }
-std::string name_of(const ::testing::TestParamInfo<Case>& info) { return case_name(info.param); }
+// gtest names take letters, digits and underscores: a profile called "fast-high" reads fast_high.
+std::string name_of(const ::testing::TestParamInfo<Case>& info) {
+  std::string name = case_name(info.param);
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+  return name;
+}
 // ctest's test names show the parameter: its name, not its bytes.
 void PrintTo(const Case& c, std::ostream* os) { *os << case_name(c); }
 
 std::vector<Case> cases() {
+  test_support::third_profile();  // a profile the tests add, which the links must carry as they carry their own
   std::vector<Case> out;
   for (const LinkProfile* p : all_profiles()) {
     for (Keys k : {Keys::None, Keys::Both, Keys::RobotLetsUnauthenticatedIn}) {

@@ -74,7 +74,7 @@ TEST(NegativeAudio, SpeechYieldsNoFrame) {
 
 TEST(NegativeAudio, AChordMissingAnyOneToneYieldsNothing) {
   for (std::uint16_t frame : {std::uint16_t{0x0000}, std::uint16_t{0xB2DD}, std::uint16_t{0xFFFF}}) {
-    const signal::Chord chord = signal::chord_for(P().tones, frame);
+    const signal::Chord chord = signal::chord_for(P().words().tones, frame);
     for (std::size_t missing = 0; missing < 4; ++missing) {
       std::vector<double> three;
       for (std::size_t b = 0; b < 4; ++b)
@@ -95,8 +95,8 @@ TEST(NegativeAudio, TwoOverlappingChordsYieldNoWrongFrame) {
     for (double level_b : {1.0, 0.5, 0.1}) {
       for (int offset_ms : {0, 300}) {
         std::vector<float> audio(48000 * 3, 0.0f);
-        const auto chord_a = signal::chord_for(P().tones, a);
-        const auto chord_b = signal::chord_for(P().tones, b);
+        const auto chord_a = signal::chord_for(P().words().tones, a);
+        const auto chord_b = signal::chord_for(P().words().tones, b);
         signal::add_chord(std::span(audio).subspan(24000, 38400), chord_a, 0.2, 5, 48000);
         signal::add_chord(std::span(audio).subspan(static_cast<std::size_t>(24000 + offset_ms * 48), 38400), chord_b,
                           0.2 * level_b, 5, 48000);

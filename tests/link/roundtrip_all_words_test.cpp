@@ -47,8 +47,8 @@ TEST_P(AllWords, EveryWordIsRecoveredOnceAndNothingElseIsHeard) {
     const link::SeedPlannedFrame frame = link::plan_word(p, static_cast<command::Word>(word));
     expected.push_back(frame.frame);
     std::fill(block.begin(), block.end(), 0.0f);
-    signal::add_chord(std::span(block).first(chord), frame.tones_hz, p.tones.tone_amplitude, p.tones.edge_ms,
-                      p.sample_rate_hz);
+    signal::add_chord(std::span(block).first(chord), frame.tones_hz, p.words().tones.tone_amplitude,
+                      p.words().tones.edge_ms, p.sample_rate_hz);
     listen(block);
   }
   listen(std::vector<float>(slot, 0.0f));  // let the last chord through the room

@@ -67,7 +67,7 @@ TEST(SeedReceiverPath, ACorruptedChordIsHeardButFailsTheCrcAndChangesNothing) {
   // One tone moved: bits 0..3 (the CRC band) changed, so the CRC no longer matches.
   link::SeedPlannedFrame bad = link::plan_word(p, 0x800);
   bad.frame ^= 0x0003;
-  bad.tones_hz = signal::chord_for(p.tones, bad.frame);
+  bad.tones_hz = signal::chord_for(p.words().tones, bad.frame);
   frames.push_back(bad);
   const auto received = test_support::receive(p, test_support::seed_audio(p, frames));
   ASSERT_EQ(received.size(), 3u);

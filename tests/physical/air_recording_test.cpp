@@ -32,8 +32,8 @@ void append_with_a_hole(std::vector<float>& air, const std::vector<float>& chord
 }
 
 std::vector<dtmf::test_support::SplitChord> split_in(const std::vector<float>& air) {
-  return find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz,
-                           seed.robot_detector.bandpass_high_hz);
+  return find_split_chords(air, kRateHz, seed.timing.chord_ms, seed.words().robot_detector.bandpass_low_hz,
+                           seed.words().robot_detector.bandpass_high_hz);
 }
 
 // Exactly one split chord, with these pieces (±20 ms, two of the finder's 10 ms frames).
@@ -88,7 +88,7 @@ TEST(AirRecording, AHoleLongerThanTheReceiverBridgesIsFoundAndCounted) {
   const auto split = split_in(air);
   ASSERT_EQ(split.size(), 2u);
   EXPECT_NEAR(split[0].gap_ms, 900, 20);
-  EXPECT_EQ(dtmf::test_support::holes_longer_than(split, seed.debounce.max_dropout_ms), 1);
+  EXPECT_EQ(dtmf::test_support::holes_longer_than(split, seed.words().debounce.max_dropout_ms), 1);
 }
 
 TEST(AirRecording, WholeChordsWithAnAckOverThemAreNotSplit) {

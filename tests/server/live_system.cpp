@@ -86,12 +86,13 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   agent_options.link.key = options_.robot_key;
   agent_options.link.accept_unauthenticated = options_.robot_accepts_unauthenticated;
   agent_options.on_frame_heard = [this](const agent::HeardFrame& frame) {
-    if (!frame.intact) return;
+    const link::Reception& r = frame.reception;
+    if (!r.intact) return;
     std::lock_guard lock(heard_.mutex);
     ++heard_.intact_frames;
-    if (frame.event == link::ReceptionEvent::Refused) ++heard_.refused_frames;
-    if (frame.word) heard_.words.push_back(*frame.word);
-    if (frame.command) heard_.commands.push_back(command::describe(*frame.command));
+    if (r.event == link::ReceptionEvent::Refused) ++heard_.refused_frames;
+    if (r.seed_word) heard_.words.push_back(r.seed_word->word);
+    if (frame.executed) heard_.commands.push_back(command::describe(*frame.executed));
   };
   agent_ = std::make_unique<agent::Agent>(
       agent_options, *robot_replies_, std::vector<agent::CmdVelOutput*>{recorder_.get()}, *robot_store_, *timeline_);

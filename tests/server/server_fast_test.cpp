@@ -3,9 +3,12 @@
 // profile in its options; the server's default stays the seed's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "command/command_payload.h"
 #include "link/link.h"
 #include "live_system.h"
+#include "support/third_profile.h"
 
 using namespace dtmf;
 using test_support::LiveSystem;
@@ -59,6 +62,33 @@ TEST(ServerFast, ADriveIsOneNamedFrameConfirmedAndExecutedWhole) {
   EXPECT_EQ(system.commands_executed(), std::vector<std::string>{expected});
   EXPECT_TRUE(system.words_heard().empty()) << "no seed word went on air";
   EXPECT_DOUBLE_EQ(system.last_velocity().linear_mps, 0.11);
+}
+
+// A profile the server, the agent and the client have never heard of, registered as a
+// deployment would register its own: the server sends it by name, the robot hears it among
+// the others, and nothing outside protocol/ changed for it.
+TEST(ServerFast, AThirdProfileIsDrivenByNameWithNoChangeOutsideTheProtocol) {
+  const LinkProfile& third = test_support::third_profile();  // registered before the robot lists what it hears
+  LiveSystem system;
+  auto client = system.client();
+  v1::DriveRequest drive = fast_drive(40, 2);
+  drive.mutable_options()->set_profile(test_support::kThirdProfile);
+  const auto result = read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, drive); });
+  ASSERT_TRUE(result.status.ok()) << result.status.error_message();
+  EXPECT_EQ(result.responses.back().progress().event(), v1::FRAME_EVENT_CONFIRMED);
+  int transmitted = 0;
+  for (const auto& r : result.responses) {
+    EXPECT_EQ(r.progress().profile(), test_support::kThirdProfile);
+    if (r.progress().event() != v1::FRAME_EVENT_TRANSMITTING) continue;
+    ++transmitted;
+    // Its tones are its own: none below its lowest band, 200 Hz above fast's.
+    const double lowest_hz = *std::min_element(r.progress().tones_hz().begin(), r.progress().tones_hz().end());
+    EXPECT_GE(lowest_hz, third.hops().band_first_bin[0][0] * 25.0);
+    EXPECT_LT(fast_profile().hops().band_first_bin[0][0] * 25.0, third.hops().band_first_bin[0][0] * 25.0);
+  }
+  EXPECT_GE(transmitted, 1);
+  const std::string expected = command::describe(command::quantised_payload(command::DriveForDuration{40, 2}));
+  EXPECT_EQ(system.commands_executed(), std::vector<std::string>{expected});
 }
 
 TEST(ServerFast, ConsecutiveCommandsGetConsecutiveSequenceNumbersAndMixWithTheSeed) {

@@ -13,8 +13,8 @@ std::vector<Peak> peaks_of(const std::vector<double>& hz) {
   for (double f : hz) peaks.push_back(Peak{f, 0.1});
   return peaks;
 }
-const TonePlan& plan() { return seed_profile().tones; }
-const DetectorParams& rules() { return seed_profile().robot_detector; }
+const TonePlan& plan() { return seed_profile().words().tones; }
+const DetectorParams& rules() { return seed_profile().words().robot_detector; }
 std::vector<Peak> shifted(std::vector<Peak> peaks, double ppm) {
   for (Peak& p : peaks) p.frequency_hz *= 1.0 + ppm * 1e-6;
   return peaks;

@@ -12,7 +12,7 @@ using namespace dtmf::signal;
 
 namespace {
 
-const DebounceParams& seed() { return seed_profile().debounce; }
+const DebounceParams& seed() { return seed_profile().words().debounce; }
 
 bool hit(Debouncer& d, std::uint32_t symbol, double t_ms, double level = 1.0) {
   return d.on_window(t_ms, Debouncer::Detection{symbol, level}).has_value();

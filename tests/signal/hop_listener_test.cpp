@@ -67,10 +67,10 @@ void add_sine(std::vector<float>& audio, double hz, double amplitude) {
 
 TEST(HopListener, EveryToneOfEveryBandIsReadBackAtAnyAlignment) {
   // Symbol v in every band, for every v, each frame starting at another sample of the hop.
-  for (int v = 0; v < p.hops.tones_per_band; ++v) {
+  for (int v = 0; v < p.hops().tones_per_band; ++v) {
     signal::HoppedSymbols sent{};
     sent.fill(static_cast<std::uint8_t>(v));
-    const std::size_t offset = static_cast<std::size_t>(v * 37 % p.hops.hop_samples);
+    const std::size_t offset = static_cast<std::size_t>(v * 37 % p.hops().hop_samples);
     signal::HopListener listener(p);
     const auto got = candidates(with_silence(signal::synthesize_hopped_frame(p, sent), 3000 + offset, 6000), listener);
     const auto [right, heard] = best_reading(got, sent);
@@ -118,7 +118,7 @@ TEST(HopListener, AToneThatDoesNotStartWithItsChordIsNotHeard) {
   for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((5 * t + 3) % 32);
   const auto frame = signal::synthesize_hopped_frame(p, sent);
   // The first chord, then the whole frame: the second time, chord one's tones were already there.
-  std::vector<float> audio(frame.begin(), frame.begin() + p.hops.chord_samples());
+  std::vector<float> audio(frame.begin(), frame.begin() + p.hops().chord_samples());
   audio.insert(audio.end(), frame.begin(), frame.end());
   signal::HopListener listener(p);
   const auto got = candidates(with_silence(audio, 3000, 6000), listener);
@@ -126,13 +126,14 @@ TEST(HopListener, AToneThatDoesNotStartWithItsChordIsNotHeard) {
   // began here. A whole-chord re-read is heard a few hops after its window but knows where the
   // frame began: those that found it within half a hop. (One of a window a hop late, its search
   // clamped to that hop, finds it 10 ms late, where its onset reference straddles both copies.)
-  const double aligned_ms = (3000.0 + 2 * p.hops.chord_samples() + p.hops.edge_samples + p.hops.window_samples) / 48.0;
-  const double begun_ms = (3000.0 + p.hops.chord_samples()) / 48.0;
+  const double aligned_ms =
+      (3000.0 + 2 * p.hops().chord_samples() + p.hops().edge_samples + p.hops().window_samples) / 48.0;
+  const double begun_ms = (3000.0 + p.hops().chord_samples()) / 48.0;
   int checked = 0, rereads = 0;
   for (const auto& c : got) {
     // (A grid reading offered again for a second look was checked at its first.)
     if (c.chords != 2 || (c.second_look && !c.whole_chords)) continue;
-    if (c.whole_chords ? std::abs(c.start_ms - begun_ms) > p.hops.hop_samples / 96.0
+    if (c.whole_chords ? std::abs(c.start_ms - begun_ms) > p.hops().hop_samples / 96.0
                        : std::abs(c.heard_ms - aligned_ms) > 15)
       continue;
     rereads += c.whole_chords;
@@ -152,9 +153,9 @@ TEST(HopListener, AToneThatDoesNotStartWithItsChordIsNotHeard) {
 TEST(HopListener, ASteadyWhineOnAToneOfThePlanBecomesBackground) {
   signal::HoppedSymbols sent{};
   for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((7 * t + 1) % 32);
-  const double whine_hz = (p.hops.band_first_bin[0][3] + 20) * 25.0;  // band 3 of chord one, not the sent tone
+  const double whine_hz = (p.hops().band_first_bin[0][3] + 20) * 25.0;  // band 3 of chord one, not the sent tone
   std::vector<float> audio = with_silence(signal::synthesize_hopped_frame(p, sent), 48000 * 3, 6000);
-  add_sine(audio, whine_hz, 2 * p.hops.tone_amplitude);
+  add_sine(audio, whine_hz, 2 * p.hops().tone_amplitude);
   signal::HopListener listener(p);
   const auto [right, heard] = best_reading(candidates(audio, listener), sent);
   EXPECT_EQ(right, 16);
@@ -176,7 +177,7 @@ TEST_P(HopListenerOffset, TheBlindOffsetEstimateReadsEverySymbolAndConfirmTracks
   signal::HopListener listener(p);
   const auto got = candidates(heard, listener);
   // The window wholly inside both chords: its second chord's inner window ends about here.
-  const double aligned_ms = (3000.0 + 2 * p.hops.chord_samples() - p.hops.hop_samples) / 48.0;
+  const double aligned_ms = (3000.0 + 2 * p.hops().chord_samples() - p.hops().hop_samples) / 48.0;
   const signal::HopCandidate* aligned = nullptr;
   int right_aligned = 0;
   for (const auto& c : got) {
@@ -213,7 +214,7 @@ std::vector<link::Answer> answers_heard(const std::vector<float>& audio, bool ke
   if (keyed) options.key = security::LinkKey::generate();
   const auto ear = link::make_link(p, options)->answer_listener();
   std::vector<link::Answer> got;
-  const auto hop = static_cast<std::size_t>(p.hops.reply_hop_samples);
+  const auto hop = static_cast<std::size_t>(p.hops().reply_hop_samples);
   for (std::size_t at = 0; at < audio.size(); at += hop) {
     for (const auto& a : ear->feed(std::span<const float>(audio).subspan(at, std::min(hop, audio.size() - at)))) {
       got.push_back(a);
@@ -253,7 +254,11 @@ TEST(HopReplyListener, AReplyWithThreeTonesGoneIsStillHeardAndNoiseIsNoReply) {
   const auto full = reply_audio(tones, 1);
   audio.insert(audio.end(), full.begin(), full.end());
   audio.insert(audio.end(), 4800, 0.0f);
-  for (std::size_t t : {1u, 4u, 8u}) tones[t] = static_cast<std::uint8_t>((tones[t] + 3) % 8);
+  // Each misread as another of its band's tones: a value past them would index past the
+  // band's bins (reply_bin), into the next band's.
+  for (std::size_t t : {1u, 4u, 8u}) {
+    tones[t] = static_cast<std::uint8_t>((tones[t] + 3) % HopPlan::kReplyToneValues);
+  }
   const auto damaged = reply_audio(tones, 1);
   audio.insert(audio.end(), damaged.begin(), damaged.end());
   audio.insert(audio.end(), 4800, 0.0f);
@@ -299,12 +304,12 @@ TEST(HopReplyListener, ATaggedAckIsHeardWithItsTagBesideTheSendersOwnLouderFrame
 // at most (a seed ACK played beside the sender costs an answer at most that tone); every reply
 // tone lies below 3.5 kHz.
 TEST(ReplyCode, NoReplyToneIsASeedAnswerTone) {
-  const double bin_hz = static_cast<double>(p.sample_rate_hz) / p.hops.reply_window_samples;
-  for (int lane = 0; lane < HopLink::kReplyLanes; ++lane) {
+  const double bin_hz = static_cast<double>(p.sample_rate_hz) / p.hops().reply_window_samples;
+  for (int lane = 0; lane < HopPlan::kReplyLanes; ++lane) {
     int near_seed_ack = 0;
-    for (int b = 0; b < HopLink::kReplyBands; ++b) {
-      for (int v = 0; v < HopLink::kReplyToneValues; ++v) {
-        const double hz = p.hops.reply_bin(lane, b, v) * bin_hz;
+    for (int b = 0; b < HopPlan::kReplyBands; ++b) {
+      for (int v = 0; v < HopPlan::kReplyToneValues; ++v) {
+        const double hz = p.hops().reply_bin(lane, b, v) * bin_hz;
         EXPECT_LT(hz, 3500.0) << "the top reply tone stays well below the frames' 4 kHz";
         for (double seed_hz : {2000.0, 2500.0, 3000.0, 3500.0}) EXPECT_NE(hz, seed_hz) << "lane " << lane;
         for (double ack_hz : {2500.0, 3500.0}) near_seed_ack += std::abs(hz - ack_hz) <= bin_hz ? 1 : 0;
@@ -318,21 +323,21 @@ namespace {
 // A two-chord frame with chord one's tones in only `bands` of its eight bands (tones on grid
 // bins, each chord faded in and out over the plan's edges), in light white noise.
 std::vector<float> frame_with_bands_missing(const signal::HoppedSymbols& sent, int bands, unsigned seed) {
-  const auto chord = static_cast<std::size_t>(p.hops.chord_samples());
+  const auto chord = static_cast<std::size_t>(p.hops().chord_samples());
   std::vector<float> audio(3000 + 2 * chord + 9000, 0.0f);
   for (int c = 0; c < 2; ++c) {
     for (int b = 0; b < (c == 0 ? 8 : bands); ++b) {
-      const int bin = p.hops.band_first_bin[static_cast<std::size_t>(c)][static_cast<std::size_t>(b)] +
+      const int bin = p.hops().band_first_bin[static_cast<std::size_t>(c)][static_cast<std::size_t>(b)] +
                       sent[static_cast<std::size_t>(c * 8 + b)];
       for (std::size_t i = 0; i < chord; ++i) {
         const std::size_t near = std::min(i, chord - 1 - i);
         const double fade =
-            near < static_cast<std::size_t>(p.hops.edge_samples)
-                ? 0.5 - 0.5 * std::cos(std::numbers::pi * (static_cast<double>(near) + 0.5) / p.hops.edge_samples)
+            near < static_cast<std::size_t>(p.hops().edge_samples)
+                ? 0.5 - 0.5 * std::cos(std::numbers::pi * (static_cast<double>(near) + 0.5) / p.hops().edge_samples)
                 : 1.0;
         audio[3000 + static_cast<std::size_t>(c) * chord + i] += static_cast<float>(
-            p.hops.tone_amplitude * fade *
-            std::sin(2 * std::numbers::pi * bin * static_cast<double>(i) / p.hops.window_samples + b));
+            p.hops().tone_amplitude * fade *
+            std::sin(2 * std::numbers::pi * bin * static_cast<double>(i) / p.hops().window_samples + b));
       }
     }
   }
@@ -351,10 +356,10 @@ std::vector<float> frame_with_bands_missing(const signal::HoppedSymbols& sent, i
 TEST(HopListener, AWindowABandShortOfTheGateIsOnlyReadAgainOverWholeChords) {
   signal::HoppedSymbols sent{};
   for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((13 * t + 2) % 32);
-  const double aligned_ms = (3000.0 + 2 * p.hops.chord_samples() - p.hops.hop_samples) / 48.0;
+  const double aligned_ms = (3000.0 + 2 * p.hops().chord_samples() - p.hops().hop_samples) / 48.0;
   // A re-read is heard when it is made, its delay after the window; and it knows where the
   // frame began (sample 3000) closer than the grid's half a hop.
-  const double reread_ms = aligned_ms + p.hops.reread_delay_hops * p.hops.hop_samples / 48.0;
+  const double reread_ms = aligned_ms + p.hops().reread_delay_hops * p.hops().hop_samples / 48.0;
   for (const int bands : {3, 2}) {
     signal::HopListener listener(p);
     const auto got = candidates(frame_with_bands_missing(sent, bands, 5), listener);
@@ -363,7 +368,7 @@ TEST(HopListener, AWindowABandShortOfTheGateIsOnlyReadAgainOverWholeChords) {
       if (c.chords != 2 || (c.second_look && !c.whole_chords)) continue;
       if (std::abs(c.heard_ms - (c.whole_chords ? reread_ms : aligned_ms)) > 3) continue;
       if (c.whole_chords) {
-        EXPECT_NEAR(c.start_ms, 3000.0 / 48.0, p.hops.reread_step_samples / 48.0);
+        EXPECT_NEAR(c.start_ms, 3000.0 / 48.0, p.hops().reread_step_samples / 48.0);
       }
       (c.whole_chords ? whole : grid) += 1;
       int right = 0;
@@ -388,7 +393,7 @@ struct TakeClean final : signal::CandidateSink {
   signal::HoppedSymbols sent{};
   bool takes = true;
   std::vector<signal::HopCandidate> offered;
-  double delay_ms = p.hops.reread_delay_hops * 1000.0 * p.hops.hop_samples / p.sample_rate_hz;
+  double delay_ms = p.hops().reread_delay_hops * 1000.0 * p.hops().hop_samples / p.sample_rate_hz;
   double taken_ms = -1;  // the end of the window the frame was taken from
   // The end of the window a candidate reads (a second look comes a delay after it).
   double window_ms(const signal::HopCandidate& c) const { return c.heard_ms - (c.second_look ? delay_ms : 0); }
@@ -415,7 +420,7 @@ TEST(HopListener, AFailedWindowGetsASecondLookOnlyWhenNothingWasTakenAfterIt) {
   std::mt19937 rng(9);
   std::normal_distribution<float> noise(0.0f, 0.005f);
   int cases_with_a_failed_window = 0;
-  for (int offset = 0; offset < p.hops.hop_samples; offset += 41) {
+  for (int offset = 0; offset < p.hops().hop_samples; offset += 41) {
     auto audio = with_silence(signal::synthesize_hopped_frame(p, sent), 3000 + static_cast<std::size_t>(offset), 6000);
     for (float& s : audio) s += noise(rng);
     TakeClean taking, refusing;

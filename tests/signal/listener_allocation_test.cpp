@@ -139,7 +139,7 @@ TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFram
   }
   for (std::size_t block : {std::size_t{480}, std::size_t{2400}, std::size_t{4096}}) {
     link::HopFramePath path(profile, [&](const reliability::FrameBits& bits) { return robot.authentic(bits); });
-    signal::HopReplyListener reply_listener(profile, profile.hops.reply_tones_needed);
+    signal::HopReplyListener reply_listener(profile, profile.hops().reply_tones_needed);
     std::size_t frames = 0, answers = 0;
     const long before = g_allocations.load();
     for (std::size_t at = 0; at < audio.size(); at += block) {

@@ -38,8 +38,8 @@ TEST(Spectrum, RejectsWrongWindowSizesAndBadFftSizes) {
 
 TEST(PeakDetector, FindsOffBinTonesWithinOneHertzAndTheirLevel) {
   const LinkProfile& p = seed_profile();
-  SpectrumAnalyzer analyzer(p.analysis.fft_size, p.sample_rate_hz);
-  PeakDetector detector(p.robot_detector, analyzer.bin_hz(), 2049);
+  SpectrumAnalyzer analyzer(p.words().analysis.fft_size, p.sample_rate_hz);
+  PeakDetector detector(p.words().robot_detector, analyzer.bin_hz(), 2049);
   std::vector<float> x(4096, 0.0f);
   const std::vector<double> tones = {5123.4, 8877.7, 12001.0, 15555.5};
   add_chord(x, tones, 0.2, 0, p.sample_rate_hz);
@@ -59,9 +59,9 @@ TEST(PeakDetector, FindsOffBinTonesWithinOneHertzAndTheirLevel) {
 
 TEST(PeakDetector, BandPassGateAndCountLimitWhatIsKept) {
   const LinkProfile& p = seed_profile();
-  SpectrumAnalyzer analyzer(p.analysis.fft_size, p.sample_rate_hz);
-  PeakDetector robot(p.robot_detector, analyzer.bin_hz(), 2049);
-  PeakDetector sender(p.sender_detector, analyzer.bin_hz(), 2049);
+  SpectrumAnalyzer analyzer(p.words().analysis.fft_size, p.sample_rate_hz);
+  PeakDetector robot(p.words().robot_detector, analyzer.bin_hz(), 2049);
+  PeakDetector sender(p.words().sender_detector, analyzer.bin_hz(), 2049);
   std::vector<float> x(4096, 0.0f);
   // 2500 Hz is below the robot's band-pass and inside the sender's; 9000 Hz the reverse.
   add_chord(x, std::vector<double>{2500, 9000}, 0.1, 0, p.sample_rate_hz);
@@ -86,8 +86,8 @@ TEST(Synthesizer, ChordHasTheProfileLengthSmoothEdgesAndBoundedLevel) {
   EXPECT_LT(std::abs(chord.back()), 1e-2);
   float peak = 0;
   for (float s : chord) peak = std::max(peak, std::abs(s));
-  EXPECT_LE(peak, 4 * p.tones.tone_amplitude + 1e-5);
-  EXPECT_GT(peak, 2 * p.tones.tone_amplitude);
+  EXPECT_LE(peak, 4 * p.words().tones.tone_amplitude + 1e-5);
+  EXPECT_GT(peak, 2 * p.words().tones.tone_amplitude);
   const auto reply = synthesize_reply(p, Reply::Ack);
   EXPECT_EQ(reply.size(), static_cast<std::size_t>(p.samples_for_ms(p.timing.ack_ms)));
 }

@@ -31,7 +31,7 @@ TEST(ChordListener, HearsOneChordOnceWithItsStartTime) {
   const auto heard = test_support::listen(listener, audio);
   ASSERT_EQ(heard.size(), 1u);
   EXPECT_EQ(heard[0].symbol, 0xB2DDu);
-  EXPECT_NEAR(heard[0].start_ms, 1234, 1000.0 / p.analysis.analyses_per_s);
+  EXPECT_NEAR(heard[0].start_ms, 1234, 1000.0 / p.words().analysis.analyses_per_s);
   // Two detections at 20 per second: heard within about 0.15 s of the start.
   EXPECT_GT(heard[0].heard_ms, 1234);
   EXPECT_LT(heard[0].heard_ms, 1234 + 200);
@@ -146,7 +146,7 @@ TEST(ChordListener, AChordIsHeardThroughAWhineOnItsOwnToneAtEveryPhase) {
     const double phase = 2 * std::numbers::pi * k / 12;
     for (std::size_t i = 0; i < audio.size(); ++i) {
       audio[i] += static_cast<float>(
-          2 * p.tones.tone_amplitude *
+          2 * p.words().tones.tone_amplitude *
           std::sin(2 * std::numbers::pi * 5000.0 * static_cast<double>(i) / p.sample_rate_hz + phase));
     }
     auto listener = chord_listener(p);

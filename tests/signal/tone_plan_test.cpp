@@ -8,7 +8,7 @@ using namespace dtmf;
 using namespace dtmf::signal;
 
 TEST(TonePlan, SeedBandsSpan2500HzWithSixteenTonesEach) {
-  const TonePlan& plan = seed_profile().tones;
+  const TonePlan& plan = seed_profile().words().tones;
   EXPECT_EQ(chord_for(plan, 0x0000), (Chord{4500, 7500, 10500, 13500}));
   const Chord top = chord_for(plan, 0xFFFF);
   EXPECT_NEAR(top[0], 7000, 1e-9);
@@ -18,7 +18,7 @@ TEST(TonePlan, SeedBandsSpan2500HzWithSixteenTonesEach) {
 }
 
 TEST(TonePlan, MostSignificantNibbleGoesToTheLowestBand) {
-  const TonePlan& plan = seed_profile().tones;
+  const TonePlan& plan = seed_profile().words().tones;
   // The seed's example frame 1011 0010 1101 1101: nibbles 11, 2, 13, 13.
   const Chord chord = chord_for(plan, 0b1011001011011101);
   const double step = 2500.0 / 15;
@@ -29,14 +29,14 @@ TEST(TonePlan, MostSignificantNibbleGoesToTheLowestBand) {
 }
 
 TEST(TonePlan, EveryFrameRoundTripsThroughItsChord) {
-  const TonePlan& plan = seed_profile().tones;
+  const TonePlan& plan = seed_profile().words().tones;
   for (std::uint32_t f = 0; f < 65536; ++f) {
     ASSERT_EQ(frame_for(plan, chord_for(plan, static_cast<std::uint16_t>(f))), f);
   }
 }
 
 TEST(TonePlan, PeaksMatchPlanTonesOnlyWithinTolerance) {
-  const TonePlan& plan = seed_profile().tones;
+  const TonePlan& plan = seed_profile().words().tones;
   const auto exact = match_plan_tone(plan, 7500 + 5 * plan.step_hz, 25);
   ASSERT_TRUE(exact);
   EXPECT_EQ(exact->band, 1);
@@ -49,7 +49,7 @@ TEST(TonePlan, PeaksMatchPlanTonesOnlyWithinTolerance) {
 }
 
 TEST(TonePlan, BandsWithinReachHoldEveryBandThatMatchesInTheRange) {
-  const TonePlan& plan = seed_profile().tones;
+  const TonePlan& plan = seed_profile().words().tones;
   EXPECT_EQ(bands_within_reach(plan, 8000, 8100, 25), 0b0010u);
   EXPECT_EQ(bands_within_reach(plan, 6990, 7480, 25), 0b0011u);  // 7000 + 25 and 7500 - 25 both in reach
   EXPECT_EQ(bands_within_reach(plan, 7030, 7470, 25), 0u);       // wholly between bands 0 and 1
@@ -76,7 +76,7 @@ TEST(TonePlan, BandsWithinReachHoldEveryBandThatMatchesInTheRange) {
 }
 
 TEST(TonePlan, RepliesUseTheSeedsTwoToneChords) {
-  const TonePlan& plan = seed_profile().tones;
+  const TonePlan& plan = seed_profile().words().tones;
   EXPECT_EQ(reply_tones(plan, Reply::Ack), (std::array<double, 2>{2500, 3500}));
   EXPECT_EQ(reply_tones(plan, Reply::Nack), (std::array<double, 2>{2000, 3000}));
 }

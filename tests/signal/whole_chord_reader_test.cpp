@@ -18,7 +18,7 @@ using namespace dtmf;
 
 namespace {
 const LinkProfile& p = fast_profile();
-const HopLink& h = p.hops;
+const HopPlan& h = p.hops();
 // The listener's bins (hop_listener.cpp): the bands, with room for offsets.
 constexpr int kLoBin = 156;
 constexpr int kBins = 720 - kLoBin;
