@@ -13,9 +13,11 @@
 #include "dds_test_subscriber.h"
 #include "support/processes.h"
 #include "support/run_command.h"
+#include "support/wait_for.h"
 
 using namespace dtmf;
 using test_support::run_command;
+using test_support::wait_until;
 
 namespace {
 
@@ -131,24 +133,24 @@ TEST_F(AgentDds, AKilledAgentsStopGuardPutsZeroOnCmdVel) {
     }
     return false;
   };
-  for (int i = 0; i < 100 && !moving(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  ASSERT_TRUE(moving()) << run_command("cat " + path("agent.log")).out;
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // mid-motion
+  ASSERT_TRUE(wait_until(moving, std::chrono::seconds(10))) << run_command("cat " + path("agent.log")).out;
+  // Kept: killed mid-motion, a while after it reached full speed, not at its first sample.
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
 
   const auto killed = std::chrono::steady_clock::now();
   ASSERT_EQ(::kill(agent, SIGKILL), 0);
   std::optional<std::chrono::steady_clock::time_point> first_zero;
-  for (int i = 0; i < 500 && !first_zero; ++i) {
+  const auto zero_since_kill = [&] {
     for (const auto& s : subscriber.samples()) {
       if (s.received > killed && s.linear.x == 0.0 && s.angular.z == 0.0) {
         first_zero = s.received;
-        break;
+        return true;
       }
     }
-    if (!first_zero) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ASSERT_TRUE(first_zero) << "no zero on cmd_vel within 5 s of SIGKILL\n"
-                          << run_command("cat " + path("agent.log")).out;
+    return false;
+  };
+  ASSERT_TRUE(wait_until(zero_since_kill, std::chrono::seconds(5))) << "no zero on cmd_vel within 5 s of SIGKILL\n"
+                                                                    << run_command("cat " + path("agent.log")).out;
   std::printf("first zero on cmd_vel %.1f ms after SIGKILL\n",
               std::chrono::duration<double, std::milli>(*first_zero - killed).count());
 
@@ -157,9 +159,8 @@ TEST_F(AgentDds, AKilledAgentsStopGuardPutsZeroOnCmdVel) {
   const auto at = log.find("stop guard pid ");
   ASSERT_NE(at, std::string::npos) << log;
   const int guard = std::stoi(log.substr(at + 15));
-  for (int i = 0; i < 50 && test_support::process_running(guard); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  EXPECT_FALSE(test_support::process_running(guard));
+  EXPECT_TRUE(wait_until([guard] { return !test_support::process_running(guard); }, std::chrono::seconds(5)))
+      << "the stop guard " << guard << " is still running";
   log = run_command("cat " + path("agent.log")).out;
   EXPECT_NE(log.find("stop guard: the agent has ended; zero published on rt/" + topic), std::string::npos) << log;
   EXPECT_EQ(subscriber.samples().back().linear.x, 0.0);

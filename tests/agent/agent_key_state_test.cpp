@@ -17,6 +17,7 @@
 #include "physical/wav_file.h"
 #include "support/processes.h"
 #include "support/run_command.h"
+#include "support/wait_for.h"
 
 using namespace dtmf;
 using test_support::json_lines;
@@ -61,7 +62,7 @@ class AgentKeyState : public ::testing::Test {
   }
   static bool moved(const std::string& out) {
     for (const auto& line : json_lines(out)) {
-      if (line["linear_mps"].get<double>() != 0 || line["angular_rps"].get<double>() != 0) return true;
+      if (line["linear_mps"].get<double>() != 0 || line["angular_radps"].get<double>() != 0) return true;
     }
     return false;
   }
@@ -152,10 +153,9 @@ TEST_F(AgentKeyState, ASecondAgentOnTheSameStateDirectoryFailsAtStart) {
                                                     " --realtime --cmd-vel log --db none --key " + path("robot.key") +
                                                     " --state-dir " + path("robot-state"),
                                                 path("first.log"));
-  for (int i = 0; i < 200 && read_file(path("first.log")).find("listening to") == std::string::npos; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  ASSERT_NE(read_file(path("first.log")).find("listening to"), std::string::npos) << read_file(path("first.log"));
+  ASSERT_TRUE(test_support::wait_until(
+      [&] { return read_file(path("first.log")).find("listening to") != std::string::npos; }, std::chrono::seconds(10)))
+      << read_file(path("first.log"));
   const auto second = agent(path("old.wav"));
   EXPECT_TRUE(test_support::process_running(first)) << read_file(path("first.log"));
   test_support::stop_process(first);

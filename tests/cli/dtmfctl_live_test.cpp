@@ -56,8 +56,8 @@ class DtmfctlLive : public ::testing::Test {
                   "deaf.log");
     wait_healthy(port_);
     wait_healthy(deaf_port_);
-    // New PulseAudio streams deliver their first seconds irregularly (see tests/e2e).
-    std::this_thread::sleep_for(std::chrono::seconds(3));
+    // Ready once the robot confirms a Stop through the air (outside any run: no report counts it).
+    ASSERT_TRUE(dtmf::test_support::wait_robot_answers(DTMFCTL_PATH, port_)) << "the robot never confirmed a Stop";
   }
   // Every process must be gone before the next test starts its own.
   static void TearDownTestSuite() {
@@ -151,7 +151,8 @@ TEST_F(DtmfctlLive, AChordWithAHoleInItIsHeardOnce) {
     out += line;
     // 0.4 s into the first chord: the robot's ACK has been heard (0.15-0.25 s after the
     // chord's start), so the pause costs no answer. PulseAudio holds about 0.4 s of the
-    // chord ahead, so the hole is about 0.4 s, and the rest ends after the lockout.
+    // chord ahead, so the hole is about 0.4 s, and the rest ends after the lockout. Both
+    // sleeps kept: where the hole falls in the chord, and how long it is, are the test.
     if (!paused && out.find("transmitting") != std::string::npos) {
       std::this_thread::sleep_for(std::chrono::milliseconds(400));
       ::kill(server_, SIGSTOP);
@@ -162,8 +163,8 @@ TEST_F(DtmfctlLive, AChordWithAHoleInItIsHeardOnce) {
   }
   const int status = ::pclose(ctl_out);
   const dtmf::LinkProfile& seed = dtmf::seed_profile();
-  const auto split =
-      air.split_chords(seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz, seed.robot_detector.bandpass_high_hz);
+  const auto split = air.split_chords(seed.timing.chord_ms, seed.words().robot_detector.bandpass_low_hz,
+                                      seed.words().robot_detector.bandpass_high_hz);
   ASSERT_TRUE(paused) << out;
   EXPECT_EQ(WEXITSTATUS(status), 0) << out;
   EXPECT_NE(out.find("drive_for_duration speed=50.0% duration=1.03s: confirmed"), std::string::npos) << out;
@@ -191,8 +192,8 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   dtmf::test_support::AirRecording air((kDir / "air.wav").string());
   const auto r = run_command(ctl("sequence --label general") + " < /dev/null");
   const dtmf::LinkProfile& seed = dtmf::seed_profile();
-  const auto split =
-      air.split_chords(seed.timing.chord_ms, seed.robot_detector.bandpass_low_hz, seed.robot_detector.bandpass_high_hz);
+  const auto split = air.split_chords(seed.timing.chord_ms, seed.words().robot_detector.bandpass_low_hz,
+                                      seed.words().robot_detector.bandpass_high_hz);
   for (const auto& s : split) {
     std::printf("the air split a chord %.2f s into the recording: %.0f ms, %.0f ms of silence, %.0f ms\n", s.start_s,
                 s.first_ms, s.gap_ms, s.second_ms);
@@ -215,7 +216,7 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
   // chord the air cut in two is heard once (AChordWithAHoleInItIsHeardOnce), unless its hole
   // is longer than the receiver bridges: each such one may be heard twice (an extra
   // reception, counted as a false positive), and each of them a frame that was sent.
-  const long beyond_bridging = dtmf::test_support::holes_longer_than(split, seed.debounce.max_dropout_ms);
+  const long beyond_bridging = dtmf::test_support::holes_longer_than(split, seed.words().debounce.max_dropout_ms);
   EXPECT_LE(report[0]["duplicates"].get<long>(), beyond_bridging);
   EXPECT_LE(report[0]["false_positives"].get<long>(), beyond_bridging);
   // A frame the robot refused (answered NACK, executed nothing) is not one it took: a robot

@@ -31,10 +31,12 @@
 #include "physical/wav_file.h"
 #include "support/free_port.h"
 #include "support/processes.h"
+#include "support/wait_for.h"
 
 using namespace dtmf;
 using namespace std::chrono_literals;
 using test_support::run_command;
+using test_support::wait_until;
 namespace fs = std::filesystem;
 
 namespace {
@@ -88,14 +90,10 @@ class AuthenticatedE2E : public ::testing::Test {
                                              " --audio default --ack-out default --cmd-vel sim,dds --topic /" + topic_ +
                                              " --db " + db_.url() + " --spill-file " + path("agent.spill"),
                                          path("agent-" + std::to_string(++agent_lives_) + ".log"));
-    // The robot listens once its streams run (they deliver their first second irregularly).
-    for (int i = 0;
-         i < 100 &&
-         run_command("grep -q 'listening to' " + path("agent-" + std::to_string(agent_lives_) + ".log")).exit_code != 0;
-         ++i) {
-      std::this_thread::sleep_for(100ms);
-    }
-    std::this_thread::sleep_for(1500ms);
+    const std::string log = path("agent-" + std::to_string(agent_lives_) + ".log");
+    ASSERT_TRUE(wait_until([&] { return read_file(log).find("listening to") != std::string::npos; }, 10s))
+        << "the robot never listened\n"
+        << read_file(log);
   }
   void start_server() {
     server_ = test_support::start_process(std::string(kSenderAudio) + "DTMF_SERVER_KEY_FILE=" + path("robot.key") +
@@ -103,8 +101,14 @@ class AuthenticatedE2E : public ::testing::Test {
                                               " --port " + std::to_string(port_) + " --db " + db_.url() +
                                               " --spill-file " + path("server.spill"),
                                           path("server-" + std::to_string(++server_lives_) + ".log"));
-    ASSERT_TRUE(test_support::wait_healthy(DTMFCTL_PATH, port_)) << read_file(path("server-1.log"));
-    std::this_thread::sleep_for(1500ms);
+    ASSERT_TRUE(test_support::wait_healthy(DTMFCTL_PATH, port_)) << read_file(server_log(server_lives_));
+  }
+  // Both programs up with the same key, then the system ready: the robot confirms a Stop
+  // (authenticated, the keyed server's default profile) through the room.
+  void start_system() {
+    ASSERT_NO_FATAL_FAILURE(start_agent("robot.key"));
+    ASSERT_NO_FATAL_FAILURE(start_server());
+    ASSERT_TRUE(test_support::wait_robot_answers(DTMFCTL_PATH, port_)) << "the robot never confirmed a Stop";
   }
   // `dtmfctl --json drive --profile fast`: its exit code (0 confirmed, 3 not) and output.
   test_support::CommandResult drive(double speed) {
@@ -128,6 +132,31 @@ class AuthenticatedE2E : public ::testing::Test {
     for (const auto& m : subscriber_->samples()) n += (m.linear.x != 0 || m.angular.z != 0) ? 1 : 0;
     return n;
   }
+  // The robot's newest cmd_vel is zero.
+  bool standing() {
+    const auto samples = subscriber_->samples();
+    return !samples.empty() && samples.back().linear.x == 0 && samples.back().angular.z == 0;
+  }
+  std::string server_log(int life) const { return path("server-" + std::to_string(life) + ".log"); }
+  // The drives (`drive_in_background`) with a frame on air in the log of the sender's `life`,
+  // by command id.
+  std::set<std::string> drives_on_air(int life) const {
+    const std::regex on_air(R"(drive_for_duration [^\n]*\(command ([0-9a-f-]+), frame \d+\): on air: )");
+    const std::string log = read_file(server_log(life));
+    std::set<std::string> ids;
+    for (auto it = std::sregex_iterator(log.begin(), log.end(), on_air); it != std::sregex_iterator(); ++it) {
+      ids.insert((*it)[1].str());
+    }
+    return ids;
+  }
+  // Starts a drive in the background (its pid in `driver`); returns once a frame of it is on air.
+  void drive_on_air(int& driver) {
+    const std::size_t before = drives_on_air(server_lives_).size();
+    driver = drive_in_background();
+    ASSERT_TRUE(wait_until([&] { return drives_on_air(server_lives_).size() > before; }, 10s))
+        << "no frame of the drive went on air\n"
+        << read_file(path("drive.log"));
+  }
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
@@ -143,32 +172,31 @@ class AuthenticatedE2E : public ::testing::Test {
 }  // namespace
 
 TEST_F(AuthenticatedE2E, KeysOnBothSidesDriveAndAChangedRobotKeyIsRefusedCountedAndStill) {
-  start_agent("robot.key");
-  start_server();
+  ASSERT_NO_FATAL_FAILURE(start_system());
   const auto driven = drive(40);
   ASSERT_EQ(driven.exit_code, 0) << "confirmed with the same key on both sides\n" << driven.out;
   // Progress events say the frames were authenticated.
   EXPECT_NE(driven.out.find("\"authenticated\":true"), std::string::npos) << driven.out;
   EXPECT_EQ(driven.out.find("\"authenticated\":false"), std::string::npos) << driven.out;
-  for (int i = 0; i < 50 && moving_messages() == 0; ++i) std::this_thread::sleep_for(100ms);
-  EXPECT_GT(moving_messages(), 0) << "the robot drove";
+  EXPECT_TRUE(wait_until([&] { return moving_messages() > 0; }, 5s)) << "the robot drove";
   EXPECT_NE(read_file(path("agent-1.log")).find("authenticated"), std::string::npos);
 
   // The robot gets another key: the sender's frames are refused, and nothing moves.
   test_support::stop_process(agent_);
-  start_agent("other.key");
-  std::this_thread::sleep_for(1500ms);  // the last drive's second is over
+  ASSERT_NO_FATAL_FAILURE(start_agent("other.key"));
+  ASSERT_TRUE(wait_until([&] { return standing(); }, 5s)) << "the robot stands before the refused drive";
   const long moving_before = moving_messages();
   const std::string run_id = db_.query<std::string>(
       "INSERT INTO test_runs (id, label, profile, started_at, revision) "
       "VALUES (gen_random_uuid(), 'changed key', 'fast', now(), 1) RETURNING id::text");
   EXPECT_EQ(drive(40).exit_code, 3) << "not confirmed";
+  // Kept: a second and a half after the refused drive in which the robot must not move.
   std::this_thread::sleep_for(1500ms);
   EXPECT_EQ(moving_messages(), moving_before) << "the robot did not move";
   db_.query<std::string>("UPDATE test_runs SET ended_at = now() RETURNING id::text");
-  for (int i = 0; i < 100 && db_.query<long>("SELECT count(*) FROM receptions WHERE event = 'refused'") == 0; ++i) {
-    std::this_thread::sleep_for(100ms);
-  }
+  EXPECT_TRUE(wait_until([&] { return db_.query<long>("SELECT count(*) FROM receptions WHERE event = 'refused'") > 0; },
+                         10s, 100ms))
+      << "no refusal reached the database";
   EXPECT_GE(db_.query<long>("SELECT refused_authentication FROM run_report('" + run_id + "'::uuid)"), 1);
   const auto report = run_command(std::string(DTMFCTL_PATH) + " --server 127.0.0.1:" + std::to_string(port_) +
                                   " report --json " + run_id);
@@ -198,24 +226,27 @@ TEST_F(AuthenticatedE2E, KeysOnBothSidesDriveAndAChangedRobotKeyIsRefusedCounted
 }
 
 TEST_F(AuthenticatedE2E, SenderAndRobotKilledTwentyTimesEachNeverUseACounterTwice) {
-  start_agent("robot.key");
-  start_server();
-  // Kills at moments spread over a drive's frames: its synchronisation, its command, their
-  // answers and retransmissions.
+  ASSERT_NO_FATAL_FAILURE(start_agent("robot.key"));
+  ASSERT_NO_FATAL_FAILURE(start_server());
+  // Kills at moments spread over a drive's frames, counted from its first frame on air: its
+  // synchronisation, its command, their answers and retransmissions. The moment is what the
+  // test varies: kept sleeps.
   const auto kill_moment = [](int life) { return std::chrono::milliseconds(40 + (life * 53) % 420); };
   for (int life = 0; life < 20; ++life) {
-    const int driver = drive_in_background();
+    int driver = 0;
+    ASSERT_NO_FATAL_FAILURE(drive_on_air(driver)) << "sender life " << server_lives_;
     std::this_thread::sleep_for(kill_moment(life));
     test_support::stop_process(server_, SIGKILL);
     test_support::stop_process(driver);
-    start_server();
+    ASSERT_NO_FATAL_FAILURE(start_server());
   }
   for (int life = 0; life < 20; ++life) {
-    const int driver = drive_in_background();
-    std::this_thread::sleep_for(kill_moment(life) + 100ms);  // the robot hears a frame's end
+    int driver = 0;
+    ASSERT_NO_FATAL_FAILURE(drive_on_air(driver)) << "robot life " << agent_lives_;
+    std::this_thread::sleep_for(kill_moment(life) + 100ms);  // 100 ms more: the robot hears a frame's end
     test_support::stop_process(agent_, SIGKILL);
     test_support::stop_process(driver);
-    start_agent("robot.key");
+    ASSERT_NO_FATAL_FAILURE(start_agent("robot.key"));
   }
   EXPECT_EQ(drive(20).exit_code, 0) << "both sides recovered";
 
@@ -224,16 +255,18 @@ TEST_F(AuthenticatedE2E, SenderAndRobotKilledTwentyTimesEachNeverUseACounterTwic
   const std::regex on_air(
       R"(\(command ([0-9a-f-]+), frame (\d+)\): on air: (\w+) frame, key (\w+), robot (\d+), counter (\d+), attempt)");
   std::map<std::uint64_t, std::set<std::string>> frames_of_counter;
-  int on_air_lines = 0;
   for (const std::string& log : logs("server", server_lives_)) {
     for (auto it = std::sregex_iterator(log.begin(), log.end(), on_air); it != std::sregex_iterator(); ++it) {
-      ++on_air_lines;
       const auto& m = *it;
       frames_of_counter[std::stoull(m[6].str())].insert(m[1].str() + " frame " + m[2].str() + " " + m[3].str() +
                                                         " key " + m[4].str() + " robot " + m[5].str());
     }
   }
-  EXPECT_GT(on_air_lines, 40);
+  // Every life killed had put its drive on air (the loops waited for that before each kill):
+  // each of the sender's first twenty lives one drive, its last life the robot's twenty and
+  // the last one.
+  for (int life = 1; life <= 20; ++life) EXPECT_EQ(drives_on_air(life).size(), 1u) << "sender life " << life;
+  EXPECT_EQ(drives_on_air(server_lives_).size(), 21u) << "the sender's last life";
   for (const auto& [counter, frames] : frames_of_counter) {
     EXPECT_EQ(frames.size(), 1u) << "counter " << counter << " went on air for " << frames.size() << " frames";
   }
@@ -245,6 +278,8 @@ TEST_F(AuthenticatedE2E, SenderAndRobotKilledTwentyTimesEachNeverUseACounterTwic
       counters.push_back(std::stoull((*it)[1].str()));
     }
   }
+  std::printf("counters on air: %zu, executed: %zu (sender lives %d, robot lives %d)\n", frames_of_counter.size(),
+              counters.size(), server_lives_, agent_lives_);
   EXPECT_GE(counters.size(), 10u);
   for (std::size_t i = 1; i < counters.size(); ++i) {
     EXPECT_GT(counters[i], counters[i - 1]) << "executed counter " << counters[i] << " after " << counters[i - 1];
@@ -258,15 +293,13 @@ TEST_F(AuthenticatedE2E, SenderAndRobotKilledTwentyTimesEachNeverUseACounterTwic
 // 34 the Stop went out as a seed frame: the robot refused it and drove on, and the played ACK
 // made `dtmfctl stop` print "confirmed" and exit 0.)
 TEST_F(AuthenticatedE2E, AProfileLessStopStopsTheKeyedRobotAndAPlayedSeedAckConfirmsNothing) {
-  start_agent("robot.key");
-  start_server();
+  ASSERT_NO_FATAL_FAILURE(start_system());
   // Driving on, with no end and no profile: the server's default, authenticated with a key.
   const auto driving = run_command(std::string(DTMFCTL_PATH) + " --server 127.0.0.1:" + std::to_string(port_) +
                                    " --json drive --speed 40 < /dev/null");
   ASSERT_EQ(driving.exit_code, 0) << driving.out;
   EXPECT_EQ(driving.out.find("\"authenticated\":false"), std::string::npos) << driving.out;
-  for (int i = 0; i < 50 && moving_messages() == 0; ++i) std::this_thread::sleep_for(100ms);
-  ASSERT_GT(moving_messages(), 0) << "the keyed robot drives";
+  ASSERT_TRUE(wait_until([&] { return moving_messages() > 0; }, 5s)) << "the keyed robot drives";
 
   // The forger: 60 s of the seed's ACK, one after another, into the sender's microphone.
   const auto seed = link::make_link(seed_profile());
@@ -294,14 +327,10 @@ TEST_F(AuthenticatedE2E, AProfileLessStopStopsTheKeyedRobotAndAPlayedSeedAckConf
   EXPECT_EQ(stopped.out.find("\"answer_authenticated\":false"), std::string::npos) << stopped.out;
   EXPECT_EQ(stopped.out.find("\"profile\":\"seed\""), std::string::npos) << stopped.out;
   // The robot stands: its last cmd_vel is zero, and nothing moves from here on.
-  std::this_thread::sleep_for(1000ms);
+  EXPECT_TRUE(wait_until([&] { return standing(); }, 2s)) << "the keyed robot stopped";
   const long moving_after_stop = moving_messages();
-  const auto samples = subscriber_->samples();
-  ASSERT_FALSE(samples.empty());
-  EXPECT_EQ(samples.back().linear.x, 0.0);
-  EXPECT_EQ(samples.back().angular.z, 0.0);
-  std::this_thread::sleep_for(1000ms);
-  EXPECT_EQ(moving_messages(), moving_after_stop) << "the keyed robot stopped";
+  std::this_thread::sleep_for(1000ms);  // kept: a second in which it must not move again
+  EXPECT_EQ(moving_messages(), moving_after_stop) << "the keyed robot stayed stopped";
 
   // Without the robot only the forger answers: no confirmation, whatever the profile asked.
   test_support::stop_process(agent_);

@@ -11,11 +11,14 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <pqxx/pqxx>
+#include <regex>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "../agent/dds_test_subscriber.h"
@@ -28,11 +31,13 @@
 #include "support/air_recording.h"
 #include "support/free_port.h"
 #include "support/processes.h"
+#include "support/wait_for.h"
 #include "velocity_provider.h"
 
 using namespace dtmf;
 using namespace std::chrono_literals;
 using test_support::run_command;
+using test_support::wait_until;
 namespace fs = std::filesystem;
 
 namespace {
@@ -45,7 +50,7 @@ std::set<std::pair<double, double>> expected_motions(const std::string& profile)
     agent::VelocityProvider provider(command::burger(), 0);
     provider.apply(profile == "fast" ? command::quantised_payload(command) : command::quantised(command), 0);
     const auto v = provider.update(0);
-    if (v.linear_mps != 0 || v.angular_rps != 0) motions.insert({v.linear_mps, v.angular_rps});
+    if (v.linear_mps != 0 || v.angular_radps != 0) motions.insert({v.linear_mps, v.angular_radps});
   }
   return motions;
 }
@@ -76,6 +81,9 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
     fs::create_directories(dir_);
     subscriber_ = std::make_unique<test_support::CmdVelSubscriber>(domain_, "rt/" + topic_, true);
     start_agent();
+    ASSERT_TRUE(wait_until([this] { return agent_log().find("listening to") != std::string::npos; }, 10s))
+        << "the robot never listened\n"
+        << agent_log();
     port_ = test_support::free_port();
     server_ = test_support::start_process(std::string(kSenderAudio) + DTMF_SERVER_PATH +
                                               " --address 127.0.0.1 --port " + std::to_string(port_) + " --db " +
@@ -84,6 +92,9 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
     ASSERT_TRUE(test_support::wait_healthy(DTMFCTL_PATH, port_)) << run_command("cat " + path("server.log")).out;
     // New PulseAudio streams deliver their first seconds irregularly (scripts/air): chords
     // sent at once were heard late, and once heard twice. Let the streams settle first.
+    // Kept: nothing outside the programs shows when their streams have settled, and the
+    // readiness the other live tests wait for, a Stop the robot confirms, would put frames
+    // and rows on air and in the database that this test counts exactly.
     std::this_thread::sleep_for(3s);
     // The sender's loudspeaker: where a stalled machine leaves its gaps (air_recording.h).
     air_ = std::make_unique<test_support::AirRecording>(path("air.wav"), "speaker.monitor");
@@ -136,17 +147,35 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
   // The robot's receptions reach the database through its store's queue (and, after an
   // outage, its spill file): wait until `count` are in, or 60 s.
   long wait_for_receptions(long count) {
-    long in = 0;
-    for (int i = 0; i < 600; ++i) {
-      try {
-        in = db_.query<long>("SELECT count(*) FROM receptions");
-        if (in >= count) break;
-      } catch (const std::exception&) {
-      }
-      std::this_thread::sleep_for(100ms);
-    }
-    std::this_thread::sleep_for(1s);  // anything beyond `count` too
+    wait_until(
+        [&] {
+          try {
+            return db_.query<long>("SELECT count(*) FROM receptions") >= count;
+          } catch (const std::exception&) {
+            return false;  // the database is still coming back
+          }
+        },
+        60s, 100ms);
+    std::this_thread::sleep_for(1s);  // kept: time for rows beyond `count` to show, which must be counted too
     return db_.query<long>("SELECT count(*) FROM receptions");
+  }
+
+  std::string agent_log() const {
+    std::ifstream in(path("agent.log"));
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  // The receptions the agent logged: one line each ("t=1.234s fast frame ...: ACK ..." or a NACK),
+  // each also one row its store writes to the database.
+  long receptions_logged() const {
+    const std::string log = agent_log();
+    const std::regex line(R"(t=[0-9.]+s [a-z]+ frame )");
+    return std::distance(std::sregex_iterator(log.begin(), log.end(), line), std::sregex_iterator());
+  }
+  bool standing() const {
+    const auto samples = subscriber_->samples();
+    return !samples.empty() && is_zero(samples.back());
   }
 
   pqxx::row report(const std::string& run_id) {
@@ -166,13 +195,14 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
     // is all it may do.
     long split = 0;
     if (profile() == "seed") {
-      const auto all = air_->split_chords(seed_profile().timing.chord_ms, seed_profile().robot_detector.bandpass_low_hz,
-                                          seed_profile().robot_detector.bandpass_high_hz);
+      const auto all =
+          air_->split_chords(seed_profile().timing.chord_ms, seed_profile().words().robot_detector.bandpass_low_hz,
+                             seed_profile().words().robot_detector.bandpass_high_hz);
       for (const auto& s : all) {
         std::printf("the air split a chord %.2f s into the recording: %.0f ms, %.0f ms of silence, %.0f ms\n",
                     s.start_s, s.first_ms, s.gap_ms, s.second_ms);
       }
-      split = test_support::holes_longer_than(all, seed_profile().debounce.max_dropout_ms);
+      split = test_support::holes_longer_than(all, seed_profile().words().debounce.max_dropout_ms);
     }
     pqxx::connection c(db_.url());
     pqxx::work tx(c);
@@ -314,7 +344,7 @@ TEST_P(SystemE2E, SeedSequenceIsAllConfirmedAndLogsEveryRowThroughADatabaseOutag
   expect_no_wrong_frame(run.run_id, r, receptions, heard_again);
 
   // cmd_vel: every motion the sequence commands, stamped, and the robot stopped at the end.
-  std::this_thread::sleep_for(500ms);
+  EXPECT_TRUE(wait_until([this] { return standing(); }, 2s)) << "the robot stopped at the end";
   const auto samples = subscriber_->samples();
   ASSERT_GT(samples.size(), 100u);
   std::set<std::pair<double, double>> seen;
@@ -332,9 +362,11 @@ TEST_P(SystemE2E, AnAgentKilledMidRunRestartsStoppedAndLosesNoRows) {
   const SequenceRun run = run_sequence("e2e agent restart", [&](int chord) {
     if (chord == at_frame(20)) {
       // A chord just started. The agent's last reception was a few milliseconds ago (fast) and
-      // may still wait in its store's memory queue, which a SIGKILL would lose: give the store
-      // the time it takes to write a row first.
-      std::this_thread::sleep_for(300ms);
+      // may still wait in its store's memory queue, which a SIGKILL would lose: the store writes
+      // every row the agent has logged first.
+      EXPECT_TRUE(wait_until([&] { return db_.query<long>("SELECT count(*) FROM receptions") >= receptions_logged(); },
+                             5s, 20ms))
+          << "the agent's receptions did not reach the database";
       test_support::stop_process(agent_, SIGKILL);
       killed_at = std::chrono::steady_clock::now();
       killed_wall = std::chrono::system_clock::now();
@@ -385,7 +417,7 @@ TEST_P(SystemE2E, AnAgentKilledMidRunRestartsStoppedAndLosesNoRows) {
   }
 
   // The restarted agent publishes zero before anything else, and the robot ends stopped.
-  std::this_thread::sleep_for(500ms);
+  EXPECT_TRUE(wait_until([this] { return standing(); }, 2s)) << "the robot stopped at the end";
   const auto samples = subscriber_->samples();
   const auto after_kill =
       std::find_if(samples.begin(), samples.end(), [&](const auto& s) { return s.received > killed_at; });

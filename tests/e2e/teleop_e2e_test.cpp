@@ -29,10 +29,12 @@
 #include "../db/temp_database.h"
 #include "support/free_port.h"
 #include "support/processes.h"
+#include "support/wait_for.h"
 
 using namespace dtmf;
 using namespace std::chrono_literals;
 using test_support::run_command;
+using test_support::wait_until;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
@@ -60,15 +62,17 @@ std::string read_file(const fs::path& file) {
 // One "sim: ..." line of the simulated TurtleBot3 (robot_agent/cmd_vel/sim_turtlebot.cpp).
 struct Pose {
   double x_m = 0, y_m = 0, heading_deg = 0, driven_m = 0;
+  bool stopped = false;  // the line says it stopped here (it says "moving" while it drives)
 };
 
 // The last pose the agent's log reports, if any.
 std::optional<Pose> last_pose(const std::string& log) {
   const std::regex line(
-      R"(sim: \w+ at t=[0-9.]+ s: x=(-?[0-9.]+) m y=(-?[0-9.]+) m heading=(-?[0-9.]+) deg, ([0-9.]+) m driven)");
+      R"(sim: (\w+) at t=[0-9.]+ s: x=(-?[0-9.]+) m y=(-?[0-9.]+) m heading=(-?[0-9.]+) deg, ([0-9.]+) m driven)");
   std::optional<Pose> pose;
   for (auto it = std::sregex_iterator(log.begin(), log.end(), line); it != std::sregex_iterator(); ++it) {
-    pose = Pose{std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4])};
+    pose =
+        Pose{std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4]), std::stod((*it)[5]), (*it)[1] == "stopped"};
   }
   return pose;
 }
@@ -100,11 +104,9 @@ class TeleopE2E : public ::testing::Test {
                                              " --audio default --ack-out default --cmd-vel sim,dds --topic /" + topic_ +
                                              " --db " + db_.url() + " --spill-file " + path("agent.spill"),
                                          path("agent.log"));
-    // The robot listens once its streams run (they deliver their first second irregularly).
-    for (int i = 0; i < 100 && agent_log().find("listening to") == std::string::npos; ++i) {
-      std::this_thread::sleep_for(100ms);
-    }
-    std::this_thread::sleep_for(1500ms);
+    ASSERT_TRUE(wait_until([this] { return agent_log().find("listening to") != std::string::npos; }, 10s))
+        << "the robot never listened\n"
+        << agent_log();
   }
   void start_server() {
     const std::string log = path("server-" + std::to_string(++server_lives_) + ".log");
@@ -113,7 +115,12 @@ class TeleopE2E : public ::testing::Test {
                                               db_.url() + " --spill-file " + path("server.spill"),
                                           log);
     ASSERT_TRUE(test_support::wait_healthy(DTMFCTL_PATH, port_)) << read_file(log);
-    std::this_thread::sleep_for(1500ms);
+  }
+  // Both programs up, then the system ready: the robot confirms a Stop through the room.
+  void start_system() {
+    ASSERT_NO_FATAL_FAILURE(start_agent());
+    ASSERT_NO_FATAL_FAILURE(start_server());
+    ASSERT_TRUE(test_support::wait_robot_answers(DTMFCTL_PATH, port_)) << "the robot never confirmed a Stop";
   }
 
   // `dtmfctl teleop` in a new tmux session of a private tmux server; the shell stays after it
@@ -133,10 +140,7 @@ class TeleopE2E : public ::testing::Test {
   std::string screen() const { return tmux("capture-pane -p -t teleop").out; }
   bool wait_screen(const std::string& pattern, std::chrono::milliseconds within = 15s) const {
     const std::regex wanted(pattern);
-    for (const auto deadline = Clock::now() + within; Clock::now() < deadline; std::this_thread::sleep_for(50ms)) {
-      if (std::regex_search(screen(), wanted)) return true;
-    }
-    return false;
+    return wait_until([&] { return std::regex_search(screen(), wanted); }, within, 50ms);
   }
   // dtmfctl's pid: the child of the tmux pane's shell.
   int teleop_pid() const {
@@ -148,11 +152,23 @@ class TeleopE2E : public ::testing::Test {
   // Until the newest cmd_vel sample satisfies `wanted`; false if `within` passes first.
   template <typename Predicate>
   bool wait_cmd_vel(Predicate wanted, std::chrono::milliseconds within = 10s) const {
-    for (const auto deadline = Clock::now() + within; Clock::now() < deadline; std::this_thread::sleep_for(20ms)) {
-      const auto samples = subscriber_->samples();
-      if (!samples.empty() && wanted(samples.back())) return true;
-    }
-    return false;
+    return wait_until(
+        [&] {
+          const auto samples = subscriber_->samples();
+          return !samples.empty() && wanted(samples.back());
+        },
+        within, 20ms);
+  }
+  // Until the simulated TurtleBot3's newest pose line says it stopped; that pose.
+  std::optional<Pose> wait_stopped_pose() const {
+    std::optional<Pose> pose;
+    wait_until(
+        [&] {
+          pose = last_pose(agent_log());
+          return pose && pose->stopped;
+        },
+        5s, 20ms);
+    return pose && pose->stopped ? pose : std::nullopt;
   }
   // The samples that arrived at or after `since`.
   std::vector<test_support::ReceivedCmdVel> samples_since(Clock::time_point since) const {
@@ -166,20 +182,28 @@ class TeleopE2E : public ::testing::Test {
   // Drives forward from the keyboard, then kills `victim` with -9 once the robot moves: the
   // robot must publish zero within the lease + kStopMargin of the kill, and nothing after.
   void expect_stop_after_killing(const std::function<int()>& victim, const std::string& what) {
-    press("wwwwwwwwww");
+    ASSERT_NO_FATAL_FAILURE(press("wwwwwwwwww"));
     ASSERT_TRUE(wait_cmd_vel([](const auto& m) { return m.linear.x > 0.09; })) << "driving before " << what;
-    std::this_thread::sleep_for(1500ms);  // renewals keep it going
+    // Kept: driving for longer than a lease, which only the renewals can do, before the kill.
+    std::this_thread::sleep_for(1500ms);
     ASSERT_TRUE(moving(subscriber_->samples().back())) << "still driving before " << what;
     const int pid = victim();
     ASSERT_GT(pid, 0) << what;
     const auto killed = Clock::now();
     ::kill(pid, SIGKILL);
-    std::this_thread::sleep_for(std::chrono::milliseconds(static_cast<int>(kLease_s * 1000)) + 2s);
+    const auto lease = std::chrono::milliseconds(static_cast<int>(kLease_s * 1000));
+    const auto stopped_since_kill = [&] {
+      const auto after = samples_since(killed);
+      return std::any_of(after.begin(), after.end(), [](const auto& m) { return !moving(m); });
+    };
+    ASSERT_TRUE(wait_until(stopped_since_kill, lease + 2s)) << "the robot never stopped after " << what;
+    // Kept: a second in which nothing may move it again.
+    std::this_thread::sleep_for(1s);
     const auto after = samples_since(killed);
     const auto first_zero = std::find_if(after.begin(), after.end(), [](const auto& m) { return !moving(m); });
-    ASSERT_NE(first_zero, after.end()) << "the robot never stopped after " << what;
+    ASSERT_NE(first_zero, after.end());
     const auto stop_ms = std::chrono::duration_cast<std::chrono::milliseconds>(first_zero->received - killed);
-    const auto bound = std::chrono::milliseconds(static_cast<int>(kLease_s * 1000)) + kStopMargin + kBridgeDelay;
+    const auto bound = lease + kStopMargin + kBridgeDelay;
     std::printf("%s: cmd_vel zero %lld ms after the kill (bound %lld ms)\n", what.c_str(),
                 static_cast<long long>(stop_ms.count()), static_cast<long long>(bound.count()));
     EXPECT_LE(stop_ms, bound) << what;
@@ -201,13 +225,12 @@ class TeleopE2E : public ::testing::Test {
 }  // namespace
 
 TEST_F(TeleopE2E, KeysDriveAnArcAndAReverseShownOnScreenOnCmdVelAndInThePoseLog) {
-  start_agent();
-  start_server();
-  start_teleop();
+  ASSERT_NO_FATAL_FAILURE(start_system());
+  ASSERT_NO_FATAL_FAILURE(start_teleop());
 
   // w ten times and a five times: 0.10 m/s and 0.5 rad/s together, an arc to the left. The
   // angular speed goes as the frame's 8-bit field carries it (2.84 / 127 rad/s steps).
-  press("wwwwwwwwwwaaaaa");
+  ASSERT_NO_FATAL_FAILURE(press("wwwwwwwwwwaaaaa"));
   EXPECT_TRUE(wait_screen(R"(linear\s+m/s\s+\+0\.100\s+\+0\.100)")) << screen();
   EXPECT_TRUE(wait_screen(R"(angular\s+rad/s\s+\+0\.500\s+\+0\.4[89]\d)")) << screen();
   EXPECT_TRUE(wait_screen(R"(response\s+\d+ ms)")) << screen();
@@ -215,39 +238,38 @@ TEST_F(TeleopE2E, KeysDriveAnArcAndAReverseShownOnScreenOnCmdVelAndInThePoseLog)
   ASSERT_TRUE(wait_cmd_vel([](const auto& m) { return std::abs(m.linear.x - 0.1) < 0.002 && m.angular.z > 0.45; }))
       << "the arc on cmd_vel";
   const auto arc_began = Clock::now();
-  std::this_thread::sleep_for(3s);
+  std::this_thread::sleep_for(3s);  // kept: three leases' worth of arc, which only renewals can drive
   const auto arc = samples_since(arc_began);
   EXPECT_TRUE(std::all_of(arc.begin(), arc.end(), moving)) << "the lease renewed all along the arc";
 
-  press("s");
+  ASSERT_NO_FATAL_FAILURE(press("s"));
   ASSERT_TRUE(wait_cmd_vel([](const auto& m) { return !moving(m); })) << "s stops";
   EXPECT_TRUE(wait_screen(R"(linear\s+m/s\s+\+0\.000\s+[+-]0\.000)")) << screen();
-  std::this_thread::sleep_for(300ms);
-  const auto after_arc = last_pose(agent_log());
-  ASSERT_TRUE(after_arc) << "the simulated TurtleBot3 reported its pose";
+  const auto after_arc = wait_stopped_pose();
+  ASSERT_TRUE(after_arc) << "the simulated TurtleBot3 reported where it stopped";
   // 0.49 rad/s for 3 s and more: about 85 degrees to the left, along a 0.2 m radius.
   EXPECT_GT(after_arc->heading_deg, 45) << "turned left along the arc";
   EXPECT_GT(after_arc->x_m, 0.1);
   EXPECT_GT(after_arc->y_m, 0.05) << "the arc bends left";
 
   // x ten times: 0.10 m/s backwards.
-  press("xxxxxxxxxx");
+  ASSERT_NO_FATAL_FAILURE(press("xxxxxxxxxx"));
   EXPECT_TRUE(wait_screen(R"(linear\s+m/s\s+-0\.100\s+-0\.100)")) << screen();
   ASSERT_TRUE(wait_cmd_vel([](const auto& m) { return std::abs(m.linear.x + 0.1) < 0.002 && m.angular.z == 0; }))
       << "the reverse on cmd_vel";
-  std::this_thread::sleep_for(2s);
-  press(" ");
+  std::this_thread::sleep_for(2s);  // kept: the reverse drives for two seconds, the distance measured below
+  ASSERT_NO_FATAL_FAILURE(press(" "));
   ASSERT_TRUE(wait_cmd_vel([](const auto& m) { return !moving(m); })) << "space stops";
-  std::this_thread::sleep_for(300ms);
-  const auto after_reverse = last_pose(agent_log());
-  ASSERT_TRUE(after_reverse);
+  // The newest pose line said "moving" while it reversed: this one is where it stopped again.
+  const auto after_reverse = wait_stopped_pose();
+  ASSERT_TRUE(after_reverse) << "the simulated TurtleBot3 reported where it stopped";
   const double heading_rad = after_arc->heading_deg * std::numbers::pi / 180;
   const double along_heading_m = (after_reverse->x_m - after_arc->x_m) * std::cos(heading_rad) +
                                  (after_reverse->y_m - after_arc->y_m) * std::sin(heading_rad);
   EXPECT_LT(along_heading_m, -0.15) << "moved backwards, against its heading";
   EXPECT_NEAR(after_reverse->heading_deg, after_arc->heading_deg, 2) << "straight back";
 
-  press("q");
+  ASSERT_NO_FATAL_FAILURE(press("q"));
   EXPECT_TRUE(wait_screen(R"(teleop ended; Stop sent \(confirmed\))")) << screen();
   EXPECT_TRUE(wait_screen("dtmfctl exited 0")) << screen();
   EXPECT_FALSE(moving(subscriber_->samples().back()));
@@ -256,12 +278,11 @@ TEST_F(TeleopE2E, KeysDriveAnArcAndAReverseShownOnScreenOnCmdVelAndInThePoseLog)
 }
 
 TEST_F(TeleopE2E, TheClientKilledThenTheServerKilledEachStopTheRobotWithinTheLease) {
-  start_agent();
-  start_server();
-  start_teleop();
-  expect_stop_after_killing([this] { return teleop_pid(); }, "dtmfctl killed with -9");
+  ASSERT_NO_FATAL_FAILURE(start_system());
+  ASSERT_NO_FATAL_FAILURE(start_teleop());
+  ASSERT_NO_FATAL_FAILURE(expect_stop_after_killing([this] { return teleop_pid(); }, "dtmfctl killed with -9"));
 
-  start_teleop();  // the server has let the killed client's stream go
-  expect_stop_after_killing([this] { return server_; }, "dtmf-server killed with -9");
+  ASSERT_NO_FATAL_FAILURE(start_teleop());  // the server has let the killed client's stream go
+  ASSERT_NO_FATAL_FAILURE(expect_stop_after_killing([this] { return server_; }, "dtmf-server killed with -9"));
   server_ = 0;
 }

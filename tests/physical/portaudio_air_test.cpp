@@ -100,6 +100,8 @@ TEST_F(PortAudioAir, AChordPlayedIntoTheAirIsHeardOnceWithItsBits) {
     try {
       live.get_future().wait();
       if (record_error) return;
+      // Kept: the chord sounds 0.3 s into the recording, after silence, as a receiver on the
+      // air hears it (and its start is measured against the play time).
       std::this_thread::sleep_for(std::chrono::milliseconds(300));
       play_start = Clock::now();
       output->write(sound);

@@ -11,6 +11,7 @@ import socket
 import subprocess
 import time
 from pathlib import Path
+from typing import Callable
 
 import pytest
 
@@ -27,17 +28,45 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
+def wait_until(predicate: Callable[[], bool], timeout_s: float, poll_s: float = 0.01) -> bool:
+    """Polls predicate until it holds or timeout_s has passed; whether it held (tried once
+    more at the deadline). Wait for what a test means, not for a time that usually suffices:
+    a sleep is right only where the time is the behaviour under test, and says so."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if predicate():
+            return True
+        time.sleep(poll_s)
+    return bool(predicate())
+
+
 def wait_serving(address: str, process: subprocess.Popen, log: Path) -> None:
     with Client(address, timeout_s=1) as client:
-        for _ in range(100):
+        def serving() -> bool:
             if process.poll() is not None:
                 pytest.fail(f"{process.args[0]} exited with {process.returncode}: {log.read_text()}")
             try:
-                if client.health() == "SERVING":
-                    return
+                return client.health() == "SERVING"
             except TeleopError:
-                time.sleep(0.1)
-    pytest.fail(f"no server at {address}: {log.read_text()}")
+                return False
+
+        if not wait_until(serving, timeout_s=15, poll_s=0.1):
+            pytest.fail(f"no server at {address}: {log.read_text()}")
+
+
+def wait_robot_answers(address: str, timeout_s: float = 60) -> bool:
+    """Until the robot confirms a Stop sent through the air: the live system is ready (rather
+    than a fixed wait for new PulseAudio streams to settle: in their first seconds they once
+    delivered sound irregularly). The Stop is outside any run: no report counts it."""
+    with Client(address, timeout_s=30) as client:
+        def confirmed() -> bool:
+            try:
+                client.stop().result()
+                return True
+            except TeleopError:
+                return False
+
+        return wait_until(confirmed, timeout_s, poll_s=0.1)
 
 
 class LiveSystem:
@@ -45,18 +74,24 @@ class LiveSystem:
         self.folder = folder
         self.processes: list[subprocess.Popen] = []
         db = os.environ.get("DTMF_DB_URL", "none")
-        self.start("agent", [BIN / "dtmf-agent", "--audio", "default", "--ack-out", "default", "--cmd-vel", "sim",
-                             "--db", db, "--spill-file", folder / "agent.spill"])
-        self.address = f"127.0.0.1:{free_port()}"
-        server = self.start("server", [BIN / "dtmf-server", "--address", "127.0.0.1", "--port",
-                                       self.address.split(":")[1], "--db", db, "--spill-file", folder / "server.spill"])
-        self.deaf_address = f"127.0.0.1:{free_port()}"
-        deaf = self.start("deaf", [BIN / "dtmf-server", "--address", "127.0.0.1", "--port",
-                                   self.deaf_address.split(":")[1], "--audio-out", f"wav:{folder / 'deaf.wav'}",
-                                   "--audio-in", "none", "--db", "none"])
-        wait_serving(self.address, server, folder / "server.log")
-        wait_serving(self.deaf_address, deaf, folder / "deaf.log")
-        time.sleep(3)  # new PulseAudio streams deliver their first seconds irregularly (tests/e2e)
+        try:
+            self.start("agent", [BIN / "dtmf-agent", "--audio", "default", "--ack-out", "default", "--cmd-vel", "sim",
+                                 "--db", db, "--spill-file", folder / "agent.spill"])
+            self.address = f"127.0.0.1:{free_port()}"
+            server = self.start("server", [BIN / "dtmf-server", "--address", "127.0.0.1", "--port",
+                                           self.address.split(":")[1], "--db", db, "--spill-file",
+                                           folder / "server.spill"])
+            self.deaf_address = f"127.0.0.1:{free_port()}"
+            deaf = self.start("deaf", [BIN / "dtmf-server", "--address", "127.0.0.1", "--port",
+                                       self.deaf_address.split(":")[1], "--audio-out", f"wav:{folder / 'deaf.wav'}",
+                                       "--audio-in", "none", "--db", "none"])
+            wait_serving(self.address, server, folder / "server.log")
+            wait_serving(self.deaf_address, deaf, folder / "deaf.log")
+            if not wait_robot_answers(self.address):
+                pytest.fail(f"the robot never confirmed a Stop: {(folder / 'agent.log').read_text()}")
+        except BaseException:  # pytest.fail's too: no process outlives a system that did not start
+            self.stop()
+            raise
 
     def start(self, name: str, command: list) -> subprocess.Popen:
         log = open(self.folder / f"{name}.log", "w")

@@ -1,6 +1,10 @@
 """Helpers of the Teleop tests: a stand-in TeleopService in Python that keeps dtmf-server's
 Teleop rules without sound (real gRPC, so the client's bidirectional stream is exercised
-without the C++ server), and a pseudo-terminal to type keys into the keyboard example."""
+without the C++ server), and a pseudo-terminal to type keys into the keyboard example.
+
+The stand-in answers with dtmf-server's status codes, not its words: its messages say they
+come from the stand-in, and tests of it assert on codes. The real server's wording is tested
+against the real server (tests/server/server_teleop_test.cpp; live, test_client.py)."""
 
 from __future__ import annotations
 
@@ -23,7 +27,7 @@ import pytest
 from dtmf_teleop._stubs.dtmf.v1 import teleop_pb2 as pb
 from dtmf_teleop._stubs.dtmf.v1 import teleop_pb2_grpc
 
-from conftest import EXAMPLES
+from conftest import EXAMPLES, wait_until
 
 
 class StandInTeleop(teleop_pb2_grpc.TeleopServiceServicer):
@@ -43,12 +47,11 @@ class StandInTeleop(teleop_pb2_grpc.TeleopServiceServicer):
         if first is None:
             return
         if first.options.profile != "fast":
-            context.abort(grpc.StatusCode.INVALID_ARGUMENT,
-                          f"profile {first.options.profile or 'seed'}: VELOCITY needs the fast profile")
+            context.abort(grpc.StatusCode.INVALID_ARGUMENT, "stand-in: profile fast only")
         halted = threading.Event()
         with self.lock:
             if self.driving is not None:
-                context.abort(grpc.StatusCode.FAILED_PRECONDITION, "another Teleop stream drives the robot")
+                context.abort(grpc.StatusCode.FAILED_PRECONDITION, "stand-in: a stream drives already")
             self.driving = halted
         targets: queue.Queue = queue.Queue()
         threading.Thread(target=self._read, args=(first, request_iterator, targets), daemon=True).start()
@@ -56,7 +59,7 @@ class StandInTeleop(teleop_pb2_grpc.TeleopServiceServicer):
             sent = None
             while True:
                 if halted.is_set():
-                    context.abort(grpc.StatusCode.ABORTED, "a Stop call overtook this Teleop stream")
+                    context.abort(grpc.StatusCode.ABORTED, "stand-in: a Stop overtook the stream")
                 try:
                     request = targets.get(timeout=0.02)
                 except queue.Empty:
@@ -141,12 +144,13 @@ class KeyboardInTerminal:
         """Types keys, then waits for a line matching then_shown that came after them."""
         since = len(self.screen)
         os.write(self.terminal, keys)
-        deadline = time.monotonic() + within_s
-        while time.monotonic() < deadline and self.process.poll() is None:
-            if re.search(then_shown, self.screen[since:].decode(errors="replace")):
-                return
-            time.sleep(0.05)
-        pytest.fail(f"{then_shown!r} never shown after {keys!r}:\n{self.text}")
+
+        def shown() -> bool:
+            return re.search(then_shown, self.screen[since:].decode(errors="replace")) is not None
+
+        wait_until(lambda: shown() or self.process.poll() is not None, within_s, poll_s=0.05)
+        if not shown():
+            pytest.fail(f"{then_shown!r} never shown after {keys!r}:\n{self.text}")
 
     def quit(self, key: bytes = b"q") -> int:
         os.write(self.terminal, key)

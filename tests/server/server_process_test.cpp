@@ -24,6 +24,7 @@
 #include "signal/tone_listener.h"
 #include "support/free_port.h"
 #include "support/run_command.h"
+#include "support/wait_for.h"
 
 using namespace dtmf;
 namespace fs = std::filesystem;
@@ -55,8 +56,8 @@ class ServerProcess : public ::testing::Test {
   // Sends SIGTERM and waits for the process to go; its log.
   std::string terminate() {
     ::kill(pid_, SIGTERM);
-    for (int i = 0; i < 100 && ::kill(pid_, 0) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    EXPECT_NE(::kill(pid_, 0), 0) << "still running 10 s after SIGTERM";
+    EXPECT_TRUE(test_support::wait_until([this] { return ::kill(pid_, 0) != 0; }, std::chrono::seconds(10)))
+        << "still running 10 s after SIGTERM";
     pid_ = -1;
     return test_support::run_command("cat " + path("server.log")).out;
   }

@@ -7,6 +7,7 @@
 
 #include "live_system.h"
 #include "security/link_key.h"
+#include "support/wait_for.h"
 #include "teleop_client.h"
 
 using namespace dtmf;
@@ -15,6 +16,7 @@ using test_support::LiveSystem;
 using test_support::LiveSystemOptions;
 using test_support::read_stream;
 using test_support::TeleopClient;
+using test_support::wait_until;
 
 namespace {
 
@@ -28,7 +30,7 @@ struct StopSeen {
 StopSeen stop_seen(LiveSystem& system) {
   StopSeen seen;
   for (const auto& s : system.velocities()) {
-    if (s.velocity.linear_mps != 0 || s.velocity.angular_rps != 0) seen.last_moving = s.at;
+    if (s.velocity.linear_mps != 0 || s.velocity.angular_radps != 0) seen.last_moving = s.at;
   }
   const auto all = system.velocities();
   seen.still_at_end = !all.empty() && all.back().velocity == agent::Velocity{};
@@ -37,6 +39,23 @@ StopSeen stop_seen(LiveSystem& system) {
 
 // The lease as a frame carries it: rounded down to a step of 0.125 s from 0.25 s.
 double carried_lease_s(double lease_s) { return 0.25 + std::floor((lease_s - 0.25) / 0.125 + 1e-9) * 0.125; }
+
+// Until the robot's cmd_vel is (linear, angular), within the payload's steps, for at most 2 s
+// (the ramp, 2.5 m/s² and 25 rad/s², takes a fraction of that).
+bool reaches(LiveSystem& system, double linear, double angular) {
+  return wait_until(
+      [&] {
+        const agent::Velocity v = system.last_velocity();
+        return std::abs(v.linear_mps - linear) < 0.0002 && std::abs(v.angular_radps - angular) < 0.012;
+      },
+      2s);
+}
+
+// Until the robot stands (its newest cmd_vel zero), for at most the lease and 2 s more.
+bool stands_within(LiveSystem& system, double lease_s) {
+  return wait_until([&] { return system.last_velocity() == agent::Velocity{}; },
+                    std::chrono::milliseconds(static_cast<int>(lease_s * 1000)) + 2s);
+}
 
 }  // namespace
 
@@ -51,15 +70,13 @@ TEST(ServerTeleop, DrivesAnArcThenReversesWithStatusAndEveryFrameStored) {
   EXPECT_DOUBLE_EQ(arc->target_linear_mps(), 0.1);
   EXPECT_NEAR(arc->lease_s(), carried_lease_s(1.0), 1e-9);
   EXPECT_EQ(arc->progress().profile(), "fast");
-  std::this_thread::sleep_for(200ms);  // the ramp (2.5 m/s², 25 rad/s²) is done long before
-  EXPECT_NEAR(system.last_velocity().linear_mps, 0.1, 0.0002);
-  EXPECT_NEAR(system.last_velocity().angular_rps, 0.5, 0.012);
+  EXPECT_TRUE(reaches(system, 0.1, 0.5)) << "cmd_vel " << system.last_velocity().linear_mps << " m/s "
+                                         << system.last_velocity().angular_radps << " rad/s";
 
   teleop.target(-0.05, 0);
   ASSERT_TRUE(teleop.confirmed(-0.05, 0, 3s)) << "no confirmed reverse";
-  std::this_thread::sleep_for(200ms);
-  EXPECT_NEAR(system.last_velocity().linear_mps, -0.05, 0.0002);
-  // Held by renewals for longer than one lease.
+  EXPECT_TRUE(reaches(system, -0.05, 0)) << "cmd_vel " << system.last_velocity().linear_mps << " m/s";
+  // Kept: held for longer than one lease, which only renewals can do.
   std::this_thread::sleep_for(1500ms);
   EXPECT_NEAR(system.last_velocity().linear_mps, -0.05, 0.0002) << "the lease was renewed";
   const auto status = teleop.responses().back();
@@ -69,7 +86,7 @@ TEST(ServerTeleop, DrivesAnArcThenReversesWithStatusAndEveryFrameStored) {
   const auto closed_at = Clock::now();
   const grpc::Status closed = teleop.close();
   EXPECT_TRUE(closed.ok()) << closed.error_message();
-  std::this_thread::sleep_for(std::chrono::duration<double>(carried_lease_s(1.0) + 0.5));
+  ASSERT_TRUE(stands_within(system, carried_lease_s(1.0))) << "the robot never stopped";
   const StopSeen seen = stop_seen(system);
   ASSERT_TRUE(seen.last_moving);
   EXPECT_TRUE(seen.still_at_end);
@@ -108,7 +125,7 @@ TEST(ServerTeleop, OneStreamDrivesAtATimeAndStopOvertakesAndEndsIt) {
   EXPECT_EQ(ended.error_code(), grpc::StatusCode::ABORTED);
   EXPECT_NE(ended.error_message().find("a Stop call overtook this Teleop stream"), std::string::npos)
       << ended.error_message();
-  std::this_thread::sleep_for(1s);
+  std::this_thread::sleep_for(1s);  // kept: a second in which nothing may drive after the Stop
   EXPECT_EQ(system.last_velocity(), agent::Velocity{}) << "nothing drove after the Stop";
 
   // The slot is free again.
@@ -166,9 +183,8 @@ TEST(ServerTeleop, AFloodOfTargetsDrivesTheNewestAndTheStreamEndsCleanly) {
   ASSERT_GT(sent, 1000) << "the flood must outnumber the frames by far";
   teleop.target(0.08, -0.3);
   ASSERT_TRUE(teleop.confirmed(0.08, -0.3, 3s)) << "the newest target was never confirmed";
-  std::this_thread::sleep_for(200ms);
-  EXPECT_NEAR(system.last_velocity().linear_mps, 0.08, 0.0002);
-  EXPECT_NEAR(system.last_velocity().angular_rps, -0.3, 0.012);
+  EXPECT_TRUE(reaches(system, 0.08, -0.3))
+      << "cmd_vel " << system.last_velocity().linear_mps << " m/s " << system.last_velocity().angular_radps << " rad/s";
   EXPECT_TRUE(teleop.close().ok());
   // Frames went out one at a time, each for the newest target then: a few per 100 ms, not one per message.
   EXPECT_LT(teleop.responses().size(), static_cast<std::size_t>(sent) / 10);
@@ -212,11 +228,16 @@ TEST(ServerTeleop, ACancelledStreamStopsTheRobotWithinTheLease) {
   auto stub = system.client();
   TeleopClient teleop(*stub, 0.15, -1.0, 0.5);
   ASSERT_TRUE(teleop.confirmed(0.15, -1.0, 3s));
-  std::this_thread::sleep_for(700ms);  // renewals on air
+  const auto velocity_frames = [&] {
+    int n = 0;
+    for (const auto& c : system.commands_executed()) n += c.rfind("velocity ", 0) == 0;
+    return n;
+  };
+  ASSERT_TRUE(wait_until([&] { return velocity_frames() >= 2; }, 3s)) << "no renewal executed";
   const auto cancelled_at = Clock::now();
   teleop.cancel();
   EXPECT_EQ(teleop.finish().error_code(), grpc::StatusCode::CANCELLED);
-  std::this_thread::sleep_for(1500ms);
+  ASSERT_TRUE(stands_within(system, carried_lease_s(0.5))) << "the robot never stopped";
   const StopSeen seen = stop_seen(system);
   ASSERT_TRUE(seen.last_moving);
   EXPECT_TRUE(seen.still_at_end);

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "run_command.h"
+#include "wait_for.h"
 
 namespace dtmf::test_support {
 
@@ -32,9 +33,10 @@ inline bool process_running(int pid) {
 inline void stop_process(int pid, int signal = SIGTERM) {
   if (pid <= 0) return;
   ::kill(pid, signal);
-  for (int i = 0; i < 100 && process_running(pid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  if (process_running(pid)) ::kill(pid, SIGKILL);
-  while (process_running(pid)) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const auto gone = [pid] { return !process_running(pid); };
+  if (wait_until(gone, std::chrono::seconds(10))) return;
+  ::kill(pid, SIGKILL);
+  wait_until(gone, std::chrono::minutes(1));  // SIGKILL cannot be refused: the kernel takes it down
 }
 
 // Until `dtmfctl health` answers on port, for at most 15 s of wall time; false if it never
@@ -42,12 +44,24 @@ inline void stop_process(int pid, int signal = SIGTERM) {
 // start (say, on a database error) takes seconds, and a hundred of them outlasted ctest's
 // timeout, which then killed the test before it could stop the processes it had started.
 inline bool wait_healthy(const std::string& dtmfctl, int port) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(15);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (run_command(dtmfctl + " health --server 127.0.0.1:" + std::to_string(port)).exit_code == 0) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  return false;
+  return wait_until(
+      [&] { return run_command(dtmfctl + " health --server 127.0.0.1:" + std::to_string(port)).exit_code == 0; },
+      std::chrono::seconds(15), std::chrono::milliseconds(100));
+}
+
+// Until the robot confirms a Stop sent through the air (`dtmfctl stop` exits 0), for at most
+// `deadline`: the sender's chords reach the robot and its answer comes back. The readiness of
+// a live system, rather than a fixed wait for its new audio streams to settle (in their first
+// seconds they once delivered sound irregularly: chords sent at once were heard late, and
+// once twice). It puts a Stop on air, and its frames in the database.
+inline bool wait_robot_answers(const std::string& dtmfctl, int port,
+                               std::chrono::milliseconds deadline = std::chrono::seconds(60)) {
+  return wait_until(
+      [&] {
+        return run_command(dtmfctl + " --server 127.0.0.1:" + std::to_string(port) + " stop < /dev/null").exit_code ==
+               0;
+      },
+      deadline, std::chrono::milliseconds(100));
 }
 
 }  // namespace dtmf::test_support

@@ -48,8 +48,8 @@ class BufCurl : public ::testing::Test {
                                                     (kDir / "server.spill").string(),
                                                 (kDir / "server.log").string());
     ASSERT_TRUE(dtmf::test_support::wait_healthy(DTMFCTL_PATH, port_));
-    // New PulseAudio streams deliver their first seconds irregularly (see tests/e2e).
-    std::this_thread::sleep_for(std::chrono::seconds(3));
+    // Ready once the robot confirms a Stop through the air (outside any run: no report counts it).
+    ASSERT_TRUE(dtmf::test_support::wait_robot_answers(DTMFCTL_PATH, port_)) << "the robot never confirmed a Stop";
   }
   static void TearDownTestSuite() {
     for (int pid : {agent_, server_}) dtmf::test_support::stop_process(pid);
