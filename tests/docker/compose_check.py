@@ -6,20 +6,10 @@ HEALTHCHECK, COPY, RUN, ENTRYPOINT): there is no engine here to ask.
 """
 import os, re, sys, yaml
 
+from checks import check, read, report
+
 repo, resolved, packages = sys.argv[1:4]
 services = yaml.safe_load(open(resolved))["services"]
-errors = []
-checks = 0
-
-def check(ok, message):
-    global checks
-    checks += 1
-    if not ok:
-        errors.append(message)
-
-def read(path):
-    with open(path) as f:
-        return f.read()
 
 def parse_dockerfile(path):
     """Stages in order, each with its parent and the instructions this test looks at."""
@@ -239,7 +229,4 @@ ignore = os.path.join(repo, ".dockerignore")
 check(os.path.exists(ignore) and re.search(r"^/?build/?$", read(ignore), re.M),
       ".dockerignore is missing or does not exclude build/")
 
-for e in errors:
-    print(f"docker.compose: FAIL: {e}", file=sys.stderr)
-print(f"docker.compose: {checks - len(errors)} of {checks} checks passed")
-sys.exit(1 if errors else 0)
+sys.exit(report())
