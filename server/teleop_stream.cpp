@@ -18,8 +18,8 @@ constexpr double kClientGone_s = 10.0;
 constexpr auto kReaderGrace = std::chrono::milliseconds(1500);
 // How long the sender waits for a new target or a frame's next event before it looks at the
 // stream again (a cancelled call, a Stop): the session and the job wake it sooner.
-constexpr double kLook_s = 0.05;
 constexpr auto kLook = std::chrono::milliseconds(50);
+constexpr double kLook_s = std::chrono::duration<double>(kLook).count();
 
 }  // namespace
 

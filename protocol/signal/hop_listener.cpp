@@ -42,8 +42,8 @@ HopListener::HopListener(const LinkProfile& profile)
           static_cast<std::size_t>(hi_bin_ - lo_bin_), profile.hops().background_rise_db_per_s,
           static_cast<double>(profile.sample_rate_hz) / profile.hops().hop_samples)),
       reread_(profile.hops(), lo_bin_, hi_bin_ - lo_bin_, kMaxFrameChords) {
-  if (!std::holds_alternative<HopPlan>(profile.plan) || hops_.chords_per_frame != 2 ||
-      hops_.chord_samples() % hop_ != 0) {
+  // A profile of another format was refused already: profile.hops() names it.
+  if (hops_.chords_per_frame != 2 || hops_.chord_samples() % hop_ != 0) {
     throw std::invalid_argument("profile '" + profile.name +
                                 "' has no two-chord hopped plan with chords a whole number of hops long");
   }
