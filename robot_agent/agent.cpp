@@ -90,10 +90,8 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
   row.event = link::event_name(r.event);
   row.reason = link::reason_name(r.refusal);
   row.authenticated = r.authenticated;
-  if (r.seed_word) {
-    row.word = r.seed_word->word;
-    if (!r.seed_word->state_after.empty()) row.command_state = r.seed_word->state_after;
-  }
+  if (r.payload_word) row.word = *r.payload_word;
+  if (!r.command_state.empty()) row.command_state = r.command_state;
   HeardFrame heard{&profile, r, std::nullopt};
 
   const std::string bits = r.bits.bit_string(r.bit_count);
@@ -128,7 +126,7 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
     heard.executed = r.command;
   }
   spdlog::info("t={:.3f}s {} frame {}{}{}{}: ACK ({}), {}", r.heard_ms / 1000.0, profile.name, bits, number,
-               r.seed_word ? " word " + std::to_string(r.seed_word->word) : "", r.authenticated ? " authenticated" : "",
+               r.payload_word ? " word " + std::to_string(*r.payload_word) : "", r.authenticated ? " authenticated" : "",
                link::event_name(r.event), r.detail);
   store_.write(row);
   told(heard);

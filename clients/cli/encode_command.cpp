@@ -65,7 +65,7 @@ int run_encode(const EncodeOptions& o) {
   std::vector<std::string> commands_of;  // what each frame's command does, as the robot will execute it
   std::string what;
   if (o.word) {
-    const auto frame = link.plan_word(static_cast<std::uint32_t>(*o.word));
+    const auto frame = link.plan_payload_word(static_cast<std::uint32_t>(*o.word));
     if (!frame) {
       throw std::invalid_argument("--word: the " + link.name() +
                                   " profile sends whole commands, not words; "

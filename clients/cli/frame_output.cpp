@@ -56,13 +56,13 @@ nlohmann::json reception_json(const link::Reception& r) {
                       {"tones_hz", r.tones_hz},
                       {"what", r.detail},
                       {"authenticated", r.authenticated}};
-  if (r.seed_word) json["word"] = r.seed_word->word;
+  if (r.payload_word) json["word"] = *r.payload_word;
   if (r.sequence) json["sequence"] = *r.sequence;
   if (r.counter) json["counter"] = *r.counter;
   if (r.event != link::ReceptionEvent::Broken) {
     nlohmann::json event{{"kind", link::event_name(r.event)}};
     if (r.refusal != link::RefusalReason::None) event["reason"] = link::reason_name(r.refusal);
-    if (r.seed_word && !r.seed_word->state_after.empty()) event["state"] = r.seed_word->state_after;
+    if (!r.command_state.empty()) event["state"] = r.command_state;
     if (r.command) event["command"] = command::describe(*r.command);
     json["event"] = event;
   }
@@ -75,9 +75,9 @@ std::string reception_line(const link::Reception& r) {
   std::string line = time;
   if (r.sequence) line += "seq " + std::to_string(*r.sequence) + "  ";
   if (r.counter) line += "counter " + std::to_string(*r.counter) + "  ";
-  if (r.seed_word) {
+  if (r.payload_word) {
     char word[32];
-    std::snprintf(word, sizeof word, "word %4u (0x%03X)  ", r.seed_word->word, r.seed_word->word);
+    std::snprintf(word, sizeof word, "word %4u (0x%03X)  ", *r.payload_word, *r.payload_word);
     line += word;
   }
   line += r.bits.bit_string(r.bit_count) + "  CRC " + (r.intact ? "ok    " : "FAIL  ");

@@ -47,7 +47,7 @@ Link::Link(const LinkProfile& profile, LinkOptions options) : profile_(profile),
   if (options_.key && !options_.counters) options_.counters = std::make_shared<security::MemoryCounterStore>();
 }
 
-std::optional<TransmitFrame> Link::plan_word(std::uint32_t) const { return std::nullopt; }
+std::optional<TransmitFrame> Link::plan_payload_word(std::uint32_t) const { return std::nullopt; }
 
 void Link::confirmed(const TransmitFrame&) {}
 

@@ -102,9 +102,9 @@ class Link {
   // How many frames `command` takes (a synchronisation frame not counted); throws
   // command::ParameterError for a command the format cannot carry, as plan() would.
   virtual std::size_t frame_count(const command::Command& command) const = 0;
-  // One frame carrying a raw word, for formats whose frames are words (dtmfctl encode
-  // --word); nothing for formats that only send whole commands.
-  virtual std::optional<TransmitFrame> plan_word(std::uint32_t word) const;
+  // One frame carrying a raw payload word (Reception::payload_word), for formats whose
+  // payload is one (dtmfctl encode --word); nothing for formats that only send whole commands.
+  virtual std::optional<TransmitFrame> plan_payload_word(std::uint32_t word) const;
   // `command` as the robot will execute it: its parameters through the format's fields.
   virtual command::Command as_received(const command::Command& command) const = 0;
   // Payload bits a command's frames carry, the check and the MAC excluded (throughput).

@@ -37,13 +37,6 @@ std::string_view event_name(ReceptionEvent event);
 // "", "authentication", "payload": the receptions table's `reason`.
 std::string_view reason_name(RefusalReason reason);
 
-// What only the seed's word frames carry: the 12-bit word, and the robot's word state
-// machine after it (empty when the word was not given to it: a refused frame).
-struct SeedWordReading {
-  command::Word word = 0;
-  std::string state_after;
-};
-
 struct Reception {
   double start_ms = 0;          // when the frame began (fast: where its tones rose, a few ms; seed: a hop)
   double heard_ms = 0;          // when the verdict was reached: the robot's decision time
@@ -53,13 +46,18 @@ struct Reception {
   bool intact = false;      // passed the check (CRC)
   ReceptionEvent event = ReceptionEvent::Broken;
   RefusalReason refusal = RefusalReason::None;
-  bool authenticated = false;                // its MAC held under this robot's key
-  std::optional<std::uint8_t> sequence;      // numbered unauthenticated frames
-  std::optional<std::uint64_t> counter;      // authenticated frames: the counter completed
-  std::optional<SeedWordReading> seed_word;  // seed words only: the intact frame's word
-  std::optional<command::Command> command;   // the command to execute now
-  std::string detail;                        // for people: what it did, or why it was refused
-  std::vector<double> tones_hz;              // the tones that carry `bits`, in order
+  bool authenticated = false;            // its MAC held under this robot's key
+  std::optional<std::uint8_t> sequence;  // numbered unauthenticated frames
+  std::optional<std::uint64_t> counter;  // authenticated frames: the counter completed
+  // Where a format's payload is one number and its commands span several frames (word
+  // frames: the 12-bit word and the word state machine), the intact frame's payload and the
+  // receiver's command state after it (empty where the frame was not given to it: refused).
+  // Nothing in formats whose frames carry whole commands: `command` says it all.
+  std::optional<std::uint32_t> payload_word;
+  std::string command_state;
+  std::optional<command::Command> command;  // the command to execute now
+  std::string detail;                       // for people: what it did, or why it was refused
+  std::vector<double> tones_hz;             // the tones that carry `bits`, in order
 
   // Answered with ACK: intact and not refused.
   bool acknowledged() const { return intact && event != ReceptionEvent::Refused; }

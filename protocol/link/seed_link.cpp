@@ -61,7 +61,7 @@ class SeedReceiver final : public FrameReceiver {
       r.intact = f.crc_ok;
       const signal::Chord chord = signal::chord_for(profile_.words().tones, f.frame);
       r.tones_hz.assign(chord.begin(), chord.end());
-      if (f.crc_ok) r.seed_word = SeedWordReading{reliability::frame_word(f.frame), {}};
+      if (f.crc_ok) r.payload_word = reliability::frame_word(f.frame);
       if (f.crc_ok && refuse_) {
         r.event = ReceptionEvent::Refused;
         r.refusal = RefusalReason::Authentication;
@@ -70,7 +70,7 @@ class SeedReceiver final : public FrameReceiver {
             "them in)";
       } else if (f.event) {
         r.event = event_of(f.event->kind);
-        if (r.seed_word) r.seed_word->state_after = command::state_name(f.event->state_after);
+        r.command_state = command::state_name(f.event->state_after);
         r.command = f.event->command;
         r.detail = event_detail(*f.event);
       }
@@ -127,7 +127,7 @@ std::size_t SeedLink::frame_count(const command::Command& command) const {
   return plan_command(profile(), command).size();
 }
 
-std::optional<TransmitFrame> SeedLink::plan_word(std::uint32_t word) const {
+std::optional<TransmitFrame> SeedLink::plan_payload_word(std::uint32_t word) const {
   return transmit_frame(link::plan_word(profile(), static_cast<command::Word>(word)));
 }
 

@@ -199,14 +199,16 @@ TEST(Agent, HearsBothProfilesAnswersEachInItsOwnAndExecutesARetransmissionOnce) 
     EXPECT_EQ(heard[i].profile, &fast);
     EXPECT_TRUE(heard[i].reception.intact);
     EXPECT_EQ(heard[i].reception.bits, frame.bits);
-    EXPECT_FALSE(heard[i].reception.seed_word);
+    EXPECT_FALSE(heard[i].reception.payload_word);
+    EXPECT_EQ(heard[i].reception.command_state, "");
     EXPECT_EQ(replies.answers[i], named_ack) << "the ACK names the frame's sequence number";
   }
   EXPECT_TRUE(heard[0].executed.has_value());
   EXPECT_FALSE(heard[1].executed.has_value()) << "a retransmission is answered, not executed again";
   for (int i : {2, 3, 4}) {
     EXPECT_EQ(heard[i].profile, &seed);
-    EXPECT_TRUE(heard[i].reception.seed_word.has_value());
+    EXPECT_TRUE(heard[i].reception.payload_word.has_value());
+    EXPECT_NE(heard[i].reception.command_state, "");
     EXPECT_EQ(replies.answers[i], answer(seed, true));
   }
   EXPECT_TRUE(heard[4].executed.has_value());

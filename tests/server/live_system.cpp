@@ -91,7 +91,7 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
     std::lock_guard lock(heard_.mutex);
     ++heard_.intact_frames;
     if (r.event == link::ReceptionEvent::Refused) ++heard_.refused_frames;
-    if (r.seed_word) heard_.words.push_back(r.seed_word->word);
+    if (r.payload_word) heard_.words.push_back(*r.payload_word);
     if (frame.executed) heard_.commands.push_back(command::describe(*frame.executed));
   };
   agent_ = std::make_unique<agent::Agent>(
