@@ -53,6 +53,12 @@ void Agent::execute(const command::Command& command, double start_ms, double hea
   row.angular_radps = provider_.target().angular_radps;
 }
 
+std::size_t Agent::echoes_ignored() const {
+  std::size_t echoes = 0;
+  for (const auto& [link, receiver] : receivers_) echoes += receiver->echoes_ignored();
+  return echoes;
+}
+
 void Agent::told(const HeardFrame& frame) const {
   if (options_.on_frame_heard) options_.on_frame_heard(frame);
 }
@@ -126,8 +132,8 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
     heard.executed = r.command;
   }
   spdlog::info("t={:.3f}s {} frame {}{}{}{}: ACK ({}), {}", r.heard_ms / 1000.0, profile.name, bits, number,
-               r.payload_word ? " word " + std::to_string(*r.payload_word) : "", r.authenticated ? " authenticated" : "",
-               link::event_name(r.event), r.detail);
+               r.payload_word ? " word " + std::to_string(*r.payload_word) : "",
+               r.authenticated ? " authenticated" : "", link::event_name(r.event), r.detail);
   store_.write(row);
   told(heard);
 }

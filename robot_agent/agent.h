@@ -107,6 +107,8 @@ class Agent {
   int block_samples() const { return block_samples_; }
   const VelocityProvider& provider() const { return provider_; }
   std::size_t frames_heard() const { return frames_heard_; }
+  // Echoes of frames taken lately that the receivers ignored (reliability/echo_memory.h).
+  std::size_t echoes_ignored() const;
 
  private:
   void on_reception(const link::Link& link, const link::Reception& reception);

@@ -235,7 +235,8 @@ int run(const Flags& f) {
   else
     agent.stop_now("audio input failed");
   replies->finish(agent.audio_ms());
-  spdlog::info("{} frames heard in {:.1f} s of audio", agent.frames_heard(), agent.audio_ms() / 1000.0);
+  spdlog::info("{} frames heard in {:.1f} s of audio ({} echoes of frames already taken ignored)", agent.frames_heard(),
+               agent.audio_ms() / 1000.0, agent.echoes_ignored());
   return exit_code;
 }
 

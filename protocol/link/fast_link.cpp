@@ -48,6 +48,7 @@ class FastReceiver final : public FrameReceiver {
     }
     return receptions_;
   }
+  std::size_t echoes_ignored() const override { return admission_.echoes_ignored(); }
 
  private:
   FrameAdmission admission_;
@@ -133,10 +134,9 @@ int FastLink::payload_bits(const command::Command&) const { return command::kPay
 TransmitFrame FastLink::random_frame(std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   const std::uint32_t payload = command::encode_payload(command::random_command(rng));
-  if (!keyed()) {
-    next_sequence_ = static_cast<std::uint8_t>(rng());
-    return plain_frame(payload);
-  }
+  // Numbered on, as a sender numbers its frames: random numbers would repeat one of the last
+  // 15 frames now and then, which the robot takes for an echo (reliability/echo_memory.h).
+  if (!keyed()) return plain_frame(payload);
   return sealed_frame(payload, false, options_.counters->next_counter());
 }
 

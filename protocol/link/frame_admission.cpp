@@ -41,7 +41,11 @@ security::FrameMacInput sealed_mac_input(const reliability::FrameBits& bits, std
 }
 
 FrameAdmission::FrameAdmission(const LinkProfile& profile, const LinkOptions& options)
-    : profile_(profile), options_(options) {}
+    : profile_(profile),
+      options_(options),
+      // Within this, the sender cannot have sent 15 new frames: no sequence number comes round.
+      echoes_(static_cast<double>(reliability::EchoMemory::kFramesRemembered) * 1000.0 *
+              profile.hops().frame_samples() / profile.sample_rate_hz) {}
 
 std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
   Reception r;
@@ -60,6 +64,10 @@ std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
   const std::uint8_t address =
       sealed ? reliability::unpack_sealed(heard.bits)->address : reliability::unpack(heard.bits.low64())->address;
   if (address != options_.address) return std::nullopt;  // another robot's frame: not ours to answer
+  if (echoes_.is_echo(r.bits, r.heard_ms)) {             // the room's, not the sender's: not ours to answer either
+    ++echoes_ignored_;
+    return std::nullopt;
+  }
   if (sealed)
     admit_sealed(r);
   else
@@ -128,6 +136,7 @@ void FrameAdmission::admit_sealed(Reception& r) {
   counters.accept(counter);  // kept before the frame acts or is answered
   r.authenticated = true;
   if (frame.form == reliability::SealedForm::Sync) {
+    echoes_.remember(r.bits, r.heard_ms);
     r.event = ReceptionEvent::Synchronised;
     r.detail = "counter synchronised at " + std::to_string(counter);
     return;
@@ -141,6 +150,7 @@ void FrameAdmission::admit_sealed(Reception& r) {
 }
 
 void FrameAdmission::take_command(Reception& r, const command::Command& command) {
+  echoes_.remember(r.bits, r.heard_ms);
   r.command = command;
   r.event = ReceptionEvent::Command;
   r.detail = command::describe(*r.command);

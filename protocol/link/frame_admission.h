@@ -9,7 +9,8 @@
 //       MAC checked over address, form, counter and payload; a counter not newer than the
 //       last accepted is the last frame again (answered, not executed) or refused; a new one
 //       is kept (security/counter_store.h) before the frame acts
-// A frame for another robot is nobody's business here: no reception at all. Pure logic, but
+// A frame for another robot is nobody's business here: no reception at all; nor is an echo of
+// a frame taken lately, other than the newest (reliability/echo_memory.h). Pure logic, but
 // for the counter store it is given.
 #pragma once
 
@@ -17,6 +18,7 @@
 
 #include "link/hop_frame_path.h"
 #include "link/link.h"
+#include "reliability/echo_memory.h"
 #include "reliability/sequence_filter.h"
 #include "security/frame_mac.h"
 
@@ -25,8 +27,10 @@ namespace dtmf::link {
 class FrameAdmission {
  public:
   FrameAdmission(const LinkProfile& profile, const LinkOptions& options);
-  // The reception of `heard`, or nothing for a frame addressed to another robot.
+  // The reception of `heard`, or nothing for a frame addressed to another robot or an echo.
   std::optional<Reception> admit(const HeardHopFrame& heard);
+  // Echoes of frames taken lately, ignored so far.
+  std::size_t echoes_ignored() const { return echoes_ignored_; }
   // Whether the 80-bit frame `bits` (its CRC holds) is authentic: its MAC holds for the
   // counter its low bits complete to. Changes nothing; false without a key.
   bool authentic(const reliability::FrameBits& bits) const;
@@ -39,6 +43,8 @@ class FrameAdmission {
   const LinkProfile& profile_;
   LinkOptions options_;
   reliability::SequenceFilter sequence_;
+  reliability::EchoMemory echoes_;
+  std::size_t echoes_ignored_ = 0;
 };
 
 // The MAC input of an 80-bit frame whose counter the robot completed as `counter`.

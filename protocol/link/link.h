@@ -55,6 +55,9 @@ class FrameReceiver {
  public:
   virtual ~FrameReceiver() = default;
   virtual std::span<const Reception> feed(std::span<const float> samples) = 0;
+  // Frames read again out of the room's echo of a frame taken lately, and ignored
+  // (reliability/echo_memory.h); formats that keep no such memory say 0.
+  virtual std::size_t echoes_ignored() const { return 0; }
 };
 
 // The reception of `frame` taken intact and executed, as the robot's receiver would give it:
@@ -110,7 +113,8 @@ class Link {
   // Payload bits a command's frames carry, the check and the MAC excluded (throughput).
   virtual int payload_bits(const command::Command& command) const = 0;
   // A frame of random content that a sender could send (seeded), for benchmarks: every
-  // value its fields can take, not just the commands of a test sequence. Numbered like plan().
+  // value its fields can take, not just the commands of a test sequence. Numbered like plan():
+  // the next sequence number or counter, so that no frame repeats one of the last 15.
   virtual TransmitFrame random_frame(std::uint64_t seed) = 0;
   // Offline (dtmfctl encode --wav): where frame `index` of a recording starts, and the
   // frames laid out so, each followed by the silence a sender leaves for its answer.

@@ -242,8 +242,13 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
   // acknowledged, in the window [from, to]. The fast profile's robot answers a repeat
   // without executing it, so under fast nothing may be executed twice. Prints every repeat,
   // and returns how many the run had (the report's `duplicates`).
-  long expect_only_repeats_the_protocol_allows(const std::string& run_id, std::chrono::system_clock::time_point from,
-                                               std::chrono::system_clock::time_point to) {
+  struct HeardAgain {
+    long frames = 0;  // receptions beyond the first of a transmission
+    long echoes = 0;  // of them: the room's echo of the newest frame (reliability/echo_memory.h)
+  };
+  HeardAgain expect_only_repeats_the_protocol_allows(const std::string& run_id,
+                                                     std::chrono::system_clock::time_point from,
+                                                     std::chrono::system_clock::time_point to) {
     pqxx::connection c(db_.url());
     pqxx::work tx(c);
     const auto epoch_s = [](std::chrono::system_clock::time_point t) {
@@ -254,6 +259,7 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
     const auto repeats = tx.exec_params(
         "SELECT m.command_id::text, m.position, count(*) AS heard, "
         "  count(*) FILTER (WHERE r.event IS DISTINCT FROM 'repeat') AS executed, "
+        "  count(DISTINCT a.id) AS attempts, bool_and(a.answer IS NOT DISTINCT FROM 'ack') AS answered, "
         "  count(*) FILTER (WHERE r.reply = 'ack' AND a.answer IS DISTINCT FROM 'ack' AND m.heard_at < "
         "    (SELECT max(m2.heard_at) FROM run_matches($1::uuid) m2 WHERE m2.command_id = m.command_id "
         "     AND m2.position = m.position)) AS lost_acks, "
@@ -266,18 +272,27 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
         "m.attempt_id "
         "GROUP BY m.command_id, m.position HAVING count(*) > 1",
         run_id);
-    long heard_again = 0;
+    HeardAgain again;
     for (const auto& t : repeats) {
       const long heard = t["heard"].as<long>();
-      heard_again += heard - 1;
+      again.frames += heard - 1;
       std::printf("frame %s of command %s heard %ld times: %s\n", t["position"].c_str(), t["command_id"].c_str(), heard,
                   t["story"].c_str());
+      // Sent once, its ACK heard, and heard again, answered and not executed: the room's echo
+      // of the robot's newest frame, which it cannot tell from a retransmission. (An older
+      // frame's echo it ignores: no reception at all.) On this air, now and then at a run's end.
+      if (profile() == "fast" && t["attempts"].as<long>() == 1 && t["answered"].as<bool>() && heard == 2 &&
+          t["executed"].as<long>() == 1) {
+        ++again.echoes;
+        continue;
+      }
       EXPECT_EQ(t["lost_acks"].as<long>(), heard - 1) << "every repeat follows an ACK the sender did not hear";
       EXPECT_EQ(t["executed"].as<long>(), profile() == "fast" ? 1 : heard) << "fast executes a frame once";
       EXPECT_GE(t["first_s"].as<double>(), std::stod(epoch_s(from)));
       EXPECT_LE(t["last_s"].as<double>(), std::stod(epoch_s(to)));
     }
-    return heard_again;
+    EXPECT_LE(again.echoes, 2) << "echoes of the newest frame: the room gives one at a run's end, if any";
+    return again;
   }
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
@@ -337,11 +352,12 @@ TEST_P(SystemE2E, SeedSequenceIsAllConfirmedAndLogsEveryRowThroughADatabaseOutag
   EXPECT_EQ(r["sender_confirmed"].as<int>(), frames());
   EXPECT_EQ(r["dropped"].as<int>(), 0);
   // The robot hears such a retransmission again; the seed executes it again (seed §11.3).
-  const long heard_again = expect_only_repeats_the_protocol_allows(run.run_id, started_wall, ended_wall);
-  EXPECT_LE(heard_again, retransmissions);
-  EXPECT_EQ(r["duplicates"].as<long>(), heard_again);
-  std::printf("frames heard twice (seed §11.3, a retransmission after a lost ACK): %ld\n", heard_again);
-  expect_no_wrong_frame(run.run_id, r, receptions, heard_again);
+  const HeardAgain again = expect_only_repeats_the_protocol_allows(run.run_id, started_wall, ended_wall);
+  EXPECT_LE(again.frames - again.echoes, retransmissions);
+  EXPECT_EQ(r["duplicates"].as<long>(), again.frames);
+  std::printf("frames heard twice (seed §11.3, a retransmission after a lost ACK): %ld, the room's echo: %ld\n",
+              again.frames - again.echoes, again.echoes);
+  expect_no_wrong_frame(run.run_id, r, receptions, again.frames);
 
   // cmd_vel: every motion the sequence commands, stamped, and the robot stopped at the end.
   EXPECT_TRUE(wait_until([this] { return standing(); }, 2s)) << "the robot stopped at the end";
@@ -389,9 +405,10 @@ TEST_P(SystemE2E, AnAgentKilledMidRunRestartsStoppedAndLosesNoRows) {
   // A frame heard twice only where the protocol allows it: around the restart (its first
   // answers may be lost while the agent's audio starts), never in the steady run before the
   // kill or 10 s after the restart.
-  const long heard_again = expect_only_repeats_the_protocol_allows(run.run_id, killed_wall - 2s, restarted_wall + 10s);
-  EXPECT_EQ(r["duplicates"].as<long>(), heard_again);
-  std::printf("frames heard twice (seed §11.3, a retransmission after a lost ACK): %ld\n", heard_again);
+  const HeardAgain again = expect_only_repeats_the_protocol_allows(run.run_id, killed_wall - 2s, restarted_wall + 10s);
+  EXPECT_EQ(r["duplicates"].as<long>(), again.frames);
+  std::printf("frames heard twice (seed §11.3, a retransmission after a lost ACK): %ld, the room's echo: %ld\n",
+              again.frames - again.echoes, again.echoes);
   // Intact receptions only: an agent that starts listening in the middle of a chord may hear
   // the rest of it broken, and NACKs it, which is the check doing its job.
   const auto epoch_s = [](std::chrono::system_clock::time_point t) {
@@ -403,7 +420,7 @@ TEST_P(SystemE2E, AnAgentKilledMidRunRestartsStoppedAndLosesNoRows) {
                             epoch_s(killed_wall - 2s) + ") AND to_timestamp(" + epoch_s(restarted_wall + 10s) + ")"),
             0)
       << "a broken frame heard in the steady run";
-  expect_no_wrong_frame(run.run_id, r, db_.query<long>("SELECT count(*) FROM receptions WHERE crc_ok"), heard_again);
+  expect_no_wrong_frame(run.run_id, r, db_.query<long>("SELECT count(*) FROM receptions WHERE crc_ok"), again.frames);
   // No lost rows: every chord the sender heard answered has the robot's reception.
   EXPECT_GE(wait_for_receptions(matched), matched);
   {
