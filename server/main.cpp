@@ -99,6 +99,47 @@ const dtmf::LinkProfile& default_profile(const Flags& f, const std::vector<std::
   return chosen;
 }
 
+// The loudspeaker and the microphone. A file stands in for the loudspeaker in real time: gaps
+// and retries keep their length. Opened real-time, so that the sound library's threads are too.
+std::pair<std::unique_ptr<dtmf::physical::AudioSink>, std::unique_ptr<dtmf::physical::AudioSource>> open_audio(
+    const Flags& f, const dtmf::LinkProfile& profile) {
+  using namespace dtmf;
+  const physical::AudioPriorityScope audio_priority;
+  std::unique_ptr<physical::AudioSink> speaker =
+      physical::is_file_spec(f.audio_out)
+          ? std::make_unique<physical::RealTimeWavSink>(f.audio_out.substr(4), profile.sample_rate_hz)
+          : physical::open_audio_sink(f.audio_out, profile.sample_rate_hz, f.program.devices);
+  std::unique_ptr<physical::AudioSource> microphone =
+      f.audio_in == "none" ? std::make_unique<Silence>(profile.sample_rate_hz)
+                           : physical::open_audio_source(f.audio_in, profile.sample_rate_hz, 0, f.program.devices);
+  spdlog::info("playing to {}, listening to {}", speaker->describe(), microphone->describe());
+  return {std::move(speaker), std::move(microphone)};
+}
+
+// The gRPC server for `service`, with health, reflection and the UTF-8 check, serving; `port`
+// the port it listens on.
+std::unique_ptr<grpc::Server> start_serving(const Flags& f, const std::shared_ptr<grpc::ServerCredentials>& credentials,
+                                            grpc::Service& service, int& port) {
+  // gRPC's built-in health service carries no protobuf descriptors; touching one links
+  // grpc.health.v1 into the generated pool, so that reflection can describe and call it.
+  (void)grpc::health::v1::HealthCheckRequest::descriptor();
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort(f.address + ":" + std::to_string(f.port), credentials, &port);
+  builder.RegisterService(&service);
+  std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
+  interceptors.push_back(dtmf::server::utf8_refusal_interceptor());
+  builder.experimental().SetInterceptorCreators(std::move(interceptors));
+  std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  if (!server || port == 0) {
+    throw std::runtime_error("cannot listen on " + f.address + ":" + std::to_string(f.port) +
+                             " (is another server using the port? choose one with --port)");
+  }
+  server->GetHealthCheckService()->SetServingStatus(true);
+  return server;
+}
+
 int run(const Flags& f) {
   using namespace dtmf;
   const server::ServerSecurity security = read_security(f);
@@ -126,20 +167,7 @@ int run(const Flags& f) {
     spdlog::info("database {}: schema version {}", store::describe_database(db),
                  store::migrate(*connection).version_after);
   }
-  // A file stands in for the loudspeaker in real time: gaps and retries keep their length.
-  // Opened real-time, so that the sound library's threads are too.
-  std::unique_ptr<physical::AudioSink> speaker;
-  std::unique_ptr<physical::AudioSource> microphone;
-  {
-    const physical::AudioPriorityScope audio_priority;
-    speaker = physical::is_file_spec(f.audio_out)
-                  ? std::make_unique<physical::RealTimeWavSink>(f.audio_out.substr(4), profile.sample_rate_hz)
-                  : physical::open_audio_sink(f.audio_out, profile.sample_rate_hz, f.program.devices);
-    microphone = f.audio_in == "none"
-                     ? std::make_unique<Silence>(profile.sample_rate_hz)
-                     : physical::open_audio_source(f.audio_in, profile.sample_rate_hz, 0, f.program.devices);
-  }
-  spdlog::info("playing to {}, listening to {}", speaker->describe(), microphone->describe());
+  auto [speaker, microphone] = open_audio(f, profile);
 
   store::StoreOptions store_options;
   store_options.database = db;
@@ -162,24 +190,8 @@ int run(const Flags& f) {
   options.robot = command::robot_model_by_name(f.robot);
   server::TeleopService service(transmitter, store, options);
 
-  // gRPC's built-in health service carries no protobuf descriptors; touching one links
-  // grpc.health.v1 into the generated pool, so that reflection can describe and call it.
-  (void)grpc::health::v1::HealthCheckRequest::descriptor();
-  grpc::EnableDefaultHealthCheckService(true);
-  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
-  grpc::ServerBuilder builder;
   int port = 0;
-  builder.AddListeningPort(f.address + ":" + std::to_string(f.port), credentials, &port);
-  builder.RegisterService(&service);
-  std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
-  interceptors.push_back(server::utf8_refusal_interceptor());
-  builder.experimental().SetInterceptorCreators(std::move(interceptors));
-  std::unique_ptr<grpc::Server> grpc_server = builder.BuildAndStart();
-  if (!grpc_server || port == 0) {
-    throw std::runtime_error("cannot listen on " + f.address + ":" + std::to_string(f.port) +
-                             " (is another server using the port? choose one with --port)");
-  }
-  grpc_server->GetHealthCheckService()->SetServingStatus(true);
+  const std::unique_ptr<grpc::Server> grpc_server = start_serving(f, credentials, service, port);
   spdlog::info("serving dtmf.v1.TeleopService on {}:{} ({}{}), default profile {}", f.address, port,
                f.tls_cert.empty() ? "plaintext" : "TLS", security.auth_token.empty() ? "" : ", bearer token",
                profile.name);

@@ -106,6 +106,12 @@ class Transmitter {
   void run();
   void listen();
   void send(Job& job);
+  // One frame of `job` through the retry controller, `attempt` its state (seed Fig. 8).
+  struct FrameAttempt;
+  // Each false when the command ended there (cancelled, the loudspeaker failed, no decision).
+  bool transmit(Job& job, FrameAttempt& attempt);
+  void await_answer(Job& job, FrameAttempt& attempt);
+  bool decide(Job& job, FrameAttempt& attempt);
   // To the observer, then to the job's caller.
   void emit(Job& job, ProgressEvent event);
   // Emits the command's last event and ends it.
