@@ -78,6 +78,42 @@ LinkProfile make_seed_profile() {
   return p;
 }
 
+// The fast profile's answers (docs/protocol.md, "Hearing a frame, answering it").
+void plan_fast_replies(HopPlan& h) {
+  // Replies: 32 ms windows (31.25 Hz bins), a hop of 4.25 ms, 1 ms fades: a reply chord is
+  // 1536 + 2 * 48 + 204 = 1836 samples = 9 hops (38.25 ms), a reply two chords (76.5 ms). In a
+  // room a tone of 20 ms smeared into the bins beside it (its early reflections arrive within
+  // the window) and was misread, measured through the three rooms, about 10 % of the time; a
+  // 32 ms window over a 38 ms chord reads it right.
+  h.reply_window_samples = 1536;
+  h.reply_hop_samples = 204;
+  h.reply_edge_samples = 48;
+  h.reply_tones_per_band = HopPlan::kReplyToneValues;
+  // Six bands of four tones four bins (125 Hz) apart, lane 0 from 531.25 Hz, lane 1 two bins
+  // (62.5 Hz) lower: no tone of a reply lies within three bins of another, whatever the room
+  // smears. Answers to consecutive frames alternate lanes, and a Hann window reads nothing of a
+  // steady tone two bins away (its zeros lie at whole bins from 2 on), so the last answer's
+  // reverberant tail, in a reverberant room as loud as the next answer's direct sound 200 ms
+  // later, no longer sits on that answer's bins (docs/protocol.md, "Answers in reverberant
+  // rooms"). Every tone lies on an odd bin, so none is 2000, 2500, 3000 or 3500 Hz (bins 64,
+  // 80, 96, 112: the seed profile's ACK and NACK tones) and no fast reply sounds like a seed
+  // answer. Two lanes two bins apart cannot both keep two bins from every seed tone; this
+  // placement leaves one tone of each lane a bin from a seed ACK tone (lane 0 bin 81, lane 1
+  // bin 79), so a seed ACK beside the sender costs an answer at most one tone, which a reading
+  // may lose (9 of 12 named, 11 of 12 tagged). The top tone, 3406.25 Hz, lies 16 bins of the
+  // robot's 25 Hz grid below its lowest band.
+  for (int b = 0; b < HopPlan::kReplyBands; ++b) {
+    for (int v = 0; v < HopPlan::kReplyToneValues; ++v)
+      h.reply_tone_bin[static_cast<std::size_t>(b)][static_cast<std::size_t>(v)] = 17 + 16 * b + 4 * v;
+  }
+  h.reply_lane_step_bins = -2;
+  h.reply_amplitude = 0.8 / HopPlan::kReplyBands;  // the tones of a chord sum to at most 0.8 full scale
+  h.reply_presence_db = 3;
+  h.reply_onset_db = 3;
+  h.reply_background_rise_db_per_s = 10;
+  h.reply_tones_needed = 9;  // of 12: named replies differ in at least 7 (reliability/reply_code.h)
+}
+
 // The fast profile, built for real rooms (docs/protocol.md §10 has the reasons and the
 // figures): a 40 ms rectangular window on a 25 Hz bin grid, sixteen 32-ary tones per frame
 // in two chords of eight on disjoint band sets, Reed-Solomon coded, and one FFT per hop.
@@ -133,38 +169,7 @@ LinkProfile make_fast_profile() {
   h.cluster_gap_hops = 5.5;
   h.nack_settle_hops = 13;
   h.repeat_guard_ms = 400;  // a retransmission comes no sooner than the 500 ms ACK timeout
-  // Replies: 32 ms windows (31.25 Hz bins), a hop of 4.25 ms, 1 ms fades: a reply chord is
-  // 1536 + 2 * 48 + 204 = 1836 samples = 9 hops (38.25 ms), a reply two chords (76.5 ms). In a
-  // room a tone of 20 ms smeared into the bins beside it (its early reflections arrive within
-  // the window) and was misread, measured through the three rooms, about 10 % of the time; a
-  // 32 ms window over a 38 ms chord reads it right.
-  h.reply_window_samples = 1536;
-  h.reply_hop_samples = 204;
-  h.reply_edge_samples = 48;
-  h.reply_tones_per_band = HopPlan::kReplyToneValues;
-  // Six bands of four tones four bins (125 Hz) apart, lane 0 from 531.25 Hz, lane 1 two bins
-  // (62.5 Hz) lower: no tone of a reply lies within three bins of another, whatever the room
-  // smears. Answers to consecutive frames alternate lanes, and a Hann window reads nothing of a
-  // steady tone two bins away (its zeros lie at whole bins from 2 on), so the last answer's
-  // reverberant tail, in a reverberant room as loud as the next answer's direct sound 200 ms
-  // later, no longer sits on that answer's bins (docs/protocol.md, "Answers in reverberant
-  // rooms"). Every tone lies on an odd bin, so none is 2000, 2500, 3000 or 3500 Hz (bins 64,
-  // 80, 96, 112: the seed profile's ACK and NACK tones) and no fast reply sounds like a seed
-  // answer. Two lanes two bins apart cannot both keep two bins from every seed tone; this
-  // placement leaves one tone of each lane a bin from a seed ACK tone (lane 0 bin 81, lane 1
-  // bin 79), so a seed ACK beside the sender costs an answer at most one tone, which a reading
-  // may lose (9 of 12 named, 11 of 12 tagged). The top tone, 3406.25 Hz, lies 16 bins of the
-  // robot's 25 Hz grid below its lowest band.
-  for (int b = 0; b < HopPlan::kReplyBands; ++b) {
-    for (int v = 0; v < HopPlan::kReplyToneValues; ++v)
-      h.reply_tone_bin[static_cast<std::size_t>(b)][static_cast<std::size_t>(v)] = 17 + 16 * b + 4 * v;
-  }
-  h.reply_lane_step_bins = -2;
-  h.reply_amplitude = 0.8 / HopPlan::kReplyBands;  // the tones of a chord sum to at most 0.8 full scale
-  h.reply_presence_db = 3;
-  h.reply_onset_db = 3;
-  h.reply_background_rise_db_per_s = 10;
-  h.reply_tones_needed = 9;  // of 12: named replies differ in at least 7 (reliability/reply_code.h)
+  plan_fast_replies(h);
 
   // The shared fields, in the units the rest of the code base reads them in.
   const double ms_per_sample = 1000.0 / p.sample_rate_hz;

@@ -103,9 +103,11 @@ std::shared_ptr<const LinkKey> LinkKey::from_bytes(std::span<const unsigned char
   return key;
 }
 
-std::shared_ptr<const LinkKey> LinkKey::load(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  // Opened first and checked on the open file, so that what is checked is what is read.
+namespace {
+
+// Reads the key file `name` into `text` (kMaxFileBytes + 1 bytes); its size. Opened first and
+// checked on the open file, so that what is checked is what is read.
+std::size_t read_key_file(const std::string& name, const GuardedBuffer& text) {
   const int fd = ::open(name.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
   if (fd < 0) {
     throw KeyFileError("cannot read key file " + name + ": " + std::strerror(errno) +
@@ -120,10 +122,6 @@ std::shared_ptr<const LinkKey> LinkKey::load(const std::filesystem::path& file) 
                        "); allow its owner only: chmod 600 " + name);
   }
   if (info.st_size > static_cast<off_t>(kMaxFileBytes)) throw KeyFileError("key file " + name + " is too long");
-
-  // The whole file in guarded memory, wiped on every way out; lines are read in place
-  // (no stream buffers, no copies).
-  const GuardedBuffer text(kMaxFileBytes + 1);
   std::size_t size = 0;
   while (size <= kMaxFileBytes) {
     const ssize_t got = ::read(fd, text.data() + size, kMaxFileBytes + 1 - size);
@@ -133,6 +131,18 @@ std::shared_ptr<const LinkKey> LinkKey::load(const std::filesystem::path& file) 
     size += static_cast<std::size_t>(got);
   }
   if (size > kMaxFileBytes) throw KeyFileError("key file " + name + " is too long");
+
+  return size;
+}
+
+}  // namespace
+
+std::shared_ptr<const LinkKey> LinkKey::load(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  // The whole file in guarded memory, wiped on every way out; lines are read in place
+  // (no stream buffers, no copies).
+  const GuardedBuffer text(kMaxFileBytes + 1);
+  const std::size_t size = read_key_file(name, text);
 
   std::shared_ptr<LinkKey> key(new LinkKey());
   bool have_key = false, have_id = false;
