@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
             continue;
           }
           signal::HopListener listener(profile);
-          const auto sent = reliability::encode_symbols(frame.bits.low64());
+          const auto sent = reliability::command_frame_symbols(frame.bits.low64());
           const signal::HopCandidate* best = nullptr;
           for (const auto& c : listener.feed(stream)) {
             if (c.chords != 2 || std::abs(c.start_ms - kLeadMs) > near_ms) continue;

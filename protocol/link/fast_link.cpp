@@ -67,12 +67,12 @@ TransmitFrame FastLink::plain_frame(std::uint32_t payload) {
       options_.address, static_cast<std::uint8_t>(next_sequence_ & reliability::kSequenceMask), payload};
   next_sequence_ = static_cast<std::uint8_t>((frame.sequence + 1) & reliability::kSequenceMask);
   TransmitFrame f;
-  f.bits = reliability::pack(frame);
+  f.bits = reliability::command_frame_pack(frame);
   f.bit_count = reliability::kCommandFrameBits;
   f.check_bit_count = reliability::kCommandCrcBits;
   f.sequence = frame.sequence;
   f.answer_lane = answer_lane(frame.sequence);
-  const auto symbols = reliability::encode_symbols(f.bits.low64());
+  const auto symbols = reliability::command_frame_symbols(f.bits.low64());
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
   f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
@@ -89,7 +89,7 @@ TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation
   frame.payload = payload;
   frame.mac = security::frame_mac(*options_.key, input);
   TransmitFrame f;
-  f.bits = reliability::pack(frame);
+  f.bits = reliability::sealed_frame_pack(frame);
   f.bit_count = reliability::kSealedFrameBits;
   f.check_bit_count = reliability::kSealedCheckBits;
   f.authenticated = true;
@@ -97,7 +97,7 @@ TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation
   f.counter = counter;
   f.answer_tag = reply_tag(*options_.key, input, frame.mac);
   f.answer_lane = answer_lane(counter);
-  const auto symbols = reliability::encode_sealed_symbols(f.bits);
+  const auto symbols = reliability::sealed_frame_symbols(f.bits);
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
   f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
@@ -157,7 +157,7 @@ std::unique_ptr<FrameReceiver> FastLink::receiver() const {
 std::vector<float> FastLink::answer_audio(const Reception& r) const {
   if (r.acknowledged() && r.counter && options_.key) {
     const auto input = sealed_mac_input(r.bits, *r.counter);
-    const std::uint32_t mac = reliability::unpack_sealed(r.bits)->mac;
+    const std::uint32_t mac = reliability::sealed_frame_unpack(r.bits)->mac;
     return signal::synthesize_hopped_reply(profile(), reliability::tag_tones(reply_tag(*options_.key, input, mac)),
                                            answer_lane(*r.counter));
   }

@@ -36,7 +36,7 @@ std::uint64_t completed_counter(const reliability::SealedFrame& f, std::uint64_t
 }  // namespace
 
 security::FrameMacInput sealed_mac_input(const reliability::FrameBits& bits, std::uint64_t counter) {
-  const auto f = reliability::unpack_sealed(bits);
+  const auto f = reliability::sealed_frame_unpack(bits);
   return f ? mac_input(*f, counter) : security::FrameMacInput{};
 }
 
@@ -57,12 +57,12 @@ std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
   r.bit_count = sealed ? reliability::kSealedFrameBits : reliability::kCommandFrameBits;
   r.check_bit_count = sealed ? reliability::kSealedCheckBits : reliability::kCommandCrcBits;
   const std::vector<double> tones =
-      sealed ? signal::frame_tones_hz(profile_, reliability::encode_sealed_symbols(heard.bits))
-             : signal::frame_tones_hz(profile_, reliability::encode_symbols(heard.bits.low64()));
+      sealed ? signal::frame_tones_hz(profile_, reliability::sealed_frame_symbols(heard.bits))
+             : signal::frame_tones_hz(profile_, reliability::command_frame_symbols(heard.bits.low64()));
   r.tones_hz = tones;
   if (!r.intact) return r;  // Broken: NACK
-  const std::uint8_t address =
-      sealed ? reliability::unpack_sealed(heard.bits)->address : reliability::unpack(heard.bits.low64())->address;
+  const std::uint8_t address = sealed ? reliability::sealed_frame_unpack(heard.bits)->address
+                                      : reliability::command_frame_unpack(heard.bits.low64())->address;
   if (address != options_.address) return std::nullopt;  // another robot's frame: not ours to answer
   if (echoes_.is_echo(r.bits, r.heard_ms)) {             // the room's, not the sender's: not ours to answer either
     ++echoes_ignored_;
@@ -76,7 +76,7 @@ std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
 }
 
 void FrameAdmission::admit_plain(Reception& r) {
-  const reliability::CommandFrame frame = *reliability::unpack(r.bits.low64());
+  const reliability::CommandFrame frame = *reliability::command_frame_unpack(r.bits.low64());
   r.sequence = frame.sequence;
   if (options_.key && !options_.accept_unauthenticated) {
     refuse(r, RefusalReason::Authentication,
@@ -97,14 +97,14 @@ void FrameAdmission::admit_plain(Reception& r) {
 }
 
 bool FrameAdmission::authentic(const reliability::FrameBits& bits) const {
-  const auto frame = reliability::unpack_sealed(bits);
+  const auto frame = reliability::sealed_frame_unpack(bits);
   if (!frame || !options_.key) return false;
   const std::uint64_t counter = completed_counter(*frame, options_.counters->last_accepted());
   return security::frame_mac(*options_.key, mac_input(*frame, counter)) == frame->mac;
 }
 
 void FrameAdmission::admit_sealed(Reception& r) {
-  const reliability::SealedFrame frame = *reliability::unpack_sealed(r.bits);
+  const reliability::SealedFrame frame = *reliability::sealed_frame_unpack(r.bits);
   if (!options_.key) {
     refuse(r, RefusalReason::Authentication, "an authenticated frame, and this robot has no key (dtmf-agent --key)");
     return;

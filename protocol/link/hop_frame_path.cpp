@@ -70,7 +70,7 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
     if (const auto d = reliability::decode_frame(readings_of<reliability::kCodeSymbols>(c, hops_.clear_certainty),
                                                  hops_.max_erasures, swaps ? plain_chase_tones_ : 0)) {
       bits = d->bits;
-      listener_.confirm(c, reliability::encode_symbols(d->bits));
+      listener_.confirm(c, reliability::command_frame_symbols(d->bits));
     }
   } else {
     candidate_heard_ms_ = c.heard_ms;
@@ -78,7 +78,7 @@ bool HopFramePath::take(const signal::HopCandidate& c) {
                                               hops_.sealed_max_erasures, budgeted_, swaps ? sealed_chase_tones_ : 0);
     if (d.authentic) {
       bits = d.authentic->bits;
-      listener_.confirm(c, reliability::encode_sealed_symbols(d.authentic->bits));
+      listener_.confirm(c, reliability::sealed_frame_symbols(d.authentic->bits));
     } else if (d.intact && !shadow_of_accepted(c)) {
       // Intact but not authentic: a later window may still read the real frame; if none does,
       // the cluster ends with this one, refused.

@@ -61,7 +61,7 @@ class SeedReceiver final : public FrameReceiver {
       r.intact = f.crc_ok;
       const signal::Chord chord = signal::chord_for(profile_.words().tones, f.frame);
       r.tones_hz.assign(chord.begin(), chord.end());
-      if (f.crc_ok) r.payload_word = reliability::frame_word(f.frame);
+      if (f.crc_ok) r.payload_word = reliability::word_frame_word(f.frame);
       if (f.crc_ok && refuse_) {
         r.event = ReceptionEvent::Refused;
         r.refusal = RefusalReason::Authentication;

@@ -9,8 +9,9 @@ std::span<const SeedReceivedFrame> SeedReceiverPath::feed(std::span<const float>
   received_.clear();
   for (const signal::Heard& heard : listener_.feed(samples)) {
     const auto frame = static_cast<reliability::SeedFrame>(heard.symbol);
-    SeedReceivedFrame received{heard.start_ms, heard.heard_ms, frame, reliability::frame_ok(frame), std::nullopt};
-    if (received.crc_ok && execute_words_) received.event = commands_.on_word(reliability::frame_word(frame));
+    SeedReceivedFrame received{heard.start_ms, heard.heard_ms, frame, reliability::word_frame_intact(frame),
+                               std::nullopt};
+    if (received.crc_ok && execute_words_) received.event = commands_.on_word(reliability::word_frame_word(frame));
     received_.push_back(std::move(received));
   }
   return received_;

@@ -6,7 +6,7 @@
 namespace dtmf::link {
 
 SeedPlannedFrame plan_word(const LinkProfile& profile, command::Word word) {
-  const reliability::SeedFrame frame = reliability::make_frame(word & command::kWordMask);
+  const reliability::SeedFrame frame = reliability::word_frame_make(word & command::kWordMask);
   return SeedPlannedFrame{static_cast<command::Word>(word & command::kWordMask), frame,
                           signal::chord_for(profile.words().tones, frame)};
 }

@@ -19,7 +19,7 @@ namespace {
 constexpr int kCheckedBits = kCommandFrameBits - kCommandCrcBits;  // 34
 }
 
-std::uint64_t pack(const CommandFrame& frame) {
+std::uint64_t command_frame_pack(const CommandFrame& frame) {
   const std::uint64_t checked =
       (static_cast<std::uint64_t>(frame.address & kAddressMask) << (kSequenceBits + kFramePayloadBits)) |
       (static_cast<std::uint64_t>(frame.sequence & kSequenceMask) << kFramePayloadBits) |
@@ -27,7 +27,7 @@ std::uint64_t pack(const CommandFrame& frame) {
   return (checked << kCommandCrcBits) | crc16(checked, kCheckedBits);
 }
 
-std::optional<CommandFrame> unpack(std::uint64_t bits) {
+std::optional<CommandFrame> command_frame_unpack(std::uint64_t bits) {
   if (bits >> kCommandFrameBits) return std::nullopt;
   const std::uint64_t checked = bits >> kCommandCrcBits;
   if (crc16(checked, kCheckedBits) != (bits & 0xFFFF)) return std::nullopt;
@@ -36,7 +36,7 @@ std::optional<CommandFrame> unpack(std::uint64_t bits) {
                       static_cast<std::uint32_t>(checked & kFramePayloadMask)};
 }
 
-CodeSymbols encode_symbols(std::uint64_t bits) {
+CodeSymbols command_frame_symbols(std::uint64_t bits) {
   std::array<std::uint8_t, kCodeDataSymbols> data{};
   for (int i = 0; i < kCodeDataSymbols; ++i) {
     data[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(
@@ -47,7 +47,7 @@ CodeSymbols encode_symbols(std::uint64_t bits) {
   return symbols;
 }
 
-std::uint64_t data_bits(std::span<const std::uint8_t> data_symbols) {
+std::uint64_t command_frame_data_bits(std::span<const std::uint8_t> data_symbols) {
   std::uint64_t bits = 0;
   for (int i = 0; i < kCodeDataSymbols; ++i)
     bits = (bits << kCodeSymbolBits) | data_symbols[static_cast<std::size_t>(i)];

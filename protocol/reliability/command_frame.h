@@ -47,13 +47,13 @@ using CodeSymbols = std::array<std::uint8_t, kCodeSymbols>;
 std::uint16_t crc16(std::uint64_t bits, int width);
 
 // The 50 bits of `frame` with its CRC.
-std::uint64_t pack(const CommandFrame& frame);
+std::uint64_t command_frame_pack(const CommandFrame& frame);
 // The frame in `bits` (50 bits) when its CRC holds.
-std::optional<CommandFrame> unpack(std::uint64_t bits);
+std::optional<CommandFrame> command_frame_unpack(std::uint64_t bits);
 
 // The frame's codeword: ten data symbols, then six parity symbols.
-CodeSymbols encode_symbols(std::uint64_t bits);
+CodeSymbols command_frame_symbols(std::uint64_t bits);
 // The 50 bits of ten data symbols.
-std::uint64_t data_bits(std::span<const std::uint8_t> data_symbols);
+std::uint64_t command_frame_data_bits(std::span<const std::uint8_t> data_symbols);
 
 }  // namespace dtmf::reliability

@@ -13,13 +13,13 @@ std::uint8_t crc4(Word word) {
   return crc_remainder(static_cast<std::uint32_t>(word & 0x0FFF) << kCrcBits, kSeedFrameBits);
 }
 
-SeedFrame make_frame(Word word) { return static_cast<SeedFrame>(((word & 0x0FFF) << kCrcBits) | crc4(word)); }
+SeedFrame word_frame_make(Word word) { return static_cast<SeedFrame>(((word & 0x0FFF) << kCrcBits) | crc4(word)); }
 
-bool frame_ok(SeedFrame frame) { return crc_remainder(frame, kSeedFrameBits) == 0; }
+bool word_frame_intact(SeedFrame frame) { return crc_remainder(frame, kSeedFrameBits) == 0; }
 
-Word frame_word(SeedFrame frame) { return static_cast<Word>(frame >> kCrcBits); }
+Word word_frame_word(SeedFrame frame) { return static_cast<Word>(frame >> kCrcBits); }
 
-std::uint8_t frame_crc(SeedFrame frame) { return static_cast<std::uint8_t>(frame & 0xF); }
+std::uint8_t word_frame_crc(SeedFrame frame) { return static_cast<std::uint8_t>(frame & 0xF); }
 
 std::string bit_string(std::uint64_t bits, int width) {
   std::string text(static_cast<std::size_t>(width), '0');

@@ -24,11 +24,11 @@ std::uint8_t crc_remainder(std::uint32_t bits, int width);
 // The CRC of a 12-bit data word.
 std::uint8_t crc4(Word word);
 // word followed by its CRC.
-SeedFrame make_frame(Word word);
+SeedFrame word_frame_make(Word word);
 // True when the frame's 16 bits divide by the generator without remainder.
-bool frame_ok(SeedFrame frame);
-Word frame_word(SeedFrame frame);
-std::uint8_t frame_crc(SeedFrame frame);
+bool word_frame_intact(SeedFrame frame);
+Word word_frame_word(SeedFrame frame);
+std::uint8_t word_frame_crc(SeedFrame frame);
 // "1011001011011101": `width` bits, most significant first.
 std::string bit_string(std::uint64_t bits, int width = kSeedFrameBits);
 

@@ -23,7 +23,7 @@ std::uint8_t crc8_autosar(WideBits bits, int width) {
   return static_cast<std::uint8_t>(crc ^ 0xFF);
 }
 
-FrameBits pack(const SealedFrame& f) {
+FrameBits sealed_frame_pack(const SealedFrame& f) {
   WideBits body = static_cast<WideBits>(f.address & 7u) << 1 | static_cast<WideBits>(f.form);
   if (f.form == SealedForm::Command) {
     body = body << kSealedCounterLowBits | (f.counter & mask(kSealedCounterLowBits));
@@ -35,7 +35,7 @@ FrameBits pack(const SealedFrame& f) {
   return FrameBits::wide(body << kSealedCheckBits | crc8_autosar(body, kCheckedBits));
 }
 
-std::optional<SealedFrame> unpack_sealed(FrameBits bits) {
+std::optional<SealedFrame> sealed_frame_unpack(FrameBits bits) {
   const WideBits v = bits.value();
   if (v >> kSealedFrameBits) return std::nullopt;
   const WideBits body = v >> kSealedCheckBits;
@@ -59,7 +59,7 @@ const ReedSolomon& sealed_code() {
   return code;
 }
 
-SealedSymbols encode_sealed_symbols(FrameBits bits) {
+SealedSymbols sealed_frame_symbols(FrameBits bits) {
   std::array<std::uint8_t, kSealedDataSymbols> data{};
   for (int i = 0; i < kSealedDataSymbols; ++i) {
     data[static_cast<std::size_t>(i)] =
@@ -70,7 +70,7 @@ SealedSymbols encode_sealed_symbols(FrameBits bits) {
   return symbols;
 }
 
-FrameBits sealed_data_bits(std::span<const std::uint8_t> data_symbols) {
+FrameBits sealed_frame_data_bits(std::span<const std::uint8_t> data_symbols) {
   WideBits bits = 0;
   for (int i = 0; i < kSealedDataSymbols; ++i) bits = bits << kSymbolBits | data_symbols[static_cast<std::size_t>(i)];
   return FrameBits::wide(bits);
@@ -83,8 +83,8 @@ SealedDecode decode_sealed(std::span<const SymbolReading, kSealedSymbols> readin
   SealedDecode result;
   const auto decoded = chase_symbols(readings, sealed_code(), max_erasures, kSealedReserveSymbols, chase_tones, data,
                                      [&](std::span<const std::uint8_t> d, DecodedSymbols how) {
-                                       const FrameBits bits = sealed_data_bits(d);
-                                       frame = unpack_sealed(bits);
+                                       const FrameBits bits = sealed_frame_data_bits(d);
+                                       frame = sealed_frame_unpack(bits);
                                        if (!frame) return false;
                                        if (authentic(bits)) return true;
                                        if (!result.intact && kept_for_refusal(how)) {
@@ -92,14 +92,15 @@ SealedDecode decode_sealed(std::span<const SymbolReading, kSealedSymbols> readin
                                        }
                                        return false;
                                      });
-  if (decoded) result.authentic = DecodedSealed{*frame, sealed_data_bits(data), decoded->erasures, decoded->errors};
+  if (decoded)
+    result.authentic = DecodedSealed{*frame, sealed_frame_data_bits(data), decoded->erasures, decoded->errors};
   return result;
 }
 
 FrameBits read_sealed_bits(std::span<const SymbolReading, kSealedSymbols> readings) {
   std::array<std::uint8_t, kSealedDataSymbols> data{};
   for (std::size_t i = 0; i < data.size(); ++i) data[i] = readings[i].symbol;
-  return sealed_data_bits(data);
+  return sealed_frame_data_bits(data);
 }
 
 }  // namespace dtmf::reliability

@@ -61,13 +61,13 @@ using SealedSymbols = std::array<std::uint8_t, kSealedSymbols>;
 // CRC-8/AUTOSAR of the low `width` bits of `bits`, most significant first.
 std::uint8_t crc8_autosar(WideBits bits, int width);
 
-FrameBits pack(const SealedFrame& frame);
+FrameBits sealed_frame_pack(const SealedFrame& frame);
 // The frame in `bits` when its CRC holds.
-std::optional<SealedFrame> unpack_sealed(FrameBits bits);
+std::optional<SealedFrame> sealed_frame_unpack(FrameBits bits);
 
 const ReedSolomon& sealed_code();
-SealedSymbols encode_sealed_symbols(FrameBits bits);
-FrameBits sealed_data_bits(std::span<const std::uint8_t> data_symbols);
+SealedSymbols sealed_frame_symbols(FrameBits bits);
+FrameBits sealed_frame_data_bits(std::span<const std::uint8_t> data_symbols);
 
 struct DecodedSealed {
   SealedFrame frame;

@@ -225,7 +225,7 @@ TEST(Agent, AFastFrameFailingWhileASeedFrameSoundsIsNotAnswered) {
   link::LinkOptions numbered;
   numbered.first_sequence = 3;
   const auto sent = link::make_link(fast, numbered)->plan(command::Stop{}).front();
-  auto symbols = reliability::encode_symbols(sent.bits.low64());
+  auto symbols = reliability::command_frame_symbols(sent.bits.low64());
   for (int i : {0, 2, 5, 8, 11, 13, 15}) symbols[static_cast<std::size_t>(i)] ^= 0x11;  // 7 errors: beyond the code
   signal::HoppedSymbols hopped{};
   std::copy(symbols.begin(), symbols.end(), hopped.begin());

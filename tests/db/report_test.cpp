@@ -114,13 +114,13 @@ TEST(RunReport, ReproducesTheSeedsNoisePollutedTable) {
       }
     }
     // One intact frame nobody sent (a false positive), four corrupted ones (NACKed).
-    store.write(reception_row(reliability::make_frame(0x123), true, t0 + milliseconds(10 * kSlotMs + 2500)));
+    store.write(reception_row(reliability::word_frame_make(0x123), true, t0 + milliseconds(10 * kSlotMs + 2500)));
     for (int k = 0; k < 4; ++k) {
-      store.write(reception_row(reliability::make_frame(0x456) ^ (1 << k), false,
+      store.write(reception_row(reliability::word_frame_make(0x456) ^ (1 << k), false,
                                 t0 + milliseconds((20 + k) * kSlotMs + 2600)));
     }
     // A reception outside the run's time does not count at all.
-    store.write(reception_row(reliability::make_frame(0x789), true, t0 - std::chrono::minutes(5)));
+    store.write(reception_row(reliability::word_frame_make(0x789), true, t0 - std::chrono::minutes(5)));
     ASSERT_TRUE(store.flush(std::chrono::seconds(30)));
   }
 

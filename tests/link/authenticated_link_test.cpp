@@ -166,7 +166,7 @@ TEST(AuthenticatedLink, AFrameUnderAnotherKeyThatNeededCorrectionsIsRefusedForAu
     std::vector<float> audio;
     const auto frames = session(*sender, kSession);  // a synchronisation first, the first time
     for (const auto& frame : frames) {
-      auto symbols = reliability::encode_sealed_symbols(frame.bits);
+      auto symbols = reliability::sealed_frame_symbols(frame.bits);
       // `errors` tones sent wrong, each a clear tone of another symbol: more than a refusal
       // may spend on a frame that only its CRC stands behind when errors > 2.
       for (int e = 0; e < errors; ++e) {
@@ -233,7 +233,7 @@ TEST(AuthenticatedLink, AMillionRandomFramesAndEveryOneAndTwoSymbolChangeAreRefu
     f.counter = rng();
     f.payload = static_cast<std::uint32_t>(rng());
     f.mac = static_cast<std::uint32_t>(rng());
-    taken += robot.authentic(reliability::pack(f)) ? 1 : 0;
+    taken += robot.authentic(reliability::sealed_frame_pack(f)) ? 1 : 0;
   }
   EXPECT_EQ(taken, 0);
 
@@ -244,13 +244,13 @@ TEST(AuthenticatedLink, AMillionRandomFramesAndEveryOneAndTwoSymbolChangeAreRefu
   for (const auto& command : {command::Command{command::Stop{}}, command::Command{command::DriveForward{55}}}) {
     const link::TransmitFrame frame = sender->plan(command).back();
     ASSERT_TRUE(robot.authentic(frame.bits)) << "the frame itself is taken";
-    const auto word = reliability::encode_sealed_symbols(frame.bits);
+    const auto word = reliability::sealed_frame_symbols(frame.bits);
     std::array<std::uint8_t, reliability::kSealedDataSymbols> data{};
     std::copy_n(word.begin(), data.size(), data.begin());
     const auto check = [&](const std::array<std::uint8_t, reliability::kSealedDataSymbols>& d) {
-      const auto bits = reliability::sealed_data_bits(d);
+      const auto bits = reliability::sealed_frame_data_bits(d);
       ++changed;
-      if (!reliability::unpack_sealed(bits)) return;  // its CRC fails: a damaged frame, NACKed
+      if (!reliability::sealed_frame_unpack(bits)) return;  // its CRC fails: a damaged frame, NACKed
       ++intact;
       taken += robot.authentic(bits) ? 1 : 0;
     };

@@ -188,7 +188,7 @@ TEST(HopFramePath, AtMinusTwelveDbSnrWholeChordRereadsHearMostFramesTheGridLoses
 // the same frame without the wrong tones.
 TEST(HopFramePath, RunnerUpSwapsWaitForASecondLook) {
   const auto frame = fast_link(5)->plan(command::Turn{-40}).front();
-  const auto right = reliability::encode_symbols(frame.bits.low64());
+  const auto right = reliability::command_frame_symbols(frame.bits.low64());
   auto wrong = right;
   for (const std::size_t t : {1u, 4u, 8u, 11u, 14u}) wrong[t] = static_cast<std::uint8_t>((right[t] + 9) % 32);
   const auto a = signal::synthesize_hopped_frame(p, right), b = signal::synthesize_hopped_frame(p, wrong);
@@ -224,7 +224,7 @@ TEST(HopFramePath, AHeldChordOrSilenceExecutesNothing) {
 // NACK, no command.
 TEST(HopFramePath, AnotherRobotsFrameIsLeftAlone) {
   const reliability::CommandFrame frame{5, 2, command::encode_payload(command::DriveForward{60})};
-  const auto symbols = reliability::encode_symbols(reliability::pack(frame));
+  const auto symbols = reliability::command_frame_symbols(reliability::command_frame_pack(frame));
   std::vector<float> audio(2000, 0.0f);
   const auto f = signal::synthesize_hopped_frame(p, symbols);
   audio.insert(audio.end(), f.begin(), f.end());

@@ -39,7 +39,7 @@ TEST_P(AllWords, EveryWordIsRecoveredOnceAndNothingElseIsHeard) {
     channel.process(audio, heard_audio);
     for (const signal::Heard& h : listener.feed(heard_audio)) {
       heard.push_back(static_cast<reliability::SeedFrame>(h.symbol));
-      all_intact = all_intact && reliability::frame_ok(static_cast<reliability::SeedFrame>(h.symbol));
+      all_intact = all_intact && reliability::word_frame_intact(static_cast<reliability::SeedFrame>(h.symbol));
     }
   };
   const int first = GetParam() * kWordsPerShard;

@@ -31,16 +31,16 @@ TEST(Crc16, MatchesCcittFalseReferenceValues) {
 
 TEST(CommandFrame, PacksAddressSequencePayloadAndCrcAndUnpacksThem) {
   const CommandFrame f{5, 11, 0x5ABCDEF};
-  const std::uint64_t bits = pack(f);
+  const std::uint64_t bits = command_frame_pack(f);
   EXPECT_EQ(bits >> 47, 5u);
   EXPECT_EQ((bits >> 43) & 0xF, 11u);
   EXPECT_EQ((bits >> 16) & kFramePayloadMask, 0x5ABCDEFu);
   EXPECT_EQ(bits & 0xFFFF, crc16(bits >> 16, 34));
-  EXPECT_EQ(unpack(bits), f);
-  EXPECT_FALSE(unpack(bits ^ (1ull << 30))) << "a flipped bit fails the CRC";
-  EXPECT_FALSE(unpack(0).has_value()) << "the all-zero frame is not a codeword";
-  const CodeSymbols symbols = encode_symbols(bits);
-  EXPECT_EQ(data_bits(std::span<const std::uint8_t>(symbols).first(kCodeDataSymbols)), bits);
+  EXPECT_EQ(command_frame_unpack(bits), f);
+  EXPECT_FALSE(command_frame_unpack(bits ^ (1ull << 30))) << "a flipped bit fails the CRC";
+  EXPECT_FALSE(command_frame_unpack(0).has_value()) << "the all-zero frame is not a codeword";
+  const CodeSymbols symbols = command_frame_symbols(bits);
+  EXPECT_EQ(command_frame_data_bits(std::span<const std::uint8_t>(symbols).first(kCodeDataSymbols)), bits);
 }
 
 // RS(16, 10) with two parity symbols kept for detection: one or two wrong tones anywhere,
@@ -51,8 +51,8 @@ TEST(FrameCode, CorrectsTwoWrongTonesOrFourUnheardAndRefusesThree) {
   for (int trial = 0; trial < 2000; ++trial) {
     const CommandFrame f{0, static_cast<std::uint8_t>(rng() & 15),
                          static_cast<std::uint32_t>(rng() & kFramePayloadMask)};
-    const std::uint64_t bits = pack(f);
-    const CodeSymbols clean = encode_symbols(bits);
+    const std::uint64_t bits = command_frame_pack(f);
+    const CodeSymbols clean = command_frame_symbols(bits);
     std::array<int, kCodeSymbols> order{};
     std::iota(order.begin(), order.end(), 0);
     std::shuffle(order.begin(), order.end(), rng);
@@ -83,7 +83,7 @@ TEST(FrameCode, CorrectsTwoWrongTonesOrFourUnheardAndRefusesThree) {
 // same three wrong tones heard with confidence, and right tones doubted, are refused.
 TEST(FrameCode, ErasesTheLeastCertainTonesFirst) {
   const CommandFrame f{0, 3, 0x1234567};
-  const CodeSymbols clean = encode_symbols(pack(f));
+  const CodeSymbols clean = command_frame_symbols(command_frame_pack(f));
   auto doubted_wrong = readings_of(clean);
   auto doubted_right = readings_of(clean);
   for (std::size_t i : {2u, 9u, 13u}) {
@@ -104,7 +104,7 @@ TEST(FrameCode, ErasesTheLeastCertainTonesFirst) {
 // but swapping them for their runner-ups (Chase) costs no parity at all.
 TEST(FrameCode, SwappingDoubtedTonesForTheirRunnerUpsCorrectsWhatErasingCannot) {
   const CommandFrame f{0, 9, 0x2abcdef};
-  const CodeSymbols clean = encode_symbols(pack(f));
+  const CodeSymbols clean = command_frame_symbols(command_frame_pack(f));
   auto r = readings_of(clean);
   for (std::size_t i : {1u, 4u, 8u}) {
     r[i].symbol = static_cast<std::uint8_t>((clean[i] + 7) % 32);
@@ -144,7 +144,7 @@ TEST(FrameCode, RandomTonesNeverDecode) {
 
 TEST(FrameGate, AcceptsAFrameOnceAndDropsItsNeighbours) {
   FrameGate gate(30, 25);
-  const GateFrame f{2, pack({0, 1, 42})};
+  const GateFrame f{2, command_frame_pack({0, 1, 42})};
   EXPECT_FALSE(gate.on_candidate(0, 100, false));  // a straddling window before it
   const auto v = gate.on_candidate(0, 110, true, f);
   ASSERT_TRUE(v);

@@ -17,23 +17,23 @@ TEST(Crc4, ReproducesTheSeedsWorkedExample) {
   const Word data = static_cast<Word>(bits("101100101101"));
   EXPECT_EQ(data, 2861);
   EXPECT_EQ(crc4(data), bits("1101"));
-  EXPECT_EQ(make_frame(data), bits("1011001011011101"));
-  EXPECT_EQ(bit_string(make_frame(data)), "1011001011011101");
-  EXPECT_TRUE(frame_ok(make_frame(data)));
-  EXPECT_EQ(frame_word(make_frame(data)), data);
+  EXPECT_EQ(word_frame_make(data), bits("1011001011011101"));
+  EXPECT_EQ(bit_string(word_frame_make(data)), "1011001011011101");
+  EXPECT_TRUE(word_frame_intact(word_frame_make(data)));
+  EXPECT_EQ(word_frame_word(word_frame_make(data)), data);
 }
 
 TEST(Crc4, EveryWordMakesAValidFrameAndEverySingleBitErrorIsCaught) {
   for (Word w = 0; w < 4096; ++w) {
-    const SeedFrame f = make_frame(w);
-    ASSERT_TRUE(frame_ok(f)) << w;
-    for (int bit = 0; bit < 16; ++bit) ASSERT_FALSE(frame_ok(static_cast<SeedFrame>(f ^ (1u << bit)))) << w;
+    const SeedFrame f = word_frame_make(w);
+    ASSERT_TRUE(word_frame_intact(f)) << w;
+    for (int bit = 0; bit < 16; ++bit) ASSERT_FALSE(word_frame_intact(static_cast<SeedFrame>(f ^ (1u << bit)))) << w;
   }
 }
 
 TEST(Crc4, ExactlyOneFrameInSixteenIsValid) {
   int valid = 0;
-  for (std::uint32_t f = 0; f < 65536; ++f) valid += frame_ok(static_cast<SeedFrame>(f)) ? 1 : 0;
+  for (std::uint32_t f = 0; f < 65536; ++f) valid += word_frame_intact(static_cast<SeedFrame>(f)) ? 1 : 0;
   EXPECT_EQ(valid, 4096);
 }
 
@@ -51,7 +51,7 @@ WindowScramble scramble(SeedFrame original) {
   for (int position = 0; position <= 12; ++position) {
     for (unsigned pattern = 0; pattern < 16; ++pattern) {
       const auto variant = static_cast<SeedFrame>((original & ~(0xFu << position)) | (pattern << position));
-      if (frame_ok(variant)) {
+      if (word_frame_intact(variant)) {
         ++result.accepted;
         result.accepted_frames.insert(variant);
         if (variant == original) ++result.accepted_unchanged;
@@ -81,7 +81,7 @@ TEST(Crc4, Table1AcceptedVariantsAreTheUnchangedFramesNotMissedErrors) {
   // frame passes: x^4 + x + 1 catches every error burst of four bits or fewer.
   for (const std::string text : {"1011001011011101", "0000001011011110", "0011110101010001", "0010000000001101"}) {
     const auto frame = static_cast<SeedFrame>(bits(text));
-    ASSERT_TRUE(frame_ok(frame)) << text;
+    ASSERT_TRUE(word_frame_intact(frame)) << text;
     const WindowScramble r = scramble(frame);
     EXPECT_EQ(r.accepted_unchanged, 13) << text;
     EXPECT_EQ(r.accepted_frames, std::set<SeedFrame>{frame}) << text;
@@ -90,8 +90,8 @@ TEST(Crc4, Table1AcceptedVariantsAreTheUnchangedFramesNotMissedErrors) {
   // Its 13 accepted variants are 13 different corrections, one per window position, that
   // land on 8 distinct valid frames.
   const auto invalid = static_cast<SeedFrame>(bits("1111111000111111"));
-  EXPECT_FALSE(frame_ok(invalid));
-  EXPECT_EQ(crc4(frame_word(invalid)), bits("1100"));
+  EXPECT_FALSE(word_frame_intact(invalid));
+  EXPECT_EQ(crc4(word_frame_word(invalid)), bits("1100"));
   const WindowScramble r = scramble(invalid);
   EXPECT_EQ(r.accepted_unchanged, 0);
   EXPECT_EQ(r.accepted_frames.size(), 8u);
@@ -99,10 +99,10 @@ TEST(Crc4, Table1AcceptedVariantsAreTheUnchangedFramesNotMissedErrors) {
 
 TEST(Crc4, EveryBurstOfUpToFourBitsIsDetectedForEveryWord) {
   for (Word w = 0; w < 4096; ++w) {
-    const SeedFrame f = make_frame(w);
+    const SeedFrame f = word_frame_make(w);
     for (int position = 0; position <= 12; ++position) {
       for (unsigned error = 1; error < 16; ++error) {
-        ASSERT_FALSE(frame_ok(static_cast<SeedFrame>(f ^ (error << position)))) << w << " " << position;
+        ASSERT_FALSE(word_frame_intact(static_cast<SeedFrame>(f ^ (error << position)))) << w << " " << position;
       }
     }
   }

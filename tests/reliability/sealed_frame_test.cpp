@@ -34,7 +34,7 @@ FrameBits a_frame() {
   f.counter = 311;
   f.payload = 0x5a5a5a5;
   f.mac = 0xdeadbeef;
-  return pack(f);
+  return sealed_frame_pack(f);
 }
 
 }  // namespace
@@ -52,7 +52,7 @@ TEST(SealedFrame, NoiseIsNeverReadAsAFrameToRefuse) {
     std::array<std::uint8_t, kSealedDataSymbols> data{};
     crc_holds_at_the_limit += decode_symbols(r, sealed_code(), 7, kSealedReserveSymbols, data,
                                              [](std::span<const std::uint8_t> d, DecodedSymbols) {
-                                               return unpack_sealed(sealed_data_bits(d)).has_value();
+                                               return sealed_frame_unpack(sealed_frame_data_bits(d)).has_value();
                                              })
                                   ? 1
                                   : 0;
@@ -68,7 +68,7 @@ TEST(SealedFrame, NoiseIsNeverReadAsAFrameToRefuse) {
 // accept. The MAC's own decode still goes to the limit (seven erased).
 TEST(SealedFrame, AFrameUnderAnotherKeyIsRefusedWhileFourParitySymbolsAreKept) {
   const FrameBits bits = a_frame();
-  const SealedSymbols clean = encode_sealed_symbols(bits);
+  const SealedSymbols clean = sealed_frame_symbols(bits);
   const SealedCheck this_frame = [&](const FrameBits& b) { return b == bits; };
 
   Readings two_wrong = readings_of(clean);
