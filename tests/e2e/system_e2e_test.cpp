@@ -230,9 +230,23 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
       std::printf("  extra reception of frame %s heard %s; attempts: %s\n", row[0].c_str(), row[1].c_str(),
                   row[2].is_null() ? "none" : row[2].c_str());
     }
-    EXPECT_LE(false_positives, split);
+    // The room's echo of the newest frame (reliability/echo_memory.h): the robot cannot tell it
+    // from a retransmission, so it answers it as a repeat and executes nothing; the sender sent
+    // no attempt then, so the report counts it unmatched. Its frame was sent, at most the echo
+    // horizon (15 frames' air time, 1.6 s) before it was heard.
+    const long room_echoes =
+        tx.exec_params(
+              "SELECT count(*) FROM run_receptions($1::uuid) r WHERE r.crc_ok AND r.event = 'repeat' AND r.id NOT IN "
+              "(SELECT reception_id FROM run_matches($1::uuid) WHERE reception_id IS NOT NULL) AND EXISTS "
+              "(SELECT 1 FROM frame_attempts a WHERE a.run_id = $1::uuid AND a.frame = r.frame AND "
+              "a.chord_started_at BETWEEN r.heard_at - interval '1.6 s' AND r.heard_at)",
+              run_id)[0][0]
+            .as<long>();
+    std::printf("the room's echo of the newest frame, answered as a repeat: %ld\n", room_echoes);
+    EXPECT_LE(room_echoes, 1) << "the room gives one, at a run's end, if any";
+    EXPECT_LE(false_positives, split + room_echoes);
     EXPECT_GE(receptions, report["successfully_matched"].as<long>() + heard_again);
-    EXPECT_LE(receptions, report["successfully_matched"].as<long>() + heard_again + split);
+    EXPECT_LE(receptions, report["successfully_matched"].as<long>() + heard_again + split + room_echoes);
   }
 
   // What a frame heard twice may be. The seed protocol has no sequence numbers: a frame
