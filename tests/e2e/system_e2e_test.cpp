@@ -233,7 +233,8 @@ class SystemE2E : public ::testing::TestWithParam<std::string> {
     // The room's echo of the newest frame (reliability/echo_memory.h): the robot cannot tell it
     // from a retransmission, so it answers it as a repeat and executes nothing; the sender sent
     // no attempt then, so the report counts it unmatched. Its frame was sent, at most the echo
-    // horizon (15 frames' air time, 1.6 s) before it was heard.
+    // horizon (15 frames of 102.5 ms, 1.54 s, counted from the original's hearing, which comes a
+    // frame after its chord started: 1.6 s from the chord) before it was heard.
     const long room_echoes =
         tx.exec_params(
               "SELECT count(*) FROM run_receptions($1::uuid) r WHERE r.crc_ok AND r.event = 'repeat' AND r.id NOT IN "
