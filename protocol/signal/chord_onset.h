@@ -13,7 +13,7 @@
 // nothing else is there). The grid's own start, which assumes the windows lie inside the
 // chords, then named a start up to 40 ms early. The robot times a Velocity's lease and its
 // logged start from it. (The fast listener takes the earliest of a chord's tones: in a room a
-// tone whose reverberation outweighs its direct sound rises late; hop_candidate_reading.cpp.)
+// tone whose reverberation outweighs its direct sound rises late; hop_reader.cpp.)
 // Pure arithmetic, no I/O.
 #pragma once
 

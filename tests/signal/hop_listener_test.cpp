@@ -458,3 +458,51 @@ TEST(HopListener, AFailedWindowGetsASecondLookOnlyWhenNothingWasTakenAfterIt) {
   }
   EXPECT_GT(cases_with_a_failed_window, 0) << "no alignment had a window fail before the frame's own";
 }
+
+// The listener's two states: after a take, the sink holds it (HoldFrame) and it offers nothing,
+// whatever it hears, until the hold ends; then it detects frames again (DetectFrame).
+TEST(HopListener, HeldAfterAFrameItOffersNothingUntilTheHoldEnds) {
+  signal::HoppedSymbols sent{};
+  for (std::size_t t = 0; t < sent.size(); ++t) sent[t] = static_cast<std::uint8_t>((5 * t + 2) % 32);
+  const auto frame = with_silence(signal::synthesize_hopped_frame(p, sent), 4000, 8000);
+  std::vector<float> two = frame;
+  two.insert(two.end(), frame.begin(), frame.end());  // the second frame starts 400 ms after the first
+  const double second_starts_ms = 1000.0 * static_cast<double>(frame.size() + 4000) / p.sample_rate_hz;
+
+  // Takes clean frames and holds the listener `hold_ms` past each one's window.
+  struct Holding final : signal::CandidateSink {
+    signal::HopListener& listener;
+    TakeClean clean;
+    double hold_ms;
+    std::vector<double> taken_ms;
+    std::vector<signal::HopListener::Phase> phase_after;
+    Holding(signal::HopListener& l, const signal::HoppedSymbols& s, double hold) : listener(l), hold_ms(hold) {
+      clean.sent = s;
+    }
+    bool take(const signal::HopCandidate& c) override {
+      EXPECT_EQ(listener.phase(), signal::HopListener::Phase::DetectFrame) << "a candidate offered while held";
+      if (!clean.take(c)) return false;
+      taken_ms.push_back(c.heard_ms);
+      listener.hold_until(c.heard_ms + hold_ms);
+      return true;
+    }
+    bool none_taken(const signal::HopCandidate&) override { return true; }
+  };
+  for (const double hold_ms : {100.0, 1000.0}) {
+    signal::HopListener listener(p);
+    Holding sink(listener, sent, hold_ms);
+    for (std::size_t at = 0; at < two.size(); at += 480) {
+      listener.feed(std::span<const float>(two).subspan(at, std::min<std::size_t>(480, two.size() - at)), sink);
+      if (!sink.taken_ms.empty() && listener.now_ms() < sink.taken_ms.front() + hold_ms) {
+        EXPECT_EQ(listener.phase(), signal::HopListener::Phase::HoldFrame) << listener.now_ms();
+      }
+    }
+    if (hold_ms < 400) {
+      ASSERT_EQ(sink.taken_ms.size(), 2u) << "a short hold: both frames taken";
+      EXPECT_GT(sink.taken_ms[1], second_starts_ms);
+      EXPECT_EQ(listener.phase(), signal::HopListener::Phase::DetectFrame);
+    } else {
+      EXPECT_EQ(sink.taken_ms.size(), 1u) << "a hold past the second frame: it is not offered";
+    }
+  }
+}
