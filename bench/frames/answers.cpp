@@ -27,7 +27,6 @@
 #include <memory>
 #include <random>
 
-#include "channel_flags.h"
 #include "command/random_command.h"
 #include "command/word_codec.h"
 #include "common/authenticated_flag.h"
@@ -38,6 +37,7 @@
 #include "profile/link_profile.h"
 #include "program_main.h"
 #include "sim/acoustic_channel.h"
+#include "sim/channel_flags.h"
 #include "sim/room_model.h"
 
 using namespace dtmf;
@@ -87,7 +87,7 @@ std::vector<AnswerCase> default_cases(const std::string& rirs) {
 }
 
 // One stream of `answers` slots through the case's room.
-Counts run_stream(const LinkProfile& profile, const AnswerCase& c, const program::ChannelSetup& setup,
+Counts run_stream(const LinkProfile& profile, const AnswerCase& c, const sim::ChannelSetup& setup,
                   const std::shared_ptr<const sim::RoomModel>& room, const link::LinkOptions& options,
                   std::size_t answers, double slot_ms, bool every_second, std::uint64_t seed) {
   const auto sender = link::make_link(profile, options);
@@ -242,7 +242,7 @@ int main(int argc, char** argv) {
         nlohmann::json rows = nlohmann::json::array();
         for (std::size_t ci = 0; ci < cases.size(); ++ci) {
           const AnswerCase& c = cases[ci];
-          const program::ChannelSetup setup = channel_setup_of(c.channel);
+          const sim::ChannelSetup setup = channel_setup_of(c.channel);
           const auto room = setup.config.room.enabled()
                                 ? std::make_shared<const sim::RoomModel>(setup.config.room, profile.sample_rate_hz)
                                 : nullptr;

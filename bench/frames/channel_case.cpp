@@ -18,10 +18,10 @@ ChannelCase parse_channel_case(const std::string& text) {
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
-program::ChannelSetup channel_setup_of(const ChannelCase& c) {
+sim::ChannelSetup channel_setup_of(const ChannelCase& c) {
   CLI::App app("case");
-  program::ChannelFlags flags;
-  program::add_channel_flags(app, flags);
+  sim::ChannelFlags flags;
+  sim::add_channel_flags(app, flags);
   std::vector<std::string> words;
   std::istringstream in(c.flags);
   for (std::string w; in >> w;) words.push_back(w);
@@ -31,7 +31,7 @@ program::ChannelSetup channel_setup_of(const ChannelCase& c) {
   } catch (const CLI::ParseError& e) {
     throw std::invalid_argument("case '" + c.name + "': " + e.what());
   }
-  return program::channel_setup(flags);
+  return sim::channel_setup(flags);
 }
 
 }  // namespace dtmf::bench

@@ -1,4 +1,4 @@
-// A benchmark case: a name and the channel flags of `dtmfctl simulate` (common/channel_flags.h),
+// A benchmark case: a name and the channel flags of `dtmfctl simulate` (protocol/sim/channel_flags.h),
 // e.g. "seminar 3 m=--rir bench/rirs/seminar_room_clap.wav --distance 3 --noise pink
 // --noise-dbfs -50", read through the same parser as dtmfctl's, so a case can be heard by ear
 // with `dtmfctl simulate` and the same flags.
@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "channel_flags.h"
+#include "sim/channel_flags.h"
 
 namespace dtmf::bench {
 
@@ -24,6 +24,6 @@ struct ChannelCase {
 // "NAME=FLAGS"; throws std::invalid_argument saying how to write one.
 ChannelCase parse_channel_case(const std::string& text);
 // The case's flags as dtmfctl simulate reads them; throws std::invalid_argument naming the case.
-program::ChannelSetup channel_setup_of(const ChannelCase& c);
+sim::ChannelSetup channel_setup_of(const ChannelCase& c);
 
 }  // namespace dtmf::bench

@@ -1,7 +1,7 @@
 // dtmf-bench-rooms: frame success in real rooms — measured, image-source, with frequency
 // offsets and whines — one row per case, the rooms table of docs/benchmarks.md.
 //
-// A case is a name and the channel flags of `dtmfctl simulate` (common/channel_flags.h):
+// A case is a name and the channel flags of `dtmfctl simulate` (protocol/sim/channel_flags.h):
 // "seminar 3 m=--rir bench/rirs/seminar_room_clap.wav --distance 3 --noise pink --noise-dbfs -50".
 // Without --case, the table: the three measured rooms at 1 and 3 m; image-source
 // rooms (6 x 8 x 3 m, a hard floor, the microphone 5 cm above it) tuned to RT60 0.3, 0.6,
@@ -18,7 +18,6 @@
 #include <cstdio>
 #include <memory>
 
-#include "channel_flags.h"
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "frames/channel_case.h"
@@ -27,6 +26,7 @@
 #include "profile/link_profile.h"
 #include "program_main.h"
 #include "sim/acoustic_channel.h"
+#include "sim/channel_flags.h"
 #include "sim/room_model.h"
 #include "units/decibels.h"
 
@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
 
         // Each case's channel settings and its room, prepared once (a measured file read, a
         // shoebox tuned to its RT60) and shared by every stream.
-        std::vector<program::ChannelSetup> setups;
+        std::vector<sim::ChannelSetup> setups;
         std::vector<std::shared_ptr<const sim::RoomModel>> rooms;
         for (const ChannelCase& c : cases) {
           setups.push_back(channel_setup_of(c));

@@ -6,11 +6,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "channel_flags.h"
 #include "offline_commands.h"
 #include "physical/wav_file.h"
 #include "profile/link_profile.h"
 #include "sim/acoustic_channel.h"
+#include "sim/channel_flags.h"
 
 namespace dtmf::cli {
 
@@ -20,14 +20,14 @@ struct SimulateOptions {
   std::string input;
   std::string output;
   std::string profile = "seed";
-  program::ChannelFlags channel;
+  sim::ChannelFlags channel;
   double tail_s = 0.5;
 };
 
 int run_simulate(const SimulateOptions& o, bool json) {
   const LinkProfile& profile = profile_by_name(o.profile);
-  const program::ChannelSetup setup = program::channel_setup(o.channel);
-  const auto channel = program::make_channel(setup, profile.sample_rate_hz);
+  const sim::ChannelSetup setup = sim::channel_setup(o.channel);
+  const auto channel = sim::make_channel(setup, profile.sample_rate_hz);
 
   physical::WavFileSource source(o.input, profile.sample_rate_hz);
   physical::WavFileSink sink(o.output, profile.sample_rate_hz);
@@ -54,13 +54,13 @@ int run_simulate(const SimulateOptions& o, bool json) {
   if (json) {
     std::printf("%s\n", nlohmann::json{{"output", o.output},
                                        {"heard_s", heard_s},
-                                       {"channel", program::describe_channel(setup, *channel)},
+                                       {"channel", sim::describe_channel(setup, *channel)},
                                        {"clipped_samples", clipped}}
                             .dump()
                             .c_str());
   } else {
     std::printf("wrote %s: %.2f s heard through %s\n", o.output.c_str(), heard_s,
-                program::describe_channel(setup, *channel).c_str());
+                sim::describe_channel(setup, *channel).c_str());
   }
   // A clipped recording fails for its level, not for the room: say so.
   if (clipped > 0) {
@@ -84,7 +84,7 @@ void add_simulate_command(CLI::App& app, Action& run, const GlobalOptions& globa
   sim->add_option("output", o->output, "what the microphone records (16-bit WAV)")->required();
   sim->add_option("--profile", o->profile, "link profile (sets the sample rate): " + profile_names())
       ->capture_default_str();
-  program::add_channel_flags(*sim, o->channel);
+  sim::add_channel_flags(*sim, o->channel);
   sim->footer(
       "The channel: the loudspeaker's response, then free field (delay, 1/d, air absorption) or a room, then the\n"
       "microphone's response, noise, whines, clock offset. A room is measured (--rir: its response already holds\n"

@@ -1,9 +1,9 @@
-// The channel flags dtmfctl simulate and dtmf-room share (common/channel_flags.h): what
+// The channel flags dtmfctl simulate and dtmf-room share (protocol/sim/channel_flags.h): what
 // each gives, the old spellings, and the combinations refused with the flags named.
 #include <gtest/gtest.h>
 
-#include "channel_flags.h"
 #include "room_test_support.h"
+#include "sim/channel_flags.h"
 
 using namespace dtmf;
 using namespace dtmf::sim;
@@ -11,18 +11,18 @@ using namespace dtmf::sim;
 namespace {
 
 // Parses `args` as a program with the channel flags and one positional argument would.
-program::ChannelSetup setup(const std::vector<std::string>& args, double default_reverb_s = 0,
-                            std::string* positional = nullptr) {
+sim::ChannelSetup setup(const std::vector<std::string>& args, double default_reverb_s = 0,
+                        std::string* positional = nullptr) {
   CLI::App app{"test"};
-  program::ChannelFlags flags;
+  sim::ChannelFlags flags;
   flags.reverb_rt60_s = default_reverb_s;
-  program::add_channel_flags(app, flags);
+  sim::add_channel_flags(app, flags);
   std::string file;
   app.add_option("file", file);
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   app.parse(reversed);  // CLI11 takes a vector in reverse order
   if (positional) *positional = file;
-  return program::channel_setup(flags);
+  return sim::channel_setup(flags);
 }
 
 std::string error_of(const std::vector<std::string>& args) {
@@ -117,10 +117,10 @@ TEST(ChannelFlags, CombinationsThatMakeNoSenseAreRefusedNamingTheFlags) {
 
 TEST(ChannelFlags, AChannelIsMadeFromThemOrRefusedWithTheFlagsToCheck) {
   const auto in_room = setup({"--room", "7x9x3", "--distance", "4"});
-  const auto channel = program::make_channel(in_room, room_test::kRate);
-  EXPECT_NE(program::describe_channel(in_room, *channel).find("loudspeaker 4 m away"), std::string::npos);
+  const auto channel = sim::make_channel(in_room, room_test::kRate);
+  EXPECT_NE(sim::describe_channel(in_room, *channel).find("loudspeaker 4 m away"), std::string::npos);
   try {
-    program::make_channel(setup({"--room", "7x9x3", "--distance", "30"}), room_test::kRate);
+    sim::make_channel(setup({"--room", "7x9x3", "--distance", "30"}), room_test::kRate);
     FAIL() << "a loudspeaker 30 m away in a 9 m room";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("at most 8.09 m fit"), std::string::npos) << e.what();

@@ -8,7 +8,7 @@
 // puts this filter between the sender's loudspeaker sink and the robot's microphone (and
 // back): distance delay, 1/d spreading, air absorption, reverberation, noise, clock offset;
 // or a measured room (--rir) or an image-source room (--room), device responses, whines,
-// radial motion — the flags of common/channel_flags.h, the same as `dtmfctl simulate`'s.
+// radial motion — the flags of protocol/sim/channel_flags.h, the same as `dtmfctl simulate`'s.
 // For the way back run a second dtmf-room with the same room flags: a room's response is
 // reciprocal (docs/protocol.md §7), so the ACK crosses the same room as the command.
 //
@@ -32,17 +32,17 @@
 #include <string>
 #include <vector>
 
-#include "channel_flags.h"
 #include "lag_keeper.h"
 #include "program_main.h"
 #include "sim/acoustic_channel.h"
+#include "sim/channel_flags.h"
 
 namespace {
 
 static_assert(sizeof(float) == 4, "float32 samples");
 
 struct Flags {
-  dtmf::program::ChannelFlags channel;
+  dtmf::sim::ChannelFlags channel;
   int sample_rate_hz = 48000;
   std::size_t block_samples = 480;
   double max_lag_ms = 0;  // 0: keep every sample however late, as a file needs (lag_keeper.h)
@@ -62,9 +62,9 @@ void write_all(const char* data, std::size_t bytes) {
 }
 
 int run(const Flags& f) {
-  const auto setup = dtmf::program::channel_setup(f.channel);
-  const auto channel = dtmf::program::make_channel(setup, f.sample_rate_hz);
-  std::fprintf(stderr, "dtmf-room: %s\n", dtmf::program::describe_channel(setup, *channel).c_str());
+  const auto setup = dtmf::sim::channel_setup(f.channel);
+  const auto channel = dtmf::sim::make_channel(setup, f.sample_rate_hz);
+  std::fprintf(stderr, "dtmf-room: %s\n", dtmf::sim::describe_channel(setup, *channel).c_str());
 
   // Bytes, since a pipe may split a sample; `held` bytes of a partial sample wait in front.
   std::vector<char> in(f.block_samples * sizeof(float));
@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
   Flags f;
   CLI::App app{"dtmf-room: raw mono float32le audio on stdin -> the simulated acoustic channel -> stdout"};
   f.channel.reverb_rt60_s = 0.3;  // this filter's default room since scripts/experiments began
-  dtmf::program::add_channel_flags(app, f.channel);
+  dtmf::sim::add_channel_flags(app, f.channel);
   app.add_option("--rate", f.sample_rate_hz, "sample rate, Hz")->check(CLI::Range(8000, 192000))->capture_default_str();
   app.add_option("--block-samples", f.block_samples, "most samples processed at a time")
       ->check(CLI::Range(1, 1 << 20))

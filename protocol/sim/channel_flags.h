@@ -4,9 +4,10 @@
 // positions and RT60), microphone and loudspeaker responses, whines, clock offset and
 // radial motion. add_channel_flags() declares them on a CLI11 app; channel_setup() turns
 // what was given into a sim::ChannelConfig, refusing combinations that make no sense
-// with a message naming the flags. The simulator parses the values themselves
-// (sim/room_spec.h, frequency_response.h, whines.h) and knows nothing of flags.
-// Header-only, like program_main.h: each program includes it once.
+// with a message naming the flags. It lives beside the simulator it configures; the
+// simulator's classes parse the values themselves (room_spec.h, frequency_response.h,
+// whines.h) and know nothing of flags. Header-only (CLI11), so dtmf_sim links no flag
+// parser: a program that includes it has CLI11 already.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -21,7 +22,7 @@
 #include "sim/acoustic_channel.h"
 #include "sim/room_spec.h"
 
-namespace dtmf::program {
+namespace dtmf::sim {
 
 struct ChannelFlags {
   double distance_m = 1.0;
@@ -228,4 +229,4 @@ inline std::string describe_channel(const ChannelSetup& s, const sim::AcousticCh
   return text;
 }
 
-}  // namespace dtmf::program
+}  // namespace dtmf::sim
