@@ -13,9 +13,9 @@
 #include <functional>
 #include <string>
 
+#include "link/link.h"
 #include "physical/portaudio_device.h"
 #include "program_main.h"
-#include "signal/fft_wisdom.h"
 
 namespace dtmf::program {
 
@@ -47,8 +47,8 @@ inline int audio_program_main(CLI::App& app, int argc, char** argv, const AudioP
   spdlog::set_level(spdlog::level::from_str(options.log_level));
   // Before any receiver is built: its FFT plans come from the wisdom file, or are measured
   // once and saved there (protocol/signal/fft_wisdom.h).
-  const std::string wisdom = signal::fft_wisdom_default_file();
-  signal::use_fft_wisdom_file(wisdom);
+  const std::string wisdom = link::plan_cache_default_file();
+  link::use_plan_cache(wisdom);
   spdlog::debug("FFT wisdom: {}", wisdom.empty() ? "none (plans measured at every start)" : wisdom);
   return run(
       [&] {

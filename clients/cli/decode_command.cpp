@@ -14,7 +14,6 @@
 #include "link/link.h"
 #include "offline_commands.h"
 #include "physical/wav_file.h"
-#include "reliability/reply_code.h"
 #include "security/link_key.h"
 
 namespace dtmf::cli {
@@ -102,7 +101,7 @@ int run_decode_replies(const DecodeOptions& o) {
       // A tagged ACK's tag, when all its tones were heard (the sender checks 11 of 12 against
       // the tag it waits for; offline there is no frame to wait for).
       long long tag = -1;
-      if (const auto full = a.tag_reading ? reliability::read_tag(a.tag_reading->plain) : std::nullopt) tag = *full;
+      if (const auto full = link::spelled_tag(a)) tag = *full;
       if (o.json) {
         nlohmann::json j{{"t_ms", a.heard_ms}, {"reply", a.ack ? "ack" : "nack"}};
         if (a.sequence) j["sequence"] = *a.sequence;

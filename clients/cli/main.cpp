@@ -14,10 +14,10 @@
 #define DTMF_CLI_SIMULATE 0
 #endif
 
+#include "link/link.h"
 #include "offline_commands.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
-#include "signal/fft_wisdom.h"
 #if DTMF_CLI_LIVE
 #include "server_connection.h"
 #endif
@@ -66,8 +66,8 @@ int main(int argc, char** argv) {
 #endif
 
   if (const auto exit_code = dtmf::program::parse(app, argc, argv)) return *exit_code;
-  // decode builds receivers: their FFT plans come from the wisdom file (signal/fft_wisdom.h).
-  dtmf::signal::use_fft_wisdom_file(dtmf::signal::fft_wisdom_default_file());
+  // decode builds receivers: their FFT plans come from the plan cache (link.h).
+  dtmf::link::use_plan_cache(dtmf::link::plan_cache_default_file());
   const auto report = [](const std::string& error) { std::fprintf(stderr, "dtmfctl: %s\n", error.c_str()); };
   return dtmf::program::run(
       [&] {

@@ -4,6 +4,7 @@
 
 #include "link/fast_link.h"
 #include "link/seed_link.h"
+#include "signal/fft_wisdom.h"
 
 namespace dtmf::link {
 
@@ -80,5 +81,9 @@ const LinkProfile& default_profile(std::span<const std::unique_ptr<Link>> links)
   }
   return links.front()->profile();
 }
+
+std::string plan_cache_default_file() { return signal::fft_wisdom_default_file(); }
+
+void use_plan_cache(const std::string& path) { signal::use_fft_wisdom_file(path); }
 
 }  // namespace dtmf::link

@@ -149,6 +149,12 @@ std::unique_ptr<Link> make_link(const LinkProfile& profile, LinkOptions options 
 // One link per profile in all_profiles() (or those given), with the same options.
 std::vector<std::unique_ptr<Link>> make_links(const LinkOptions& options,
                                               const std::vector<const LinkProfile*>& profiles = all_profiles());
+// The file the FFT plans of every link's receivers and ears are kept in, so that a machine
+// measures each size once (signal/fft_wisdom.h: $DTMF_FFTW_WISDOM, then the cache
+// directories; "" for none). Programs call use_plan_cache(plan_cache_default_file()) once,
+// before they build a receiver.
+std::string plan_cache_default_file();
+void use_plan_cache(const std::string& path);
 // A sender's profile when none is named: with a key the first of `links` that authenticates
 // its frames (fast), else the first (seed). Nothing goes out without a MAC by default.
 const LinkProfile& default_profile(std::span<const std::unique_ptr<Link>> links);

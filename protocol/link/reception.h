@@ -74,4 +74,10 @@ struct Answer {
   int lane = 0;  // where it sounded: an ACK answers only a frame whose answer_lane it is
 };
 
+// The tag a tagged ACK spells when every one of its tones was heard, for people and tools
+// (dtmfctl decode); a sender checks the tag it waits for instead (Link::answers).
+inline std::optional<std::uint32_t> spelled_tag(const Answer& answer) {
+  return answer.tag_reading ? reliability::read_tag(answer.tag_reading->plain) : std::nullopt;
+}
+
 }  // namespace dtmf::link
