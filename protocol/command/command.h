@@ -19,6 +19,8 @@ inline constexpr Word kWordMask = 0x0FFF;
 // The RESET word: always returns the receiver to MODE_SELECT, whatever its state.
 inline constexpr Word kResetWord = 0x000;
 
+// The seed's mode word (seed report §8): its numbering, fixed on the seed's wire. The fast
+// format numbers its payload kinds itself (command_payload.h, `PayloadKind`).
 enum class Mode : Word {
   ModeSelect = 1,
   DriveForDuration = 2,

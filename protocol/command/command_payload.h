@@ -36,6 +36,10 @@ inline constexpr FieldSpec kLeaseField4{"lease_s", 0.25, 2.0, 4};
 inline constexpr double kMinLease_s = 0.3;
 inline constexpr double kMaxLease_s = 2.0;
 
+// The payload's kind field: the fast format's own numbering of the commands, fixed on its
+// wire. It is not the seed's mode word (command.h, `Mode`: the seed report's numbering, fixed
+// on the seed's wire, with no RESET or VELOCITY and STOP at 6); each format keeps its own, and
+// where both number a command alike they are checked to stay so.
 enum class PayloadKind : std::uint8_t {
   Reset = 0,
   Stop = 1,
@@ -46,6 +50,10 @@ enum class PayloadKind : std::uint8_t {
   Velocity = 6,
   Extended = 7,  // reserved
 };
+static_assert(static_cast<int>(PayloadKind::DriveForDuration) == static_cast<int>(Mode::DriveForDuration) &&
+              static_cast<int>(PayloadKind::TurnForDuration) == static_cast<int>(Mode::TurnForDuration) &&
+              static_cast<int>(PayloadKind::DriveForward) == static_cast<int>(Mode::DriveForward) &&
+              static_cast<int>(PayloadKind::Turn) == static_cast<int>(Mode::Turn));
 
 // Throws ParameterError for an out-of-range parameter.
 std::uint32_t encode_payload(const Command& command);
