@@ -159,7 +159,9 @@ TEST(ListenerAllocation, TheFastProfilesListenersAllocateNothingWhileHearingFram
 // (signal/whole_chord_reader.h) from the listener's history, in its own buffers.
 TEST(ListenerAllocation, WholeChordRereadsAllocateNothing) {
   const LinkProfile& profile = fast_profile();
-  const auto plain = link::make_link(profile);
+  link::LinkOptions numbered;  // the same frames in every run
+  numbered.first_sequence = 0;
+  const auto plain = link::make_link(profile, numbered);
   std::vector<float> audio(9600, 0.0f);
   double power = 0;
   std::size_t frame_samples = 0;
