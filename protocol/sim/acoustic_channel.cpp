@@ -95,7 +95,7 @@ std::size_t AcousticChannel::add_transmitter(double distance_m, bool moves) {
   check_distance(distance_m);
   if (!room_) return add_path({distance_m, nullptr, 1, moves});
   if (room_->kind() == RoomModel::Kind::Measured)
-    return add_path({distance_m, room_->measured(), 1 / distance_m, moves});
+    return add_path({distance_m, room_->measured_at(distance_m), 1 / distance_m, moves});
   return add_transmitter_at(room_->speaker_at_distance(distance_m), moves);
 }
 

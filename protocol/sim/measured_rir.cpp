@@ -18,10 +18,9 @@ namespace {
 constexpr double kDirectWithinOfLoudest = 0.5;  // -6 dB
 constexpr double kDirectPeakSearchS = 0.001;    // the direct sound's peak lies within 1 ms of its onset
 constexpr double kFadeOutS = 0.01;
-// The direct sound's energy is taken over this window around its peak: a measured "impulse"
-// is smeared over a few samples by the source (a clap, a loudspeaker) and the microphone.
-constexpr double kDirectBeforeS = 0.001;
-constexpr double kDirectAfterS = 0.0015;
+// The direct sound's energy is taken over kRirDirectBeforeS..kRirDirectAfterS around its peak:
+// a measured "impulse" is smeared over a few samples by the source (a clap, a loudspeaker)
+// and the microphone.
 
 std::vector<float> read_channel_zero(const std::string& path, int& rate_hz, int& channels) {
   SF_INFO info{};
@@ -94,8 +93,8 @@ MeasuredRir load_measured_rir(const std::string& path, int sample_rate_hz) {
   // instead left the smeared direct sounds of these files 10-16 dB too loud.) A negative
   // direct peak (the microphone's polarity) becomes positive.
   double direct_energy = 0;
-  const auto before = static_cast<std::size_t>(kDirectBeforeS * sample_rate_hz);
-  const auto after = static_cast<std::size_t>(kDirectAfterS * sample_rate_hz);
+  const auto before = static_cast<std::size_t>(kRirDirectBeforeS * sample_rate_hz);
+  const auto after = static_cast<std::size_t>(kRirDirectAfterS * sample_rate_hz);
   // Only what is kept counts: the window may reach back past the lead.
   for (std::size_t i = std::max(start, peak > before ? peak - before : 0); i < std::min(h.size(), peak + after); ++i) {
     direct_energy += static_cast<double>(h[i]) * h[i];

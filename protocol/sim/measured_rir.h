@@ -23,6 +23,9 @@ namespace dtmf::sim {
 
 inline constexpr double kRirLeadS = 0.00025;  // kept before the direct sound's peak (12 samples at 48 kHz)
 inline constexpr double kRirMaxLengthS = 10;  // longer files are refused: recordings, not responses
+// The direct sound: from 1 ms before its peak to 1.5 ms after; the rest is the room's.
+inline constexpr double kRirDirectBeforeS = 0.001;
+inline constexpr double kRirDirectAfterS = 0.0015;
 
 struct MeasuredRir {
   std::vector<float> samples;  // at the rate asked for, the direct sound's peak (positive) at `direct_index`

@@ -137,3 +137,27 @@ TEST(MeasuredRir, DistanceScalesTheLevelByOneOverDAndAddsNoDelay) {
   // A loudspeaker position means nothing in a measured room.
   EXPECT_THROW(at_1m.add_transmitter_at({1, 1, 1}), std::invalid_argument);
 }
+
+TEST(MeasuredRir, NearerThanOneMetreOnlyTheDirectSoundGrows) {
+  // A loudspeaker beside its own microphone: its direct sound 10x (0.1 m), the room's
+  // reverberant field as loud as from 1 m (it does not grow near the source).
+  ChannelConfig config;
+  config.room.rir_file = rir_path("smoking_room.wav");
+  AcousticChannel at_1m(kRate, config), near(kRate, config);
+  at_1m.add_transmitter(1.0);
+  near.add_transmitter(0.1);
+  const auto h1 = impulse_response(at_1m, 1.2), h01 = impulse_response(near, 1.2);
+  ASSERT_EQ(h1.size(), h01.size());
+  const std::size_t direct = at_1m.room()->direct_index();
+  const auto reverberation_from = direct + static_cast<std::size_t>(kRirDirectAfterS * kRate);
+  EXPECT_NEAR(h01[direct], 10 * h1[direct], 1e-5);
+  for (std::size_t i = reverberation_from; i < h1.size(); i += 97) EXPECT_NEAR(h01[i], h1[i], 1e-6) << i;
+  // Its energy after the direct sound, the room's reverberation, is not 20 dB louder.
+  double tail_1m = 0, tail_near = 0;
+  for (std::size_t i = reverberation_from; i < h1.size(); ++i) {
+    tail_1m += h1[i] * h1[i];
+    tail_near += h01[i] * h01[i];
+  }
+  EXPECT_GT(tail_1m, 0.01) << "the smoking room reverberates";
+  EXPECT_NEAR(tail_near / tail_1m, 1.0, 1e-3);
+}
