@@ -430,7 +430,7 @@ def main() -> int:
     w("## Talk-off")
     w("")
     w("A false confirmation is an ACK the sender would take for the frame it waits for (a new random frame every "
-      "ACK timeout; with a key, a tag the guess budget lets through, `protocol/link/answer_wait.h`).")
+      "ACK timeout; with a key, a tag chord reading with 9 of 16 bands of its tag, `protocol/link/answer_wait.h`).")
     w("")
     w("| signal | profile | hours | RMS | accepted frames (/h) | check-failing frames (/h) | false ACK (/h) | false NACK (/h) "
       "| false confirmations (/h) |")

@@ -191,7 +191,7 @@ std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const link::Link&
       replies_.pop_front();
       if (reply.steady_ms < since_ms || reply.answer.link != &link) continue;  // not an answer to this frame
       if (!wait.answered_by(reply.answer.answer)) {
-        if (reply.answer.answer.tag_reading) continue;  // a guess at the tag (link/answer_wait.h)
+        if (reply.answer.answer.tag_reading) continue;  // a tag chord spelling another tag
         spdlog::debug("an ACK naming frame {} while frame {} waits: late, ignored",
                       reply.answer.answer.sequence.value_or(0), frame.sequence.value_or(0));
         continue;

@@ -2,8 +2,9 @@
 //
 // A stop-and-wait sender and a robot face each other `d` metres apart in a simulated room
 // (sim::AcousticChannel both ways: delay, spreading, air absorption, RT60 0.3 s, pink
-// noise at -50 dBFS; the sender's microphone also hears its own loudspeaker from 0.1 m), or
-// with --rir in a measured room both ways. Both
+// noise at -50 dBFS; each microphone also hears its own loudspeaker from 0.1 m, as in the
+// e2e air), or with --rir in a measured room both ways (room_model.h: near a loudspeaker only
+// its direct sound grows). Both
 // run block by block (--block-samples, 5 ms by default, like low-latency sound cards): the
 // robot answers every verdict with ACK / NACK at its next block, the sender sends a
 // command's frames one after another — each once its answer came and the channel is free
@@ -17,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <deque>
 
@@ -43,7 +45,9 @@ struct Options {
   std::string rir;  // a measured room both ways instead of the simulated one
   std::size_t block_samples = 240;
   std::uint64_t seed = 1;
-  double own_speaker_m = 0.1;  // 0: the sender's microphone does not hear its own loudspeaker
+  double own_speaker_m = 0.1;        // 0: the sender's microphone does not hear its own loudspeaker
+  double own_speaker_db = 0;         // the sender's own loudspeaker heard this much louder (a margin)
+  double robot_own_speaker_m = 0.1;  // 0: the robot's microphone does not hear its own loudspeaker
   bool trace = false;
   double answer_delay_ms = 0;
 };
@@ -100,7 +104,8 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   sim::AcousticChannel& to_robot = *to_robot_channel;
   sim::AcousticChannel& to_sender = *to_sender_channel;
   to_robot.add_transmitter(o.distance_m);
-  if (o.own_speaker_m > 0) to_sender.add_transmitter(o.own_speaker_m);  // its own loudspeaker
+  if (o.robot_own_speaker_m > 0) to_robot.add_transmitter(o.robot_own_speaker_m, false);
+  if (o.own_speaker_m > 0) to_sender.add_transmitter(o.own_speaker_m, false);
   to_sender.add_transmitter(o.distance_m);
 
   link::LinkOptions keyed;  // each side its own counters, in memory
@@ -141,7 +146,8 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   // With --trace, every reading of the reply bands with half its tones heard (hopped profiles).
   std::optional<signal::HopReplyListener> trace_ear;
   if (o.trace && profile.hops().reply_hop_samples > 0) trace_ear.emplace(profile, 6);
-  std::vector<float> speaker_block(o.block_samples), robot_block(o.block_samples), heard;
+  std::vector<float> speaker_block(o.block_samples), robot_block(o.block_samples), own_block(o.block_samples), heard;
+  const auto own_gain = static_cast<float>(std::pow(10.0, o.own_speaker_db / 20));
   long long samples = 0;
   while (command_index < o.commands) {
     const double now_ms = static_cast<double>(samples) * ms_per_sample;  // start of this block
@@ -154,12 +160,14 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
       frame_started_ms = now_ms;
       if (o.trace) {
         std::printf("frame at %.1f ms, attempt %d, %zu samples; expect", now_ms, attempt, frames[frame].audio.size());
-        const reliability::ReplyTones expect =
-            frames[frame].authenticated
-                ? reliability::tag_tones(frames[frame].answer_tag)
-                : reliability::reply_codeword(reliability::NamedReply{true, frames[frame].sequence.value_or(0)});
-        for (int t : expect) std::printf(" %2d", t);
-        std::printf(" (lane %d)", frames[frame].answer_lane);
+        if (frames[frame].authenticated) {
+          for (int t : frames[frame].answer_tag) std::printf(" %2d", t);
+          std::printf(" (tag chord)");
+        } else {
+          for (int t : reliability::reply_codeword(reliability::NamedReply{true, frames[frame].sequence.value_or(0)}))
+            std::printf(" %2d", t);
+          std::printf(" (lane %d)", frames[frame].answer_lane);
+        }
         std::printf("\n");
       }
       const double chord_ms = static_cast<double>(frames[frame].audio.size()) * ms_per_sample;
@@ -173,7 +181,13 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
     const double end_ms = static_cast<double>(samples) * ms_per_sample;
 
     heard.clear();
-    to_robot.process(speaker_block, heard);
+    if (o.robot_own_speaker_m > 0) {
+      const std::array<std::span<const float>, 2> both{std::span<const float>(speaker_block),
+                                                       std::span<const float>(robot_block)};
+      to_robot.process(both, heard);
+    } else {
+      to_robot.process(speaker_block, heard);
+    }
     for (auto& answer : robot.feed(heard)) {
       if (o.trace) std::printf("  %9.1f robot answers (%zu samples)\n", end_ms - frame_started_ms, answer.size());
       if (o.answer_delay_ms > 0)
@@ -183,7 +197,9 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
 
     heard.clear();
     if (o.own_speaker_m > 0) {
-      const std::array<std::span<const float>, 2> both{std::span<const float>(speaker_block),
+      std::transform(speaker_block.begin(), speaker_block.end(), own_block.begin(),
+                     [&](float s) { return s * own_gain; });
+      const std::array<std::span<const float>, 2> both{std::span<const float>(own_block),
                                                        std::span<const float>(robot_block)};
       to_sender.process(both, heard);
     } else {
@@ -197,6 +213,12 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
       }
     }
     for (const link::Answer& a : sender_ear->feed(heard)) {
+      if (o.trace && a.tag_reading && awaiting) {
+        std::printf("  %9.1f tag chord, %2d bands agree:", a.heard_ms - frame_started_ms,
+                    reliability::tag_chord_matches(*a.tag_reading, frames[frame].answer_tag, frames[frame].sent_tones));
+        for (int t : reliability::tag_chord_plain(*a.tag_reading)) std::printf(" %2d", t);
+        std::printf("\n");
+      }
       if (!awaiting) continue;
       if (!wait->answered_by(a)) continue;  // names another frame, or a wrong tag
       if (!a.ack) {
@@ -273,6 +295,13 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--own-speaker-m", o.own_speaker_m,
                  "the sender's own loudspeaker's distance from its microphone (0: unheard)")
+      ->capture_default_str();
+  app.add_option("--own-speaker-db", o.own_speaker_db,
+                 "the sender's own loudspeaker heard this much louder than the 0.1 m model (a margin: a louder "
+                 "loudspeaker, a nearer microphone)")
+      ->capture_default_str();
+  app.add_option("--robot-own-speaker-m", o.robot_own_speaker_m,
+                 "the robot's own loudspeaker's distance from its microphone (0: unheard)")
       ->capture_default_str();
   app.add_option("--answer-delay-ms", o.answer_delay_ms, "the robot waits this long before it answers");
   app.add_flag("--trace", o.trace, "print every transmission, the robot's answers and the reply readings");

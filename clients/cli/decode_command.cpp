@@ -95,23 +95,38 @@ int run_decode_replies(const DecodeOptions& o) {
   const auto ear = link.answer_listener();
   std::vector<float> block(static_cast<std::size_t>(link.answer_block_samples()));
   int acks = 0, nacks = 0;
+  // A tag chord is read in several windows; those less than a chord apart are one answer.
+  const double tag_chord_ms = profile.timing.chord_ms;
+  double last_tag_ms = -1e9;
   feed_recording(source, block, profile.sample_rate_hz, [&](std::span<const float> b) {
     for (const link::Answer& a : ear->feed(b)) {
+      // A tagged ACK's tones as heard, -1 where a band was not (the sender counts the bands
+      // that spell the tag it waits for; offline there is no frame to wait for).
+      const auto tag = link::spelled_tag(a);
+      if (tag) {
+        const bool again = a.heard_ms - last_tag_ms < tag_chord_ms;
+        last_tag_ms = a.heard_ms;
+        if (again) continue;
+      }
       (a.ack ? acks : nacks) += 1;
-      // A tagged ACK's tag, when all its tones were heard (the sender checks 11 of 12 against
-      // the tag it waits for; offline there is no frame to wait for).
-      long long tag = -1;
-      if (const auto full = link::spelled_tag(a)) tag = *full;
+      std::string spelt;
+      if (tag) {
+        for (const int t : *tag) spelt += (spelt.empty() ? "" : ".") + (t < 0 ? std::string("-") : std::to_string(t));
+      }
       if (o.json) {
         nlohmann::json j{{"t_ms", a.heard_ms}, {"reply", a.ack ? "ack" : "nack"}};
         if (a.sequence) j["sequence"] = *a.sequence;
-        if (tag >= 0) j["tag"] = tag;
-        j["lane"] = a.lane;
+        if (tag) {
+          j["tag_tones"] = *tag;
+        } else {
+          j["lane"] = a.lane;
+        }
         std::cout << j.dump() << '\n';
+      } else if (tag) {
+        std::printf("t=%.3f s ACK tag tones %s\n", a.heard_ms / 1000.0, spelt.c_str());
       } else {
-        std::printf("t=%.3f s %s%s%s lane %d\n", a.heard_ms / 1000.0, a.ack ? "ACK" : "NACK",
-                    a.sequence ? (" seq " + std::to_string(*a.sequence)).c_str() : "",
-                    tag >= 0 ? (" tag " + std::to_string(tag)).c_str() : "", a.lane);
+        std::printf("t=%.3f s %s%s lane %d\n", a.heard_ms / 1000.0, a.ack ? "ACK" : "NACK",
+                    a.sequence ? (" seq " + std::to_string(*a.sequence)).c_str() : "", a.lane);
       }
     }
   });

@@ -7,9 +7,7 @@ namespace dtmf::link {
 
 namespace {
 
-bool same(const Answer& a, const Answer& b) {
-  return a.ack == b.ack && a.sequence == b.sequence && a.tag_reading == b.tag_reading && a.lane == b.lane;
-}
+bool same(const Answer& a, const Answer& b) { return a.ack == b.ack && a.sequence == b.sequence && a.lane == b.lane; }
 
 }  // namespace
 
@@ -17,7 +15,9 @@ FastAnswerListener::FastAnswerListener(const LinkProfile& profile, bool keyed)
     : keyed_(keyed),
       needed_(profile.hops().reply_tones_needed),
       reply_ms_(1000.0 * profile.hops().reply_samples() / profile.sample_rate_hz),
-      listener_(profile, profile.hops().reply_tones_needed, keyed) {}
+      listener_(profile, profile.hops().reply_tones_needed) {
+  if (keyed) tags_.emplace(profile);
+}
 
 std::span<const Answer> FastAnswerListener::feed(std::span<const float> samples) {
   answers_.clear();
@@ -27,20 +27,17 @@ std::span<const Answer> FastAnswerListener::feed(std::span<const float> samples)
     // A named reply sounds only in its own lane: read in the other, it is its own edge
     // leaking two bins over, or its tail.
     if (named && h.lane != (named->ack ? answer_lane(named->sequence) : kNackLane)) named.reset();
-    if (keyed_) {
-      if (named && !named->ack)
-        now = Answer{false, std::nullopt, std::nullopt, h.heard_ms, h.lane};
-      else if (reliability::heard_tones(h.tones) >= reliability::kTagTonesNeeded)
-        // Read for the awaited tag it hears no more tones than plainly (a band set aside
-        // leaves weaker ones), so the plain count is the gate; Link::answers decides.
-        pass(Answer{true, std::nullopt, reliability::TagEvidence{h.tones, h.second_beside}, h.heard_ms, h.lane});
-    } else if (named) {
+    // Keyed, only NACKs are named: an ACK spells its tag (below).
+    if (named && (!keyed_ || !named->ack))
       now = Answer{named->ack, named->ack ? std::optional(named->sequence) : std::nullopt, std::nullopt, h.heard_ms,
                    h.lane};
-    }
     Previous& previous = previous_[static_cast<std::size_t>(h.lane)];
     if (now && previous.answer && h.window == previous.window + 1 && same(*previous.answer, *now)) pass(*now);
     previous = {now, h.window};
+  }
+  if (tags_) {
+    for (const signal::HeardTagChord& t : tags_->feed(samples))
+      answers_.push_back(Answer{true, std::nullopt, t.reading, t.heard_ms, 0});
   }
   return answers_;
 }

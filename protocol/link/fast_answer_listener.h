@@ -1,11 +1,12 @@
-// The fast profile's answer ear: readings of the reply bands (signal/hop_reply.h) -> answers.
+// The fast profile's answer ear: readings of the reply bands (signal/hop_reply.h) and, keyed,
+// of tag chords (signal/hop_tag_listener.h) -> answers.
 //
-// Unkeyed, named replies: ACK(sequence) or NACK, each only in its own lane (link/reply_lane.h),
-// counted once two windows in a row read the same (a window straddling a chord's start reads
-// a tone or two wrong). Keyed, a NACK so, and every reading of kTagTonesNeeded tones or more
-// as a tagged ACK whose tones the sender checks against the tag it waits for, within its
-// guess budget (link/answer_wait.h): one window may be the only one a notch leaves clear. The
-// same answer again within a reply's length is that reply, passed once.
+// Named replies: ACK(sequence) or NACK, each only in its own lane (link/reply_lane.h), counted
+// once two windows in a row read the same (a window straddling a chord's start reads a tone
+// or two wrong). Keyed, NACKs so, and every reading of a tag chord that heard as many bands as a
+// tag needs as a tagged ACK, which the sender checks against the tag it waits for (one window
+// may be the only one a notch leaves clear; Link::answers). The same named answer again within
+// a reply's length is that reply, passed once.
 #pragma once
 
 #include <array>
@@ -15,6 +16,7 @@
 
 #include "link/link.h"
 #include "signal/hop_reply.h"
+#include "signal/hop_tag_listener.h"
 
 namespace dtmf::link {
 
@@ -30,6 +32,7 @@ class FastAnswerListener final : public AnswerListener {
   int needed_;
   double reply_ms_;
   signal::HopReplyListener listener_;
+  std::optional<signal::HopTagListener> tags_;  // keyed senders only
   struct Previous {
     std::optional<Answer> answer;
     long long window = -10;

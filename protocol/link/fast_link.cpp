@@ -1,9 +1,10 @@
 // The `fast` profile's link (HopPlan): address, a number and the 27-bit
 // command, checked by a CRC (and with a key authenticated by a MAC over a freshness
 // counter), as a Reed-Solomon codeword of hopped 32-ary tones; ACK / NACK replies below the
-// chords.
+// chords, and the ACK to an authenticated frame one chord spelling its tag in the frame bands.
 #include "link/fast_link.h"
 
+#include <algorithm>
 #include <random>
 
 #include "command/command_payload.h"
@@ -26,10 +27,20 @@ namespace {
 
 // Offline recordings leave each frame the time its answer takes, as a sender would.
 constexpr double kAnswerWaitMs = 100;
+// A tag chord sounds in the frame bands, where the sender's microphone hears its own frame 20
+// dB louder: it begins only once the frame has ended (the robot decides about 30 ms before),
+// so that a window of the sender's lies wholly inside it and after its own chord's end (a
+// chord cut off within a window spreads over its whole band). The guard covers where the
+// robot placed the frame's start: to within a few milliseconds.
+constexpr double kTagAfterFrameMs = 2;
 
-// The tag the ACK to an authenticated frame spells: both sides reduce it alike.
-std::uint32_t reply_tag(const security::LinkKey& key, const security::FrameMacInput& input, std::uint32_t mac) {
-  return security::answer_tag(key, input, mac) % reliability::kReplyTagSpace;
+static_assert(security::kAnswerTagBytes == reliability::kTagBytes);
+
+// The tag the ACK to an authenticated frame spells, as its chord's symbols, in the bins the
+// frame left free.
+reliability::TagChordSymbols reply_tag(const security::LinkKey& key, const security::FrameMacInput& input,
+                                       std::uint32_t mac, const reliability::BandValueSet& taken) {
+  return reliability::tag_chord_symbols(security::answer_tag(key, input, mac), taken);
 }
 
 class FastReceiver final : public FrameReceiver {
@@ -95,9 +106,10 @@ TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation
   f.authenticated = true;
   f.synchronisation = synchronisation;
   f.counter = counter;
-  f.answer_tag = reply_tag(*options_.key, input, frame.mac);
   f.answer_lane = answer_lane(counter);
   const auto symbols = reliability::sealed_frame_symbols(f.bits);
+  f.sent_tones = reliability::tag_chord_taken(symbols);
+  f.answer_tag = reply_tag(*options_.key, input, frame.mac, f.sent_tones);
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
   f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
@@ -158,8 +170,16 @@ std::vector<float> FastLink::answer_audio(const Reception& r) const {
   if (r.acknowledged() && r.counter && options_.key) {
     const auto input = sealed_mac_input(r.bits, *r.counter);
     const std::uint32_t mac = reliability::sealed_frame_unpack(r.bits)->mac;
-    return signal::synthesize_hopped_reply(profile(), reliability::tag_tones(reply_tag(*options_.key, input, mac)),
-                                           answer_lane(*r.counter));
+    const double frame_end_ms =
+        r.start_ms + 1000.0 * profile().hops().sealed_frame_samples() / profile().sample_rate_hz;
+    std::vector<float> audio(
+        static_cast<std::size_t>(profile().samples_for_ms(std::max(0.0, frame_end_ms + kTagAfterFrameMs - r.heard_ms))),
+        0.0f);
+    const std::vector<float> chord = signal::synthesize_tag_chord(
+        profile(),
+        reply_tag(*options_.key, input, mac, reliability::tag_chord_taken(reliability::sealed_frame_symbols(r.bits))));
+    audio.insert(audio.end(), chord.begin(), chord.end());
+    return audio;
   }
   if (r.acknowledged()) {
     return signal::synthesize_hopped_reply(profile(), reliability::reply_codeword({true, r.sequence.value_or(0)}),
@@ -178,8 +198,9 @@ int FastLink::answer_block_samples() const { return profile().hops().reply_hop_s
 
 bool FastLink::answers(const Answer& answer, const TransmitFrame& frame) const {
   if (!answer.ack) return true;  // a NACK answers whatever frame is on air
+  if (frame.authenticated)
+    return answer.tag_reading && reliability::spells_tag_chord(*answer.tag_reading, frame.answer_tag, frame.sent_tones);
   if (answer.lane != frame.answer_lane) return false;
-  if (frame.authenticated) return answer.tag_reading && reliability::spells_tag(*answer.tag_reading, frame.answer_tag);
   return answer.sequence && answer.sequence == frame.sequence;
 }
 

@@ -71,6 +71,7 @@ inline Reception intact_reception(const TransmitFrame& frame) {
   r.authenticated = frame.authenticated;
   r.sequence = frame.sequence;
   r.counter = frame.counter;
+  r.heard_ms = frame.tone_ms;  // decided as the frame ends (start_ms 0): the answer may follow at once
   return r;
 }
 

@@ -3,6 +3,7 @@
 // logs and executes receptions, the transmitter matches answers to the frame on air.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -11,7 +12,7 @@
 
 #include "command/command.h"
 #include "reliability/frame_bits.h"
-#include "reliability/reply_code.h"
+#include "reliability/tag_chord.h"
 
 namespace dtmf::link {
 
@@ -67,17 +68,18 @@ struct Reception {
 struct Answer {
   bool ack = false;
   std::optional<std::uint8_t> sequence;  // named by the ACK, in formats that name frames
-  // The ACK to an authenticated frame: its tones as heard (-1 where unheard), which the
-  // link checks against the tag the frame on air waits for (Link::answers).
-  std::optional<reliability::TagEvidence> tag_reading;
+  // The ACK to an authenticated frame: its tag chord's bands as heard, which the link checks
+  // against the tag the frame on air waits for (Link::answers).
+  std::optional<reliability::TagChordReading> tag_reading;
   double heard_ms = 0;
-  int lane = 0;  // where it sounded: an ACK answers only a frame whose answer_lane it is
+  int lane = 0;  // where an untagged answer sounded: an ACK answers only a frame whose answer_lane it is
 };
 
-// The tag a tagged ACK spells when every one of its tones was heard, for people and tools
-// (dtmfctl decode); a sender checks the tag it waits for instead (Link::answers).
-inline std::optional<std::uint32_t> spelled_tag(const Answer& answer) {
-  return answer.tag_reading ? reliability::read_tag(answer.tag_reading->plain) : std::nullopt;
+// The tones a tagged ACK's bands read as (-1: unheard), for people and tools (dtmfctl
+// decode); a sender checks the tag it waits for instead (Link::answers).
+inline std::optional<std::array<int, reliability::kTagChordTones>> spelled_tag(const Answer& answer) {
+  if (!answer.tag_reading) return std::nullopt;
+  return reliability::tag_chord_plain(*answer.tag_reading);
 }
 
 }  // namespace dtmf::link

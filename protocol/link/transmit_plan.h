@@ -8,23 +8,25 @@
 
 #include "command/command.h"
 #include "reliability/frame_bits.h"
+#include "reliability/tag_chord.h"
 
 namespace dtmf::link {
 
 struct TransmitFrame {
-  std::optional<command::Word> word;     // seed words: the 12-bit word the frame carries
-  reliability::FrameBits bits;           // the frame as sent, check included
-  int bit_count = 0;                     // 16 (seed), 50 (fast), 80 (fast, authenticated)
-  int check_bit_count = 0;               // the low bits that are the check (CRC)
-  std::optional<std::uint8_t> sequence;  // numbered frames: the number its ACK must name
-  bool authenticated = false;            // carries a MAC (sealed frames)
-  bool synchronisation = false;          // a counter synchronisation, no command
-  std::optional<std::uint64_t> counter;  // authenticated frames: the freshness counter
-  std::uint32_t answer_tag = 0;          // authenticated frames: the tag its ACK must carry
-  int answer_lane = 0;                   // where its ACK sounds (fast: the reply lane, signal/hop_reply.h)
-  std::vector<double> tones_hz;          // every tone, chord after chord, in order
-  std::vector<float> audio;              // what the loudspeaker plays, tone_ms long
-  double tone_ms = 0;                    // sound on air
+  std::optional<command::Word> word;          // seed words: the 12-bit word the frame carries
+  reliability::FrameBits bits;                // the frame as sent, check included
+  int bit_count = 0;                          // 16 (seed), 50 (fast), 80 (fast, authenticated)
+  int check_bit_count = 0;                    // the low bits that are the check (CRC)
+  std::optional<std::uint8_t> sequence;       // numbered frames: the number its ACK must name
+  bool authenticated = false;                 // carries a MAC (sealed frames)
+  bool synchronisation = false;               // a counter synchronisation, no command
+  std::optional<std::uint64_t> counter;       // authenticated frames: the freshness counter
+  reliability::TagChordSymbols answer_tag{};  // authenticated frames: the tag its ACK must spell
+  reliability::BandValueSet sent_tones{};     // ... and the tones the frame sent in each band, set aside there
+  int answer_lane = 0;                        // where an untagged ACK sounds (fast: the reply lane, signal/hop_reply.h)
+  std::vector<double> tones_hz;               // every tone, chord after chord, in order
+  std::vector<float> audio;                   // what the loudspeaker plays, tone_ms long
+  double tone_ms = 0;                         // sound on air
 };
 
 }  // namespace dtmf::link

@@ -112,6 +112,14 @@ void plan_fast_replies(HopPlan& h) {
   h.reply_onset_db = 3;
   h.reply_background_rise_db_per_s = 10;
   h.reply_tones_needed = 9;  // of 12: named replies differ in at least 7 (reliability/reply_code.h)
+  // Tagged ACKs: sixteen tones summing to at most 0.8 full scale, like a frame's eight.
+  h.tag_amplitude = h.tone_amplitude / 2;
+  h.tag_presence_db = 3;
+  h.tag_onset_db = 3;
+  // Clocks and motion: 750 ppm apart, so no tone is read more than a quarter of a bin (375 ppm
+  // at 17.5 kHz) off its bin, from -1875 to +1875 ppm (sound cards' clocks differ by a few
+  // hundred; a Burger at full speed adds 640).
+  h.tag_offset_ppm = {-1500, -750, 0, 750, 1500};
 }
 
 // The fast profile, built for real rooms (docs/protocol.md §10 has the reasons and the

@@ -154,6 +154,14 @@ struct HopPlan {
   double reply_onset_db = 0;
   double reply_background_rise_db_per_s = 0;
   int reply_tones_needed = 0;  // tones of 12 that must agree with a named reply
+  // The ACK to an authenticated frame: one chord of a frame's shape (chord_samples() long)
+  // with a tone in each of the sixteen bands of both band sets (reliability/tag_chord.h), read
+  // by the sender every hop at each of kTagOffsets frequency offsets (signal/hop_tag_listener.h).
+  static constexpr int kTagOffsets = 5;
+  double tag_amplitude = 0;  // linear, per tone
+  double tag_presence_db = 0;
+  double tag_onset_db = 0;
+  std::array<int, kTagOffsets> tag_offset_ppm{};
 
   int chord_samples() const { return window_samples + 2 * edge_samples + hop_samples; }
   int frame_samples() const { return chords_per_frame * chord_samples(); }
@@ -161,6 +169,7 @@ struct HopPlan {
   // One whole reply window fits in each reply chord, which is a whole number of reply hops.
   int reply_chord_samples() const { return reply_window_samples + 2 * reply_edge_samples + reply_hop_samples; }
   int reply_samples() const { return kReplyChords * reply_chord_samples(); }
+  int tag_samples() const { return chord_samples(); }
   int reply_bin(int lane, int band, int tone) const {
     return reply_tone_bin[static_cast<std::size_t>(band)][static_cast<std::size_t>(tone)] + lane * reply_lane_step_bins;
   }

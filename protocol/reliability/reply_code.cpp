@@ -58,61 +58,8 @@ std::optional<NamedReply> read_reply(const ReplyReading& reading, int tones_need
   return std::nullopt;
 }
 
-namespace {
-constexpr std::uint32_t kOffsets = 3 * 3 * 3 * 3 * 3 * 3;  // the second chord's, base 3
-}  // namespace
-
-ReplyTones tag_tones(std::uint32_t tag) {
-  std::uint32_t first = (tag % kReplyTagSpace) / kOffsets, offsets = tag % kOffsets;
-  ReplyTones tones{};
-  for (int b = kReplyBandsPerChord - 1; b >= 0; --b) {
-    tones[static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(first % kReplyToneValues);
-    first /= kReplyToneValues;
-  }
-  for (int b = kReplyBandsPerChord - 1; b >= 0; --b) {
-    const std::uint32_t step = 1 + offsets % (kReplyToneValues - 1);
-    tones[static_cast<std::size_t>(kReplyBandsPerChord + b)] =
-        static_cast<std::uint8_t>((tones[static_cast<std::size_t>(b)] + step) % kReplyToneValues);
-    offsets /= kReplyToneValues - 1;
-  }
-  return tones;
-}
-
-std::optional<std::uint32_t> read_tag(const ReplyReading& reading) {
-  std::uint32_t first = 0, offsets = 0;
-  for (int b = 0; b < kReplyBandsPerChord; ++b) {
-    const int a = reading[static_cast<std::size_t>(b)], z = reading[static_cast<std::size_t>(kReplyBandsPerChord + b)];
-    if (a < 0 || z < 0 || a == z) return std::nullopt;
-    first = first * kReplyToneValues + static_cast<std::uint32_t>(a);
-    offsets = offsets * (kReplyToneValues - 1) +
-              static_cast<std::uint32_t>((z - a + kReplyToneValues) % kReplyToneValues - 1);
-  }
-  return first * kOffsets + offsets;
-}
-
-ReplyReading reading_for(const TagEvidence& evidence, std::uint32_t tag) {
-  const ReplyTones expected = tag_tones(tag);
-  ReplyReading r = evidence.plain;
-  for (std::size_t b = 0; b < kReplyBandsPerChord; ++b)
-    r[kReplyBandsPerChord + b] = evidence.second_beside[b][expected[b]];
-  return r;
-}
-
-bool spells_tag(const TagEvidence& evidence, std::uint32_t tag) { return spells_tag(reading_for(evidence, tag), tag); }
-
 int heard_tones(const ReplyReading& reading) {
   return static_cast<int>(std::count_if(reading.begin(), reading.end(), [](int t) { return t >= 0; }));
-}
-
-bool spells_tag(const ReplyReading& reading, std::uint32_t tag) {
-  const ReplyTones expected = tag_tones(tag);
-  int agree = 0;
-  for (std::size_t t = 0; t < reading.size(); ++t) {
-    if (reading[t] < 0) continue;
-    if (reading[t] != expected[t]) return false;
-    ++agree;
-  }
-  return agree >= kTagTonesNeeded;
 }
 
 }  // namespace dtmf::reliability

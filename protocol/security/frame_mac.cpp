@@ -2,6 +2,7 @@
 
 #include <sodium.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 
@@ -20,7 +21,9 @@ void put_be(unsigned char* at, std::uint64_t value, int bytes) {
   }
 }
 
-std::uint32_t mac32(const LinkKey& key, Direction direction, const FrameMacInput& in, std::uint32_t body) {
+using Digest = std::array<unsigned char, crypto_generichash_BYTES_MIN>;  // 128 bits
+
+Digest digest(const LinkKey& key, Direction direction, const FrameMacInput& in, std::uint32_t body) {
   std::array<unsigned char, kMessageBytes> message{};
   unsigned char* at = message.data();
   std::memcpy(at, kLabel, kLabelBytes);
@@ -33,19 +36,23 @@ std::uint32_t mac32(const LinkKey& key, Direction direction, const FrameMacInput
   put_be(at, in.counter, 8);
   at += 8;
   put_be(at, body, 4);
-  std::array<unsigned char, crypto_generichash_BYTES_MIN> out{};
+  Digest out{};
   crypto_generichash(out.data(), out.size(), message.data(), message.size(), key.bytes().data(), key.bytes().size());
-  return (std::uint32_t{out[0]} << 24) | (std::uint32_t{out[1]} << 16) | (std::uint32_t{out[2]} << 8) | out[3];
+  return out;
 }
 
 }  // namespace
 
 std::uint32_t frame_mac(const LinkKey& key, const FrameMacInput& input) {
-  return mac32(key, Direction::ToRobot, input, input.payload);
+  const Digest d = digest(key, Direction::ToRobot, input, input.payload);
+  return (std::uint32_t{d[0]} << 24) | (std::uint32_t{d[1]} << 16) | (std::uint32_t{d[2]} << 8) | d[3];
 }
 
-std::uint32_t answer_tag(const LinkKey& key, const FrameMacInput& frame, std::uint32_t mac) {
-  return mac32(key, Direction::ToSender, frame, mac);
+AnswerTag answer_tag(const LinkKey& key, const FrameMacInput& frame, std::uint32_t mac) {
+  const Digest d = digest(key, Direction::ToSender, frame, mac);
+  AnswerTag tag{};
+  std::copy_n(d.begin(), tag.size(), tag.begin());
+  return tag;
 }
 
 }  // namespace dtmf::security

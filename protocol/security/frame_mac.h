@@ -2,7 +2,8 @@
 // the spirit of AUTOSAR SecOC (a truncated MAC over the data and a freshness value).
 //
 // Both are keyed BLAKE2b (libsodium's crypto_generichash, a 128-bit output) over one fixed
-// byte string, truncated to the first 32 bits:
+// byte string: a frame's MAC truncated to its first 32 bits, an answer's tag all 128 (a byte
+// for each of the 16 tones of a tagged ACK: reliability/tag_chord.h):
 //   "dtmf-teleop/1" | direction (1 byte) | key id (4) | address (1) | form (1) | counter (8) | body (4)
 // The direction keeps a frame's MAC from ever serving as an answer's tag and back; the key id
 // and the robot's address bind it to one key and one robot; the counter is the full freshness
@@ -10,6 +11,7 @@
 // frame) or the MAC of the frame answered (an answer's tag). Pure: no I/O, no clock.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "security/link_key.h"
@@ -29,8 +31,11 @@ struct FrameMacInput {
 
 std::uint32_t frame_mac(const LinkKey& key, const FrameMacInput& input);
 
+inline constexpr std::size_t kAnswerTagBytes = 16;
+using AnswerTag = std::array<std::uint8_t, kAnswerTagBytes>;
+
 // The tag of the robot's ACK to the frame whose MAC input and MAC are given: only a holder of
 // the key can make it, and it answers that one frame.
-std::uint32_t answer_tag(const LinkKey& key, const FrameMacInput& frame, std::uint32_t frame_mac);
+AnswerTag answer_tag(const LinkKey& key, const FrameMacInput& frame, std::uint32_t frame_mac);
 
 }  // namespace dtmf::security

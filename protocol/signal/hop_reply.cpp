@@ -13,10 +13,9 @@ namespace {
 constexpr int kMarginBins = 2;
 }  // namespace
 
-HopReplyListener::HopReplyListener(const LinkProfile& profile, int min_heard, bool evidence)
+HopReplyListener::HopReplyListener(const LinkProfile& profile, int min_heard)
     : hops_(profile.hops()),
       min_heard_(min_heard),
-      evidence_(evidence),
       sample_rate_hz_(profile.sample_rate_hz),
       presence_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops().reply_presence_db))),
       onset_ratio_(static_cast<float>(units::power_ratio_from_db(profile.hops().reply_onset_db))),
@@ -103,14 +102,6 @@ void HopReplyListener::read_lane(int lane, std::size_t first, std::size_t before
     }
   }
   if (r.heard < min_heard_) return;
-  if (evidence_) {
-    for (int b = 0; b < HopPlan::kReplyBands; ++b) {
-      for (int first_tone = 0; first_tone < reliability::kReplyToneValues; ++first_tone) {
-        r.second_beside[static_cast<std::size_t>(b)][static_cast<std::size_t>(first_tone)] = static_cast<std::int8_t>(
-            read_band(excess_ring_[newest_], power_ring_[newest_], power_ring_[first], lane, b, first_tone));
-      }
-    }
-  }
   r.window = windows_;
   const double ms_per_sample = 1000.0 / sample_rate_hz_;
   r.heard_ms = static_cast<double>(window_.samples_fed()) * ms_per_sample;

@@ -44,15 +44,11 @@ struct HeardReading {
   double heard_ms = 0;                // end of the window inside its second chord
   long long window = 0;               // the window's number: readings of consecutive windows are one reply
   int lane = 0;                       // the reply lane read
-  // With evidence asked for: the second chord read again beside each first-chord tone
-  // (reliability::TagEvidence; tones is its plain reading).
-  std::array<std::array<std::int8_t, reliability::kReplyToneValues>, HopPlan::kReplyBands> second_beside{};
 };
 
 class HopReplyListener {
  public:
-  // `evidence`: fill HeardReading::second_beside (a keyed sender's ear).
-  HopReplyListener(const LinkProfile& profile, int min_heard, bool evidence = false);
+  HopReplyListener(const LinkProfile& profile, int min_heard);
   std::span<const HeardReading> feed(std::span<const float> samples);
   double hop_ms() const { return 1000.0 * hops_.reply_hop_samples / sample_rate_hz_; }
 
@@ -64,7 +60,6 @@ class HopReplyListener {
 
   const HopPlan& hops_;
   int min_heard_;
-  bool evidence_;
   int sample_rate_hz_;
   float presence_ratio_;
   float onset_ratio_;

@@ -73,4 +73,16 @@ std::vector<float> synthesize_hopped_reply(const LinkProfile& profile, const rel
   return audio;
 }
 
+std::vector<float> synthesize_tag_chord(const LinkProfile& profile, const reliability::TagChordSymbols& symbols) {
+  const HopPlan& h = profile.hops();
+  std::vector<float> audio(static_cast<std::size_t>(h.tag_samples()), 0.0f);
+  for (int k = 0; k < reliability::kTagChordTones; ++k) {
+    const auto set = static_cast<std::size_t>(k / HopPlan::kBandsPerChord);
+    const auto band = static_cast<std::size_t>(k % HopPlan::kBandsPerChord);
+    add_tone(audio, h.band_first_bin[set][band] + symbols[static_cast<std::size_t>(k)], h.window_samples,
+             h.edge_samples, h.tag_amplitude, newman_phase(k, reliability::kTagChordTones));
+  }
+  return audio;
+}
+
 }  // namespace dtmf::signal

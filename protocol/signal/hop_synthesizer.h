@@ -17,6 +17,7 @@
 
 #include "profile/link_profile.h"
 #include "reliability/reply_code.h"
+#include "reliability/tag_chord.h"
 
 namespace dtmf::signal {
 
@@ -30,5 +31,7 @@ std::vector<float> synthesize_hopped_frame(const LinkProfile& profile, std::span
 // A reply: two chords of six tones, tones[6 c + b] in reply band b of chord c, in reply lane
 // `lane` (hops.reply_samples() long).
 std::vector<float> synthesize_hopped_reply(const LinkProfile& profile, const reliability::ReplyTones& tones, int lane);
+// A tagged ACK: symbols[k] in band k (band set k / 8, band k % 8), hops.tag_samples() long.
+std::vector<float> synthesize_tag_chord(const LinkProfile& profile, const reliability::TagChordSymbols& symbols);
 
 }  // namespace dtmf::signal

@@ -81,7 +81,7 @@ class TargetsSection(unittest.TestCase):
         self.assertEqual(rows["one authenticated frame on air"]["fast"], "102.50 ms")  # binds the keyed column only
         drive = rows["authenticated Drive through the seminar room both ways: RPC → confirmed, median"]
         self.assertTrue(drive["fast+key"].startswith("**missed**: 250 ms"))
-        heard = rows["answer path: answers heard, every room, own frames +20 dB or not"]
+        heard = rows["answer path: answers heard, every room, own loudspeaker at 0.1 m or not"]
         self.assertEqual(heard["fast"], "met: worst 100.00 % of 1000 (smoking_room 1 m)")
         self.assertTrue(heard["fast+key"].startswith("**missed**: worst 99.00 % of 1000 (smoking_room 1 m)"))
         confirmations = rows["talk-off: false confirmations per hour (with a key: a forged tag; without, anyone may ACK)"]

@@ -274,31 +274,6 @@ TEST(HopReplyListener, AReplyWithThreeTonesGoneIsStillHeardAndNoiseIsNoReply) {
   EXPECT_TRUE(answers_heard(noise).empty());
 }
 
-// A tagged ACK is read back with its tag, also beside a frame 20 dB louder at 4 kHz and up
-// (the sender's own loudspeaker): the Hann window keeps the frame's tones out of the reply
-// bands.
-TEST(HopReplyListener, ATaggedAckIsHeardWithItsTagBesideTheSendersOwnLouderFrame) {
-  const std::uint32_t tag = 0x1ABCDEF5u % reliability::kReplyTagSpace;
-  const auto reply = reply_audio(reliability::tag_tones(tag));
-  signal::HoppedSymbols symbols{};
-  for (std::size_t t = 0; t < symbols.size(); ++t) symbols[t] = static_cast<std::uint8_t>((7 * t + 3) % 32);
-  const auto frame = signal::synthesize_hopped_frame(p, symbols);
-  std::vector<float> audio(4000 + frame.size() + 9600, 0.0f);
-  for (std::size_t i = 0; i < frame.size(); ++i) audio[4000 + i] += 10.0f * frame[i];  // +20 dB
-  // The reply starts 10 ms before the frame ends, as the robot answers while it sounds.
-  const std::size_t at = 4000 + frame.size() - 480;
-  for (std::size_t i = 0; i < reply.size(); ++i) audio[at + i] += reply[i];
-  int spelling = 0, guesses = 0;
-  for (const auto& a : answers_heard(audio, true)) {
-    if (!a.tag_reading || a.lane != 0) continue;  // the other lane's readings are no guess (answer_wait.h)
-    ++(reliability::spells_tag(*a.tag_reading, tag) ? spelling : guesses);
-  }
-  // The reply's first window straddles its start and may read a tone wrong: a guess of the
-  // sender's budget (link/answer_wait.h). The frame's chords make none.
-  EXPECT_GE(spelling, 1) << "the tag was heard";
-  EXPECT_LE(guesses, 2);
-}
-
 // The seed's ACK and NACK tones (2000, 2500, 3000, 3500 Hz) are no reply tone in either lane, so
 // no fast reply sounds like a seed answer; a seed ACK lies within a bin of one tone of each lane
 // at most (a seed ACK played beside the sender costs an answer at most that tone); every reply

@@ -1,0 +1,60 @@
+// Signal layer: the keyed sender's listener for tagged ACKs — audio in, readings of the tag
+// chord's sixteen bands out (reliability/tag_chord.h).
+//
+// A tagged ACK is one chord of a frame's shape with a tone in every one of the frame's sixteen
+// bands. Every hop the latest window (rectangular, as the frame listener reads: the tones sit
+// on its bins) is read at each of the profile's frequency offsets (`tag_offset_ppm`: the
+// robot's clock and its motion move every tone by the same factor); a band's candidates are its
+// bins that rose `tag_onset_db` since the window a chord earlier (a tail falls, the sender's
+// own frame's included) and stand `tag_presence_db` over the band's median, the strongest
+// first. The listener knows nothing of the tag awaited: the link checks each reading
+// against it. A window is handed over only when some offset heard as many bands as a tag
+// needs. Times are milliseconds since the first sample fed. Feeding allocates nothing.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "profile/link_profile.h"
+#include "reliability/tag_chord.h"
+#include "signal/bin_power.h"
+#include "signal/sliding_window.h"
+
+namespace dtmf::signal {
+
+static_assert(HopPlan::kTagOffsets == reliability::kTagChordHypotheses);
+static_assert(2 * HopPlan::kBandsPerChord == reliability::kTagChordTones);
+
+struct HeardTagChord {
+  reliability::TagChordReading reading{};
+  double heard_ms = 0;   // the end of the window read
+  long long window = 0;  // the window's number
+};
+
+class HopTagListener {
+ public:
+  explicit HopTagListener(const LinkProfile& profile);
+  std::span<const HeardTagChord> feed(std::span<const float> samples);
+
+ private:
+  void analyze_window();
+  void read_band(int offset, int band, const std::vector<float>& power, const std::vector<float>& before,
+                 std::array<std::int8_t, reliability::kTagChordCandidates>& out) const;
+
+  const HopPlan& hops_;
+  int sample_rate_hz_;
+  float presence_ratio_;
+  float onset_ratio_;
+  int lo_bin_;
+  int hops_per_chord_;
+  // first_bin_[offset][band]: band's value 0 at that offset, as an index into a window's powers.
+  std::array<std::array<int, reliability::kTagChordTones>, HopPlan::kTagOffsets> first_bin_{};
+  BinPower bins_;
+  SlidingWindow window_;
+  std::vector<std::vector<float>> power_ring_;  // the last hops_per_chord_ + 1 windows
+  std::size_t newest_ = 0;
+  long long windows_ = 0;
+  std::vector<HeardTagChord> heard_;
+};
+
+}  // namespace dtmf::signal
