@@ -21,19 +21,28 @@ REASONS = {
     ("end to end through the seminar room both ways: net throughput", "fast"):
         "no retransmission is left to blame (0 in 200; the answers are heard in every room, see the answer "
         "path): a stop-and-wait sender puts one 27-bit command on air per round trip, frame 102.5 ms + the "
-        "robot's decision + the 76.5 ms answer + both ways' audio buffers, about 165 ms here, so about 165 "
-        "bit/s. 250 bit/s needs the next frame on air while the answer comes (the reply bands lie below the "
+        "robot's decision + the 76.5 ms answer + both ways' audio buffers, about 155–165 ms here, so about "
+        "165–175 bit/s. 250 bit/s needs the next frame on air while the answer comes (the reply bands lie below the "
         "chords for that); the transmitter does not pipeline yet",
     ("end to end through the seminar room both ways: RPC → confirmed, median", "fast"):
-        "the answer is 76.5 ms now (two chords read in 32 ms Hann windows, 100 % of 16 000 answers heard in "
-        "every room beside the sender's own frames 20 dB louder, where the former 26 ms ACK lost 12 of 108 "
-        "so): 120 ms became 165 ms. A shorter unkeyed reply of one such chord (38 ms) would win back about "
-        "40 ms; not built yet",
+        "the answer is 76.5 ms (two chords read in 32 ms Hann windows, all heard in the answer-path table "
+        "beside the sender's own frames, where the former 26 ms ACK lost 12 of 108): it begins at the robot's "
+        "decision, about 30 ms before the frame ends, and is confirmed once its second chord is read. A "
+        "shorter unkeyed reply of one such chord (38 ms) would win back about 40 ms, but a chord of six 4-ary "
+        "tones can name 17 answers only 4 tones apart (Singleton), where the two chords keep them 7 apart "
+        "and lose 3 tones to a room; not built",
     ("authenticated Drive through the seminar room both ways: RPC → confirmed, median", "fast+key"):
         "the 80-bit frame sounds 153.75 ms, and its tag chord begins 2 ms after it ends and is read in a 40 ms "
         "window: about 196 ms of sound before the sender can know, plus both ways' audio buffers. Meeting 200 ms "
         "needs the robot to decide on the first two chords (RS(24,16) with the third chord's eight symbols "
         "erased leaves no parity, so only the CRC-8 and the MAC would stand behind it)",
+    ("answer path: answers heard, every room, own loudspeaker at 0.1 m or not", "fast+key"):
+        "every case at 1 m hears 100.00 %, as do the round trips through every room (offline and end to end, "
+        "1 m); at 3 m beside the sender's own loudspeaker at 0.1 m the tag chord is lost in 0–8.4 % of slots "
+        "(worst in the club hall, seminar and smoking rooms). There the answer's direct sound arrives 9.5 dB "
+        "weaker than at 1 m while the frame that just ended is as loud; which of the ear's rules drops it "
+        "(the 3 dB rise over the window a chord earlier, which held the frame's cut-off, or the strongest "
+        "free tone) is not yet measured. The unkeyed answers, in the reply bands, are all heard",
     ("frame success at −12 dB SNR (an aim)", "fast"):
         "no lost frame was NACKed. Three steps took it from 75.5 % (2026-11-26): runner-up swaps and a 4-of-8 "
         "gate (88.7 % of 10 000), then whole-chord re-reads (2026-11-27, docs/protocol.md `reread_delay_hops`): "
