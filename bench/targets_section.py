@@ -33,7 +33,9 @@ REASONS = {
         "and lose 3 tones to a room; not built",
     ("authenticated Drive through the seminar room both ways: RPC → confirmed, median", "fast+key"):
         "the 80-bit frame sounds 153.75 ms, and its tag chord begins 2 ms after it ends and is read in a 40 ms "
-        "window: about 196 ms of sound before the sender can know, plus both ways' audio buffers. Meeting 200 ms "
+        "window: about 196 ms of sound before the sender can know, plus both ways' audio buffers; a command "
+        "handed over at once after the last one also waits until that one's tag chord has sounded (10–20 ms: "
+        "docs/protocol.md, \"the next frame waits for it\"). Meeting 200 ms "
         "needs the robot to decide on the first two chords (RS(24,16) with the third chord's eight symbols "
         "erased leaves no parity, so only the CRC-8 and the MAC would stand behind it)",
     ("answer path: answers heard, every room, own loudspeaker at 0.1 m or not", "fast+key"):

@@ -1,6 +1,8 @@
 // Transmitter::send: one command's frames through the retry controller (seed Fig. 8).
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "transmitter.h"
 
 namespace dtmf::server {
@@ -138,7 +140,7 @@ bool Transmitter::transmit(Job& job, FrameAttempt& attempt) {
     return false;
   }
   attempt.chord_end = wall(now_ms());
-  channel_free_ms_ = attempt.chord_start + frame.tone_ms + job.profile().timing.gap_ms;
+  channel_free_ms_ = attempt.chord_start + std::max(frame.tone_ms + job.profile().timing.gap_ms, frame.bands_busy_ms);
   return true;
 }
 

@@ -171,7 +171,7 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
         std::printf("\n");
       }
       const double chord_ms = static_cast<double>(frames[frame].audio.size()) * ms_per_sample;
-      channel_free_ms = now_ms + chord_ms + profile.timing.gap_ms;
+      channel_free_ms = now_ms + std::max(chord_ms + profile.timing.gap_ms, frames[frame].bands_busy_ms);
       awaiting = true;
       want_send = false;
     }

@@ -33,6 +33,9 @@ constexpr double kAnswerWaitMs = 100;
 // chord cut off within a window spreads over its whole band). The guard covers where the
 // robot placed the frame's start: to within a few milliseconds.
 constexpr double kTagAfterFrameMs = 2;
+// Where the robot places the frame's start, and so its answer, it may be a few milliseconds
+// late (docs/protocol.md, FrameStart): the next frame waits that much more.
+constexpr double kTagLateMs = 5;
 
 static_assert(security::kAnswerTagBytes == reliability::kTagBytes);
 
@@ -87,6 +90,7 @@ TransmitFrame FastLink::plain_frame(std::uint32_t payload) {
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
   f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
+  f.bands_busy_ms = f.tone_ms;  // its answer sounds in the reply bands
   return f;
 }
 
@@ -113,6 +117,8 @@ TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
   f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
+  f.bands_busy_ms =
+      f.tone_ms + kTagAfterFrameMs + 1000.0 * profile().hops().tag_samples() / profile().sample_rate_hz + kTagLateMs;
   return f;
 }
 
