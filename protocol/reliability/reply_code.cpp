@@ -58,8 +58,4 @@ std::optional<NamedReply> read_reply(const ReplyReading& reading, int tones_need
   return std::nullopt;
 }
 
-int heard_tones(const ReplyReading& reading) {
-  return static_cast<int>(std::count_if(reading.begin(), reading.end(), [](int t) { return t >= 0; }));
-}
-
 }  // namespace dtmf::reliability

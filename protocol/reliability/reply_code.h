@@ -35,7 +35,4 @@ ReplyTones reply_codeword(const NamedReply& reply);
 // The named reply that at least `tones_needed` of the reading's tones agree with, or nothing.
 std::optional<NamedReply> read_reply(const ReplyReading& reading, int tones_needed);
 
-// Tones of the reading that were heard.
-int heard_tones(const ReplyReading& reading);
-
 }  // namespace dtmf::reliability
