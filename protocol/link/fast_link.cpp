@@ -27,15 +27,6 @@ namespace {
 
 // Offline recordings leave each frame the time its answer takes, as a sender would.
 constexpr double kAnswerWaitMs = 100;
-// A tag chord sounds in the frame bands, where the sender's microphone hears its own frame 20
-// dB louder: it begins only once the frame has ended (the robot decides about 30 ms before),
-// so that a window of the sender's lies wholly inside it and after its own chord's end (a
-// chord cut off within a window spreads over its whole band). The guard covers where the
-// robot placed the frame's start: to within a few milliseconds.
-constexpr double kTagAfterFrameMs = 2;
-// Where the robot places the frame's start, and so its answer, it may be a few milliseconds
-// late (docs/protocol.md, FrameStart): the next frame waits that much more.
-constexpr double kTagLateMs = 5;
 
 static_assert(security::kAnswerTagBytes == reliability::kTagBytes);
 
@@ -117,8 +108,7 @@ TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
   f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
-  f.bands_busy_ms =
-      f.tone_ms + kTagAfterFrameMs + 1000.0 * profile().hops().tag_samples() / profile().sample_rate_hz + kTagLateMs;
+  f.bands_busy_ms = profile().hops().sealed_bands_busy_ms(profile().sample_rate_hz);
   return f;
 }
 
@@ -178,9 +168,9 @@ std::vector<float> FastLink::answer_audio(const Reception& r) const {
     const std::uint32_t mac = reliability::sealed_frame_unpack(r.bits)->mac;
     const double frame_end_ms =
         r.start_ms + 1000.0 * profile().hops().sealed_frame_samples() / profile().sample_rate_hz;
-    std::vector<float> audio(
-        static_cast<std::size_t>(profile().samples_for_ms(std::max(0.0, frame_end_ms + kTagAfterFrameMs - r.heard_ms))),
-        0.0f);
+    std::vector<float> audio(static_cast<std::size_t>(profile().samples_for_ms(
+                                 std::max(0.0, frame_end_ms + profile().hops().tag_after_frame_ms - r.heard_ms))),
+                             0.0f);
     const std::vector<float> chord = signal::synthesize_tag_chord(
         profile(),
         reply_tag(*options_.key, input, mac, reliability::tag_chord_taken(reliability::sealed_frame_symbols(r.bits))));

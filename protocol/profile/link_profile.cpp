@@ -116,10 +116,18 @@ void plan_fast_replies(HopPlan& h) {
   h.tag_amplitude = h.tone_amplitude / 2;
   h.tag_presence_db = 3;
   h.tag_onset_db = 3;
+  // Two chords (102.5 ms): a window wholly inside the frame's last chord lies within it for a
+  // robot up to 10 m away ((102.5 - 40 - 2.5) ms of sound there and back).
+  h.tag_onset_lookback_hops = 10;
   // Clocks and motion: 750 ppm apart, so no tone is read more than a quarter of a bin (375 ppm
   // at 17.5 kHz) off its bin, from -1875 to +1875 ppm (sound cards' clocks differ by a few
   // hundred; a Burger at full speed adds 640).
   h.tag_offset_ppm = {-1500, -750, 0, 750, 1500};
+  // The robot decides about 30 ms before the frame ends; 2 ms covers where it placed the
+  // frame's start, 5 ms more how late that may be (the monument chamber's 97.5 % first
+  // attempts came from frames begun under the tag chord).
+  h.tag_after_frame_ms = 2;
+  h.tag_late_ms = 5;
 }
 
 // The fast profile, built for real rooms (docs/protocol.md §10 has the reasons and the

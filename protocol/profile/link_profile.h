@@ -161,7 +161,20 @@ struct HopPlan {
   double tag_amplitude = 0;  // linear, per tone
   double tag_presence_db = 0;
   double tag_onset_db = 0;
+  // ... since the quietest of the windows from a window's length to this many hops earlier. A
+  // robot d metres away answers 2 d / 343 s later than one beside the sender: a window a
+  // chord before the tag's first may then hold the end of the sender's own frame, whose
+  // cut-off spreads over the band 20 dB louder than the tag (signal/hop_tag_listener.h).
+  int tag_onset_lookback_hops = 0;
   std::array<int, kTagOffsets> tag_offset_ppm{};
+  // The tag chord sounds in the frame bands, where the sender's microphone hears its own frame
+  // 20 dB louder: it begins tag_after_frame_ms after the frame has ended, so that a window of
+  // the sender's lies wholly inside it and after its own chord's end (a chord cut off within a
+  // window spreads over its whole band). The guard covers where the robot placed the frame's
+  // start, to within a few milliseconds; the next frame waits tag_late_ms more for the same
+  // uncertainty (docs/protocol.md, FrameStart).
+  double tag_after_frame_ms = 0;
+  double tag_late_ms = 0;
 
   int chord_samples() const { return window_samples + 2 * edge_samples + hop_samples; }
   int frame_samples() const { return chords_per_frame * chord_samples(); }
@@ -170,6 +183,11 @@ struct HopPlan {
   int reply_chord_samples() const { return reply_window_samples + 2 * reply_edge_samples + reply_hop_samples; }
   int reply_samples() const { return kReplyChords * reply_chord_samples(); }
   int tag_samples() const { return chord_samples(); }
+  // How long an authenticated frame keeps the frame bands busy: itself, the gap, its tag
+  // chord and the robot's lateness.
+  double sealed_bands_busy_ms(int sample_rate_hz) const {
+    return 1000.0 * (sealed_frame_samples() + tag_samples()) / sample_rate_hz + tag_after_frame_ms + tag_late_ms;
+  }
   int reply_bin(int lane, int band, int tone) const {
     return reply_tone_bin[static_cast<std::size_t>(band)][static_cast<std::size_t>(tone)] + lane * reply_lane_step_bins;
   }

@@ -34,7 +34,7 @@ TagChordSymbols tag_chord_symbols(const TagBytes& tag, const BandValueSet& taken
 
 namespace {
 
-// Band k's reading at one hypothesis: its strongest tone the sender did not send, or -1.
+// Band k's reading at one hypothesis: its most risen tone the sender did not send, or -1.
 int band_reading(const std::array<std::int8_t, kTagChordCandidates>& candidates, std::uint32_t set_aside) {
   for (const std::int8_t v : candidates) {
     if (v < 0) return -1;

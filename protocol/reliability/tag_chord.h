@@ -6,7 +6,7 @@
 // there and the bins beside them are taken (tag_chord_taken), since the sender's microphone
 // hears its own frame ring in them when the answer comes. Tone k sounds in band k of the
 // frame's sixteen bands (both band sets at once: signal/hop_synthesizer.h). The sender does not
-// decode tags: it knows the one it waits for and counts the bands whose reading (the strongest
+// decode tags: it knows the one it waits for and counts the bands whose reading (the most risen
 // tone not taken) is that tag's symbol. A reading answers the frame when
 // kTagChordMatchesNeeded (9) of the 16 agree, whatever the others read: in a room a tone now
 // and then drowns in a notch or under a tail, and 7 of 16 may. A band has at least 26 free
@@ -27,8 +27,10 @@ namespace dtmf::reliability {
 inline constexpr int kTagChordTones = 16;
 inline constexpr int kTagChordValues = 32;
 inline constexpr int kTagChordMatchesNeeded = 9;
-inline constexpr int kTagChordHypotheses = 5;     // frequency offsets read (profile/link_profile.h)
-inline constexpr int kTagChordCandidates = 5;     // a band's strongest tones handed over, strongest first
+inline constexpr int kTagChordHypotheses = 5;  // frequency offsets read (profile/link_profile.h)
+// A band's risen tones handed over, the most risen first: the frame's own tones and their
+// neighbours (up to 6 values, set aside) may rise too, and 3 more keep its strongest free one.
+inline constexpr int kTagChordCandidates = 9;
 inline constexpr int kTagBytes = kTagChordTones;  // a byte per tone
 
 using TagBytes = std::array<std::uint8_t, kTagBytes>;
