@@ -142,11 +142,16 @@ Counts run_stream(const LinkProfile& profile, const AnswerCase& c, const sim::Ch
       const std::size_t chord = frame.size() / 3;
       // Unkeyed, its start anywhere from a whole frame before the answer's to the answer's
       // end, so that the two overlap by at least a third of the frame; keyed, the frame
-      // answered, ending up to 20 ms before the answer.
+      // answered, as the robot times its answer (which begins tag_after_frame_ms after where
+      // it placed the frame's end): the sound's way there and back, the robot's placing of
+      // the frame from that much early to tag_late_ms late.
       std::uniform_int_distribution<std::size_t> offset(0, frame.size() + answer.size() - 2 * chord);
-      std::uniform_int_distribution<std::size_t> gap(0, static_cast<std::size_t>(20 * samples_per_ms));
-      const std::size_t start =
-          f.authenticated ? at - frame.size() - gap(rng) : at + chord + offset(rng) - frame.size();
+      const HopPlan* hops = std::get_if<HopPlan>(&profile.plan);
+      std::uniform_real_distribution<double> placed_ms(hops ? -hops->tag_after_frame_ms : 0.0,
+                                                       hops ? hops->tag_late_ms : 0.0);
+      const double flight_ms = 2000.0 * setup.distance_m / sim::kSpeedOfSoundMps;
+      const auto gap = static_cast<std::size_t>(std::lround((flight_ms + placed_ms(rng)) * samples_per_ms));
+      const std::size_t start = f.authenticated ? at - frame.size() - gap : at + chord + offset(rng) - frame.size();
       fit(start + frame.size());
       for (std::size_t i = 0; i < frame.size(); ++i) own_track[start + i] += frame[i];
     }
