@@ -29,7 +29,7 @@ inline constexpr int kTagChordValues = 32;
 inline constexpr int kTagChordMatchesNeeded = 9;
 inline constexpr int kTagChordHypotheses = 5;  // frequency offsets read (profile/link_profile.h)
 // A band's risen tones handed over, the most risen first: the frame's own tones and their
-// neighbours (up to 6 values, set aside) may rise too, and 3 more keep its strongest free one.
+// neighbours (up to 6 values, set aside) may rise too, and 3 more keep its most risen free one.
 inline constexpr int kTagChordCandidates = 9;
 inline constexpr int kTagBytes = kTagChordTones;  // a byte per tone
 

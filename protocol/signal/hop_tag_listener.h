@@ -4,15 +4,16 @@
 // A tagged ACK is one chord of a frame's shape with a tone in every one of the frame's sixteen
 // bands. Every hop the latest window (rectangular, as the frame listener reads: the tones sit
 // on its bins) is read at each of the profile's frequency offsets (`tag_offset_ppm`: the
-// robot's clock and its motion move every tone by the same factor); a band's candidates are its
-// bins that stand `tag_presence_db` over the band's median and rose `tag_onset_db` since the
-// quietest earlier window that does not overlap this one, up to `tag_onset_lookback_hops`
-// back (a tail falls, the sender's own frame's included; a robot farther away answers later,
-// when the window a chord earlier holds the cut-off end of the sender's frame, loud in every
-// bin), ranked by how much they rose (the room's reflections of the frame's end ring on in
-// the answer's window, loud but risen less). The listener knows nothing of the tag awaited: the link checks each
-// reading against it. A window is handed over only when some offset heard as many bands as a tag needs. Times are
-// milliseconds since the first sample fed. Feeding allocates nothing.
+// robot's clock and its motion move every tone by the same factor). A band's candidates are
+// its bins that stand `tag_presence_db` over the band's median and rose `tag_onset_db` since
+// the quietest earlier window that does not overlap this one, up to `tag_onset_lookback_hops`
+// back: a tail falls, the sender's own frame's included, and a robot farther away answers
+// later, when the window a chord earlier holds the cut-off end of the sender's frame, loud in
+// every bin. They are ranked by how much they rose: the room's reflections of the frame's end
+// ring on in the answer's window, loud but risen less. The listener knows nothing of the tag
+// awaited: the link checks each reading against it. A window is handed over only when some
+// offset heard as many bands as a tag needs. Times are milliseconds since the first sample
+// fed. Feeding allocates nothing.
 #pragma once
 
 #include <span>
