@@ -7,8 +7,9 @@
 //     at 20 °C and 50 % relative humidity (0.12 dB/m at 8 kHz, 0.46 dB/m at 16 kHz) — as a
 //     short linear-phase FIR;
 //   - in a room (room_model.h): convolved with the room's impulse response from that
-//     loudspeaker to the microphone (a measured one scaled by 1/distance, or an
-//     image-source one that holds delay, spreading and absorption itself);
+//     loudspeaker to the microphone (a measured one with its direct sound scaled by
+//     1/distance and its reverberation as at 1 m, or an image-source one that holds delay,
+//     spreading and absorption itself);
 //   - through the loudspeaker's and the microphone's frequency responses
 //     (frequency_response.h), folded into the same convolution (fft_convolver.h);
 //   - and, for a transmitter that moves, through a delay and level that follow its

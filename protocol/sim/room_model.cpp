@@ -128,14 +128,16 @@ Response RoomModel::between(const Point3& speaker, const Point3& mic) const {
 
 Response RoomModel::measured_at(double distance_m) const {
   if (kind_ != Kind::Measured) throw std::logic_error("measured_at() is for measured rooms");
-  if (distance_m >= 1) return measured_;
+  if (distance_m == 1) return measured_;
   std::lock_guard lock(mutex_);
-  if (const auto it = near_cache_.find(distance_m); it != near_cache_.end()) return it->second;
-  auto near = std::make_shared<std::vector<float>>(*measured_);
+  if (const auto it = distance_cache_.find(distance_m); it != distance_cache_.end()) return it->second;
+  // The channel scales the whole path by 1/d: the reverberation, scaled by d here first,
+  // keeps its level at 1 m, near the source or far from it.
+  auto at = std::make_shared<std::vector<float>>(*measured_);
   const auto reverberation_from = direct_index_ + static_cast<std::size_t>(kRirDirectAfterS * sample_rate_hz_);
-  for (std::size_t i = reverberation_from; i < near->size(); ++i) (*near)[i] *= static_cast<float>(distance_m);
-  Response h = std::move(near);
-  near_cache_.emplace(distance_m, h);
+  for (std::size_t i = reverberation_from; i < at->size(); ++i) (*at)[i] *= static_cast<float>(distance_m);
+  Response h = std::move(at);
+  distance_cache_.emplace(distance_m, h);
   return h;
 }
 

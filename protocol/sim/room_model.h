@@ -10,13 +10,15 @@
 // Distance and level (docs/protocol.md §7):
 //   - A measured room's response already holds its own propagation: the delay, spreading
 //     and absorption between the loudspeaker and the microphone where it was measured. Every
-//     transmitter hears that one response; its distance only scales the level by 1/d
-//     relative to 1 m (its direct sound carries a unit impulse's energy) and adds no delay
-//     or absorption. Nearer than 1 m (a loudspeaker beside its own microphone) only the
-//     direct sound grows by 1/d: the reverberant field of a room does not grow near the
-//     source (its level is the source's power over the room's absorption), so the rest of the
-//     response keeps its level at 1 m (measured_at). Scaling the whole response by 1/d at
-//     0.1 m made the own reverberation 20 dB louder than any room makes it.
+//     transmitter hears that one response and its distance adds no delay or absorption. Only
+//     the direct sound follows the distance, by 1/d relative to 1 m (it carries a unit
+//     impulse's energy); the rest of the response keeps its level at 1 m (measured_at). A
+//     room's reverberant field does not depend on where the source stands: its level is the
+//     source's power over the room's absorption (Sabine; Hopkins and Stryker's
+//     L = Lw + 10 lg(Q / 4 pi r^2 + 4 / R)). Scaling the whole response by 1/d made the own
+//     reverberation of a loudspeaker 0.1 m away 20 dB louder than any room makes it, and a
+//     frame from 3 m 9.5 dB less reverberant than the room makes it, against the robot's own
+//     answer ringing in the same room at its true level (docs/protocol.md §7).
 //   - In an image-source room, positions decide everything: the response holds the delay,
 //     1/d and air absorption of every path. A transmitter given by its distance stands at
 //     that distance from the microphone, towards the room's farthest corner from it, and
@@ -72,9 +74,9 @@ class RoomModel {
 
   // Measured: the one response (its direct sound of unit energy, peaking at direct_index()).
   Response measured() const { return measured_; }
-  // Measured: the response of a loudspeaker `distance_m` away before the path's 1/d: the
-  // measured one from 1 m on; nearer, its reverberation (after the direct sound) scaled by d,
-  // so that after 1/d only the direct sound has grown. Cached per distance.
+  // Measured: the response of a loudspeaker `distance_m` away before the path's 1/d: its
+  // reverberation (after the direct sound) scaled by d, so that after 1/d only the direct
+  // sound has grown or fallen. Cached per distance.
   Response measured_at(double distance_m) const;
   std::size_t direct_index() const { return direct_index_; }
 
@@ -103,7 +105,7 @@ class RoomModel {
   mutable std::string calibration_note_;
   mutable std::optional<double> rt60_s_;
   mutable std::map<std::array<double, 6>, Response> cache_;
-  mutable std::map<double, Response> near_cache_;
+  mutable std::map<double, Response> distance_cache_;
 };
 
 }  // namespace dtmf::sim
