@@ -143,11 +143,10 @@ def model(w, args, distances, noise_dbfs):
           "bench/rirs/README.md), convolved with the live stream: its direct sound, early reflections, fading "
           "and reverberant tail. Channel 0, its direct sound scaled to the energy of 1 m of free field |")
         levels = ", ".join(f"{minus(round(-20 * math.log10(d)))} dB at {d:g} m" for d in distances if d != 1)
-        w("| distance | the level only: amplitude × 1 / distance" + (f" ({levels}, against 1 m)" if levels else "")
-          + ". A measured response holds its own propagation and early reflections, so the distance adds no "
-          "delay and no air absorption (docs/protocol.md §7); and since the whole response is scaled alike, the "
-          "direct sound keeps the measured ratio to the reverberation at every distance, where a listener "
-          "farther away in that room would hear the direct sound fall against it |")
+        w("| distance | the direct sound only: amplitude × 1 / distance" + (f" ({levels}, against 1 m)" if levels else "")
+          + "; the reverberation keeps its level at 1 m, since a room's reverberant field is as loud wherever "
+          "the source stands (docs/protocol.md §7). A measured response holds its own propagation and early "
+          "reflections, so the distance adds no delay and no air absorption |")
     if noise_dbfs is not None:
         w(f"| noise (\"noise polluted\" only) | uniform white noise at {minus(noise_dbfs)} dBFS RMS played into the "
           "sender's loudspeaker (`speaker`, so the robot hears it through the room with the chords) and "
@@ -164,13 +163,16 @@ def model(w, args, distances, noise_dbfs):
     elif max(distances, default=1) > 1:
         far = max(distances)
         direct = SEED_TONE_DBFS - 20 * math.log10(far)
-        w("So the distances differ from 1 m in level alone: the same fades, the same tail, and no noise "
-          f"outside \"noise polluted\". At {far:g} m a seed chord's tone ({minus(SEED_TONE_DBFS)} dBFS) arrives "
-          f"with its direct sound at about {minus(round(direct))} dBFS, {round(direct - SEED_GATE_DBFS)} dB over "
-          f"the seed detectors' {minus(SEED_GATE_DBFS)} dBFS noise gate. What the room costs, a tone in a fade or "
-          f"a chord's tail under the next, it costs at 1 m as at {far:g} m. In a real room the direct sound also "
-          "weakens against the reverberation with distance, and the seed's room had its own noise and its "
-          "hardware's limits.")
+        known = ROOMS.get(os.path.basename(args.rir))
+        ratio = (f": its direct-to-reverberant ratio, {minus(known[2])} dB at 1 m, is "
+                 f"{minus(round(known[2] - 20 * math.log10(far)))} dB there" if known else "")
+        w("So the distances differ from 1 m in the direct sound alone, with no noise outside \"noise polluted\". "
+          f"At {far:g} m a seed chord's tone ({minus(SEED_TONE_DBFS)} dBFS) arrives with its direct sound at about "
+          f"{minus(round(direct))} dBFS, {round(direct - SEED_GATE_DBFS)} dB over the seed detectors' "
+          f"{minus(SEED_GATE_DBFS)} dBFS noise gate, and the room's reverberation as loud as at 1 m{ratio}. What "
+          f"the room costs, a tone in a fade or a chord's tail under the next, weighs "
+          f"{round(20 * math.log10(far))} dB more against the direct sound at {far:g} m than at 1 m. The seed's "
+          "room had its own noise and its hardware's limits.")
         w("")
 
 

@@ -113,6 +113,11 @@ class ResultsWriter(unittest.TestCase):
             self.assertIn("| CRC rejected | 13 | 0 | 3 |", text)
             self.assertIn("(−12 dB at 4 m, −20 dB at 10 m, against 1 m)", text)
             self.assertIn("about −34 dBFS, 26 dB over the seed detectors' −60 dBFS noise gate", text)
+            # Only the direct sound falls with distance: the seminar room's −7 dB at 1 m is −27 dB at 10 m.
+            self.assertIn("| distance | the direct sound only: amplitude × 1 / distance", text)
+            self.assertIn("its direct-to-reverberant ratio, −7 dB at 1 m, is −27 dB there", text)
+            self.assertIn("weighs 20 dB more against the direct sound at 10 m than at 1 m", text)
+            self.assertNotIn("level alone", text)
             self.assertIn("False positives in these runs: `seed` profile: 4 m 1; `fast` profile: none.", text)
             self.assertIn("a mode word heard twice", text)
             self.assertNotIn("Under `fast`, a frame heard twice", text)
