@@ -59,10 +59,11 @@ def rooms_section(w, data, profiles, stem, png_dir, ok):
         w("")
         return
     first = next(iter(docs.values()))
-    w("`dtmf-bench-rooms`: random frames through measured rooms (`bench/rirs/`: their direct sound 1/d from 1 m, their "
-      "reverberation as loud at every distance), image-source rooms 6 × 8 × 3 m tuned to an RT60 (a hard floor, the microphone 5 cm above it, the "
-      "loudspeaker at the distance towards the far corner and up to 0.75 m higher), clock offsets and steady whines "
-      "6 dB over one of the profile's tones as heard at 1 m; pink noise at −50 dBFS everywhere. "
+    w("`dtmf-bench-rooms`: random frames through measured rooms (`bench/rirs/`: their direct sound 1/d from 1 m, "
+      "their reverberation as loud at every distance), image-source rooms 6 × 8 × 3 m tuned to an RT60 (a hard "
+      "floor, the microphone 5 cm above it, the loudspeaker at the distance towards the far corner and up to 0.75 m "
+      "higher), clock offsets and steady whines 6 dB over one of the profile's tones as heard at 1 m; pink noise at "
+      "−50 dBFS everywhere. "
       f"{first['frames_per_case']} frames a case, in streams of 100 that each begin with {first['lead_in_s']:g} s of the "
       "channel alone (a robot listens long before it is spoken to). Columns as in the sweeps.")
     w("")

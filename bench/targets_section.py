@@ -38,15 +38,16 @@ REASONS = {
         "docs/protocol.md, \"the next frame waits for it\"). Meeting 200 ms "
         "needs the robot to decide on the first two chords (RS(24,16) with the third chord's eight symbols "
         "erased leaves no parity, so only the CRC-8 and the MAC would stand behind it)",
-    ("answer path: answers heard, every room, own loudspeaker at 0.1 m or not", "fast+key"):
-        "every case at 1 m hears 100.00 %, as do the round trips through every room (offline and end to end, "
-        "1 m). At 3 m beside the sender's own loudspeaker at 0.1 m, every room but two hears 100.00 % since "
-        "the tag ear measures rises against the quietest earlier window and ranks by rise (the club hall was "
-        "91.6 %); the smoking room and the concert hall lose some: in the frame's last chord's bands the "
-        "room's reflections of its end ring louder than a tag from 3 m, and the tag's tone is not the one "
-        "that rose most in 8 of 16 bands where 9 must be. A robot 3 m away has a larger loss in the round "
-        "trip, where the robot misses next frames (docs/protocol.md, \"Open: a keyed robot 3 m away\"). "
-        "The unkeyed answers, in the reply bands, are all heard",
+    ("answer path: answers heard, every room, own loudspeaker at 0.1 m or not", "fast"):
+        "every case at 1 m hears 100.00 %, and so does every keyed case, 3 m beside the sender's own "
+        "loudspeaker included (92.9 % in the smoking room until 2026-11-29, when the room model stopped "
+        "taking 9.5 dB off the reverberation of a robot 3 m away: only the direct sound falls with distance, "
+        "docs/protocol.md §7). At 3 m beside the sender's loudspeaker the club hall and St Andrew's church "
+        "lose unkeyed answers: a band's first-chord tone stands too little over the band to be heard, its "
+        "reverberation builds up, and the second chord's window reads it there, so the reading agrees with "
+        "the answer in fewer than 9 tones in two consecutive windows. The round trip from 3 m loses more "
+        "there (94–95 % first attempts offline). Three cures were measured and not taken (docs/protocol.md, "
+        "\"Open: unkeyed answers from 3 m in the longest rooms\")",
     ("frame success at −12 dB SNR (an aim)", "fast"):
         "no lost frame was NACKed. Three steps took it from 75.5 % (2026-11-26): runner-up swaps and a 4-of-8 "
         "gate (88.7 % of 10 000), then whole-chord re-reads (2026-11-27, docs/protocol.md `reread_delay_hops`): "
