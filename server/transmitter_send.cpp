@@ -140,7 +140,7 @@ bool Transmitter::transmit(Job& job, FrameAttempt& attempt) {
     return false;
   }
   attempt.chord_end = wall(now_ms());
-  channel_free_ms_ = attempt.chord_start + std::max(frame.tone_ms + job.profile().timing.gap_ms, frame.bands_busy_ms);
+  channel_free_ms_ = attempt.chord_start + frame.next_frame_after_ms;
   return true;
 }
 

@@ -170,8 +170,7 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
         }
         std::printf("\n");
       }
-      const double chord_ms = static_cast<double>(frames[frame].audio.size()) * ms_per_sample;
-      channel_free_ms = now_ms + std::max(chord_ms + profile.timing.gap_ms, frames[frame].bands_busy_ms);
+      channel_free_ms = now_ms + frames[frame].next_frame_after_ms;
       awaiting = true;
       want_send = false;
     }

@@ -81,7 +81,7 @@ TransmitFrame FastLink::plain_frame(std::uint32_t payload) {
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
   f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
-  f.bands_busy_ms = f.tone_ms;  // its answer sounds in the reply bands
+  f.next_frame_after_ms = f.tone_ms + profile().timing.gap_ms;  // its answer sounds in the reply bands
   return f;
 }
 
@@ -108,7 +108,8 @@ TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
   f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
-  f.bands_busy_ms = profile().hops().sealed_bands_busy_ms(profile().sample_rate_hz);
+  f.next_frame_after_ms =
+      std::max(f.tone_ms + profile().timing.gap_ms, profile().hops().sealed_bands_busy_ms(profile().sample_rate_hz));
   return f;
 }
 

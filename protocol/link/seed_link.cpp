@@ -114,6 +114,7 @@ TransmitFrame SeedLink::transmit_frame(const SeedPlannedFrame& planned) const {
   f.tones_hz.assign(planned.tones_hz.begin(), planned.tones_hz.end());
   f.audio = signal::synthesize_chord(profile(), planned.tones_hz, profile().timing.chord_ms);
   f.tone_ms = profile().timing.chord_ms;
+  f.next_frame_after_ms = f.tone_ms + profile().timing.gap_ms;
   return f;
 }
 

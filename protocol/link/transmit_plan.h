@@ -27,11 +27,12 @@ struct TransmitFrame {
   std::vector<double> tones_hz;               // every tone, chord after chord, in order
   std::vector<float> audio;                   // what the loudspeaker plays, tone_ms long
   double tone_ms = 0;                         // sound on air
-  // How long from the frame's start the frame bands stay taken by it and by the answer it
-  // asks for: a tag chord sounds there after the frame (reliability/tag_chord.h), and the next
-  // frame must not begin under it, or the robot reads that frame's first chord through its own
-  // chord's cut-off, 20 dB louder at its microphone. tone_ms where the answer sounds elsewhere.
-  double bands_busy_ms = 0;
+  // How long after the frame's start the sender may begin its next frame: the frame, the
+  // profile's gap after it, and the answer it asks for where that sounds in the frame bands.
+  // A tag chord does (reliability/tag_chord.h), and a next frame begun under it would be read
+  // by the robot through its own chord's cut-off, 20 dB louder at its microphone. Set when the
+  // frame is planned, so that every sender (the server, a benchmark) paces alike.
+  double next_frame_after_ms = 0;
 };
 
 }  // namespace dtmf::link

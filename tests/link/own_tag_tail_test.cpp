@@ -1,5 +1,5 @@
 // A keyed robot hears the sender's next frame after its own tag chord, pinned offline. The
-// sender waits until the robot's tag chord has sounded (TransmitFrame::bands_busy_ms), so at
+// sender waits until the robot's tag chord has sounded (TransmitFrame::next_frame_after_ms), so at
 // the robot the next frame begins 5 ms after its own chord ends, at any distance. Its own
 // chord comes from its own loudspeaker 0.1 m away and the room rings with it as loud as with
 // any source's in the room (its reverberant field). Frame A, the robot's tag chord answering
@@ -55,8 +55,8 @@ int second_frames_taken(const Case& c, int pairs) {
     const auto b = sender->plan(command::random_command(rng)).back();
     const auto lead = static_cast<std::size_t>(500 * samples_per_ms);
     // At the robot (times as it hears them): A, its tag chord 2 ms after A ends, B once the
-    // sender's wait is over (bands_busy_ms after A began, as the sender counts).
-    const std::size_t b_at = lead + static_cast<std::size_t>(a.bands_busy_ms * samples_per_ms);
+    // sender's wait is over (next_frame_after_ms after A began, as the sender counts).
+    const std::size_t b_at = lead + static_cast<std::size_t>(a.next_frame_after_ms * samples_per_ms);
     std::vector<float> from_sender(b_at + b.audio.size() + static_cast<std::size_t>(300 * samples_per_ms), 0.0f);
     std::copy(a.audio.begin(), a.audio.end(), from_sender.begin() + static_cast<long>(lead));
     std::copy(b.audio.begin(), b.audio.end(), from_sender.begin() + static_cast<long>(b_at));
