@@ -126,6 +126,7 @@ def plot(profile, name, report, frames, path):
 
 def model(w, args, distances, noise_dbfs):
     """The table of what the room models, and what follows from it for distance."""
+    known = ROOMS.get(os.path.basename(args.rir))  # a measured room's name, RT60 and DRR; None for "none"
     w("| effect | model |")
     w("|---|---|")
     if args.rir == "none":
@@ -136,7 +137,6 @@ def model(w, args, distances, noise_dbfs):
         w(f"| reverberation | a Schroeder room (4 combs, 2 all-passes), RT60 {args.rt60_s:g} s, wet level 0.3: "
           "no early reflections and no fading (`--rir none`) |")
     else:
-        known = ROOMS.get(os.path.basename(args.rir))
         figures = (f"RT60 {known[1]:g} s, direct-to-reverberant ratio {minus(known[2])} dB" if known
                    else "RT60 and direct-to-reverberant ratio not in bench/rirs/README.md")
         w(f"| the room | the measured impulse response of {room_name(args.rir)} (`{args.rir}`: {figures}; "
@@ -163,7 +163,6 @@ def model(w, args, distances, noise_dbfs):
     elif max(distances, default=1) > 1:
         far = max(distances)
         direct = SEED_TONE_DBFS - 20 * math.log10(far)
-        known = ROOMS.get(os.path.basename(args.rir))
         ratio = (f": its direct-to-reverberant ratio, {minus(known[2])} dB at 1 m, is "
                  f"{minus(round(known[2] - 20 * math.log10(far)))} dB there" if known else "")
         w("So the distances differ from 1 m in the direct sound alone, with no noise outside \"noise polluted\". "
