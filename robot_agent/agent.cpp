@@ -83,14 +83,14 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
     sounding_until_ms_ = std::max(r.start_ms + frame_period_ms,
                                   r.heard_ms + 1000.0 * static_cast<double>(answer.size()) / sample_rate_hz_);
   }
-  replies_.play(std::move(answer), r.heard_ms);
+  if (r.answered) replies_.play(std::move(answer), r.heard_ms);
   store::ReceptionRow row;
   row.host = options_.host;
   row.profile = profile.name;
   row.started_at = timeline_.wall(r.start_ms);
   row.heard_at = timeline_.wall(r.heard_ms);
   row.crc_ok = r.intact;
-  row.reply = r.acknowledged() ? "ack" : "nack";
+  if (r.answered) row.reply = r.acknowledged() ? "ack" : "nack";
   row.frame = r.bits.decimal();
   row.frame_width = r.bit_count;
   row.event = link::event_name(r.event);
@@ -104,16 +104,17 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
   const std::string number = r.counter    ? " counter " + std::to_string(*r.counter)
                              : r.sequence ? " seq " + std::to_string(*r.sequence)
                                           : "";
+  const char* refusal_answer = r.answered ? "NACK" : "not answered (it may be another robot's)";
   if (!r.intact) {
-    spdlog::warn("t={:.3f}s {} frame {} failed the check{}: NACK", r.heard_ms / 1000.0, profile.name, bits,
-                 r.detail.empty() ? "" : " (" + r.detail + ")");
+    spdlog::warn("t={:.3f}s {} frame {} failed the check{}: {}", r.heard_ms / 1000.0, profile.name, bits,
+                 r.detail.empty() ? "" : " (" + r.detail + ")", refusal_answer);
     store_.write(row);
     told(heard);
     return;
   }
   if (r.event == link::ReceptionEvent::Refused) {
-    spdlog::warn("t={:.3f}s {} frame {}{} refused ({}): {}: NACK", r.heard_ms / 1000.0, profile.name, bits, number,
-                 link::reason_name(r.refusal), r.detail);
+    spdlog::warn("t={:.3f}s {} frame {}{} refused ({}): {}: {}", r.heard_ms / 1000.0, profile.name, bits, number,
+                 link::reason_name(r.refusal), r.detail, refusal_answer);
     if (r.refusal == link::RefusalReason::Authentication) {
       if (const auto burst = forgeries_.refused(r.heard_ms)) {
         spdlog::warn(

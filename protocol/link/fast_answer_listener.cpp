@@ -7,7 +7,9 @@ namespace dtmf::link {
 
 namespace {
 
-bool same(const Answer& a, const Answer& b) { return a.ack == b.ack && a.sequence == b.sequence && a.lane == b.lane; }
+bool same(const Answer& a, const Answer& b) {
+  return a.ack == b.ack && a.sequence == b.sequence && a.address == b.address && a.lane == b.lane;
+}
 
 }  // namespace
 
@@ -29,8 +31,9 @@ std::span<const Answer> FastAnswerListener::feed(std::span<const float> samples)
     if (named && h.lane != (named->ack ? answer_lane(named->sequence) : kNackLane)) named.reset();
     // Keyed, only NACKs are named: an ACK spells its tag (below).
     if (named && (!keyed_ || !named->ack))
-      now = Answer{named->ack, named->ack ? std::optional(named->sequence) : std::nullopt, std::nullopt, h.heard_ms,
-                   h.lane};
+      now = Answer{named->ack,   named->ack ? std::optional(named->sequence) : std::nullopt,
+                   std::nullopt, h.heard_ms,
+                   h.lane,       named->address};
     Previous& previous = previous_[static_cast<std::size_t>(h.lane)];
     if (now && previous.answer && h.window == previous.window + 1 && same(*previous.answer, *now)) pass(*now);
     previous = {now, h.window};

@@ -76,6 +76,7 @@ TransmitFrame FastLink::plain_frame(std::uint32_t payload) {
   f.bit_count = reliability::kCommandFrameBits;
   f.check_bit_count = reliability::kCommandCrcBits;
   f.sequence = frame.sequence;
+  f.address = frame.address;
   f.answer_lane = answer_lane(frame.sequence);
   const auto symbols = reliability::command_frame_symbols(f.bits.low64());
   f.tones_hz = signal::frame_tones_hz(profile(), symbols);
@@ -98,6 +99,7 @@ TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation
   f.bits = reliability::sealed_frame_pack(frame);
   f.bit_count = reliability::kSealedFrameBits;
   f.check_bit_count = reliability::kSealedCheckBits;
+  f.address = frame.address;
   f.authenticated = true;
   f.synchronisation = synchronisation;
   f.counter = counter;
@@ -164,6 +166,7 @@ std::unique_ptr<FrameReceiver> FastLink::receiver() const {
 }
 
 std::vector<float> FastLink::answer_audio(const Reception& r) const {
+  if (!r.answered) return {};
   if (r.acknowledged() && r.counter && options_.key) {
     const auto input = sealed_mac_input(r.bits, *r.counter);
     const std::uint32_t mac = reliability::sealed_frame_unpack(r.bits)->mac;
@@ -178,11 +181,14 @@ std::vector<float> FastLink::answer_audio(const Reception& r) const {
     audio.insert(audio.end(), chord.begin(), chord.end());
     return audio;
   }
+  // (The robot answers only frames for its own address: FrameAdmission.)
   if (r.acknowledged()) {
-    return signal::synthesize_hopped_reply(profile(), reliability::reply_codeword({true, r.sequence.value_or(0)}),
-                                           answer_lane(r.sequence.value_or(0)));
+    return signal::synthesize_hopped_reply(
+        profile(), reliability::reply_codeword({true, r.sequence.value_or(0), options_.address}),
+        answer_lane(r.sequence.value_or(0)));
   }
-  return signal::synthesize_hopped_reply(profile(), reliability::reply_codeword({false, 0}), kNackLane);
+  return signal::synthesize_hopped_reply(profile(), reliability::reply_codeword({false, 0, options_.address}),
+                                         kNackLane);
 }
 
 int FastLink::receiver_block_samples() const { return profile().hops().hop_samples; }
@@ -194,7 +200,9 @@ std::unique_ptr<AnswerListener> FastLink::answer_listener() const {
 int FastLink::answer_block_samples() const { return profile().hops().reply_hop_samples; }
 
 bool FastLink::answers(const Answer& answer, const TransmitFrame& frame) const {
-  if (!answer.ack) return true;  // a NACK answers whatever frame is on air
+  // Only the robot the frame is for: a NACK answers whatever frame of its robot is on air.
+  if (!answer.tag_reading && answer.address != frame.address) return false;
+  if (!answer.ack) return true;
   if (frame.authenticated)
     return answer.tag_reading && reliability::spells_tag_chord(*answer.tag_reading, frame.answer_tag, frame.sent_tones);
   if (answer.lane != frame.answer_lane) return false;

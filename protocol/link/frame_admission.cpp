@@ -17,6 +17,19 @@ void refuse(Reception& r, RefusalReason reason, std::string why) {
   r.detail = std::move(why);
 }
 
+// A frame this robot cannot check may be another robot's (its own key, or none): refused
+// here, and left for that robot to answer.
+void refuse_unchecked(Reception& r, std::string why) {
+  refuse(r, RefusalReason::Authentication, std::move(why));
+  r.answered = false;
+}
+
+// The address a frame's bits name, read even where its check failed (its top three bits).
+std::uint8_t address_read(const reliability::FrameBits& bits, int bit_count) {
+  return static_cast<std::uint8_t>((bits.value() >> (bit_count - reliability::kAddressBits)) &
+                                   reliability::kAddressMask);
+}
+
 }  // namespace
 
 namespace {
@@ -60,7 +73,12 @@ std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
       sealed ? signal::frame_tones_hz(profile_, reliability::sealed_frame_symbols(heard.bits))
              : signal::frame_tones_hz(profile_, reliability::command_frame_symbols(heard.bits.low64()));
   r.tones_hz = tones;
-  if (!r.intact) return r;  // Broken: NACK
+  // Broken: NACKed where its address reads as this robot's. Another robot's damaged frame is
+  // not this one's to complain about: its NACK would sound over that robot's ACK.
+  if (!r.intact) {
+    r.answered = address_read(heard.bits, r.bit_count) == options_.address;
+    return r;
+  }
   const std::uint8_t address = sealed ? reliability::sealed_frame_unpack(heard.bits)->address
                                       : reliability::command_frame_unpack(heard.bits.low64())->address;
   if (address != options_.address) return std::nullopt;  // another robot's frame: not ours to answer
@@ -79,8 +97,8 @@ void FrameAdmission::admit_plain(Reception& r) {
   const reliability::CommandFrame frame = *reliability::command_frame_unpack(r.bits.low64());
   r.sequence = frame.sequence;
   if (options_.key && !options_.accept_unauthenticated) {
-    refuse(r, RefusalReason::Authentication,
-           "an unauthenticated frame, and this robot has a key (dtmf-agent --accept-unauthenticated lets them in)");
+    refuse_unchecked(
+        r, "an unauthenticated frame, and this robot has a key (dtmf-agent --accept-unauthenticated lets them in)");
     return;
   }
   const auto decoded = command::decode_payload(frame.payload);
@@ -106,7 +124,7 @@ bool FrameAdmission::authentic(const reliability::FrameBits& bits) const {
 void FrameAdmission::admit_sealed(Reception& r) {
   const reliability::SealedFrame frame = *reliability::sealed_frame_unpack(r.bits);
   if (!options_.key) {
-    refuse(r, RefusalReason::Authentication, "an authenticated frame, and this robot has no key (dtmf-agent --key)");
+    refuse_unchecked(r, "an authenticated frame, and this robot has no key (dtmf-agent --key)");
     return;
   }
   security::CounterStore& counters = *options_.counters;
@@ -114,9 +132,8 @@ void FrameAdmission::admit_sealed(Reception& r) {
   const std::uint64_t counter = completed_counter(frame, last);
   r.counter = counter;
   if (security::frame_mac(*options_.key, mac_input(frame, counter)) != frame.mac) {
-    refuse(r, RefusalReason::Authentication,
-           "its MAC fails for counter " + std::to_string(counter) +
-               ": forged, captured before the last frame accepted, or made under another key");
+    refuse_unchecked(r, "its MAC fails for counter " + std::to_string(counter) +
+                            ": forged, captured before the last frame accepted, or made under another key");
     return;
   }
   switch (security::freshness_of(last, counter)) {

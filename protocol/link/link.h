@@ -128,7 +128,8 @@ class Link {
   // --- the robot ---
   virtual std::unique_ptr<FrameReceiver> receiver() const = 0;
   // The answer to `reception`: ACK (naming the frame, or with a key bound to it by a tag)
-  // for an intact frame it accepted, NACK for any other.
+  // for an intact frame it accepted, NACK for any other; no audio for one it leaves
+  // unanswered (Reception::answered).
   virtual std::vector<float> answer_audio(const Reception& reception) const = 0;
   // The block a live receiver should be fed in (its analysis hop).
   virtual int receiver_block_samples() const = 0;

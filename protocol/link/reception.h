@@ -60,6 +60,12 @@ struct Reception {
   std::string detail;                       // for people: what it did, or why it was refused
   std::vector<double> tones_hz;             // the tones that carry `bits`, in order
 
+  // Whether the robot answers at all. In a room of robots only the robot a frame is for may
+  // answer it, so a robot keeps quiet about a frame it cannot check (sealed under another
+  // key, or sealed where it has no key, or plain where it takes only sealed ones) and about a
+  // broken one whose address reads as another robot's: logged and counted, never executed.
+  bool answered = true;
+
   // Answered with ACK: intact and not refused.
   bool acknowledged() const { return intact && event != ReceptionEvent::Refused; }
 };
@@ -72,7 +78,8 @@ struct Answer {
   // against the tag the frame on air waits for (Link::answers).
   std::optional<reliability::TagChordReading> tag_reading;
   double heard_ms = 0;
-  int lane = 0;  // where an untagged answer sounded: an ACK answers only a frame whose answer_lane it is
+  int lane = 0;              // where an untagged answer sounded: an ACK answers only a frame whose answer_lane it is
+  std::uint8_t address = 0;  // the robot that answered, where the answer names it (fast, untagged)
 };
 
 // The tones a tagged ACK's bands read as (-1: unheard), for people and tools (dtmfctl

@@ -18,6 +18,7 @@ struct TransmitFrame {
   int bit_count = 0;                          // 16 (seed), 50 (fast), 80 (fast, authenticated)
   int check_bit_count = 0;                    // the low bits that are the check (CRC)
   std::optional<std::uint8_t> sequence;       // numbered frames: the number its ACK must name
+  std::uint8_t address = 0;                   // addressed frames: the robot it is for, whose answer alone counts
   bool authenticated = false;                 // carries a MAC (sealed frames)
   bool synchronisation = false;               // a counter synchronisation, no command
   std::optional<std::uint64_t> counter;       // authenticated frames: the freshness counter

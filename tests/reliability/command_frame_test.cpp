@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <numeric>
 #include <random>
+#include <vector>
 
 #include "reliability/command_frame.h"
 #include "reliability/frame_code.h"
@@ -196,22 +197,33 @@ TEST(FrameGate, AFailedClusterWaitsToSettleAndAnAcceptClosesItSilently) {
   EXPECT_FALSE(gate.on_time(1300));
 }
 
+// Every reply a robot can give: ACK 0..15 and NACK, from each of the 8 addresses.
+std::vector<NamedReply> every_reply() {
+  std::vector<NamedReply> all;
+  for (std::uint8_t address = 0; address < 8; ++address) {
+    for (std::uint8_t s = 0; s < 16; ++s) all.push_back({true, s, address});
+    all.push_back({false, 0, address});
+  }
+  return all;
+}
+
 TEST(ReplyCode, NamedRepliesDifferInSevenOfTwelveTonesAndAreReadWithAnyThreeLost) {
   std::mt19937 rng(3);
-  for (int r = 0; r <= 16; ++r) {
-    const NamedReply reply{r < 16, static_cast<std::uint8_t>(r % 16)};
+  const auto all = every_reply();
+  ASSERT_EQ(all.size(), 136u);
+  for (const NamedReply& reply : all) {
     const ReplyTones word = reply_codeword(reply);
-    for (int other = 0; other <= 16; ++other) {
-      if (other == r) continue;
-      const ReplyTones w2 = reply_codeword({other < 16, static_cast<std::uint8_t>(other % 16)});
+    for (const NamedReply& other : all) {
+      if (other == reply) continue;
+      const ReplyTones w2 = reply_codeword(other);
       int differ = 0;
       for (std::size_t t = 0; t < word.size(); ++t) differ += word[t] != w2[t];
-      EXPECT_GE(differ, 7) << r << " and " << other;
+      EXPECT_GE(differ, 7) << "address " << int(reply.address) << " and " << int(other.address);
     }
     ReplyReading reading{};
     for (std::size_t t = 0; t < word.size(); ++t) reading[t] = word[t];
     EXPECT_EQ(read_reply(reading, 9), reply);
-    for (int trial = 0; trial < 50; ++trial) {
+    for (int trial = 0; trial < 20; ++trial) {
       auto damaged = reading;
       std::array<int, kReplyTones> order{};
       std::iota(order.begin(), order.end(), 0);
@@ -219,7 +231,7 @@ TEST(ReplyCode, NamedRepliesDifferInSevenOfTwelveTonesAndAreReadWithAnyThreeLost
       for (int k = 0; k < 3; ++k)  // lost, or read as another tone
         damaged[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])] =
             k % 2 ? -1 : (word[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])] + 1) % kReplyToneValues;
-      EXPECT_EQ(read_reply(damaged, 9), reply) << r << " with three tones gone";
+      EXPECT_EQ(read_reply(damaged, 9), reply) << "with three tones gone";
       damaged[static_cast<std::size_t>(order[3])] = -1;
       EXPECT_FALSE(read_reply(damaged, 9).has_value() && *read_reply(damaged, 9) != reply)
           << "four tones gone never name another reply";
@@ -227,10 +239,31 @@ TEST(ReplyCode, NamedRepliesDifferInSevenOfTwelveTonesAndAreReadWithAnyThreeLost
   }
 }
 
+// Address 0's replies are the single-robot code's words (found by its seeded search, the
+// same on every machine), so robots and senders of that time still understand each other.
+TEST(ReplyCode, AddressZeroKeepsTheSingleRobotWords) {
+  std::mt19937 rng(20261125);
+  std::vector<ReplyTones> kept;
+  while (kept.size() < 17) {
+    ReplyTones w{};
+    for (auto& t : w) t = static_cast<std::uint8_t>(rng() % kReplyToneValues);
+    bool far = true;
+    for (std::size_t b = 0; b < 6; ++b) far = far && w[b] != w[b + 6];
+    for (const auto& k : kept) {
+      int differ = 0;
+      for (std::size_t t = 0; t < w.size(); ++t) differ += w[t] != k[t];
+      far = far && differ >= 7;
+    }
+    if (far) kept.push_back(w);
+  }
+  for (std::uint8_t s = 0; s < 16; ++s) EXPECT_EQ(reply_codeword({true, s, 0}), kept[s]) << "ACK " << int(s);
+  EXPECT_EQ(reply_codeword({false, 0, 0}), kept[16]) << "NACK";
+}
+
 // No reply repeats a band's tone from its first chord in its second.
 TEST(ReplyCode, NoReplyRepeatsABandsToneInItsSecondChord) {
-  for (int r = 0; r <= 16; ++r) {
-    const ReplyTones word = reply_codeword({r < 16, static_cast<std::uint8_t>(r % 16)});
-    for (std::size_t b = 0; b < 6; ++b) EXPECT_NE(word[b], word[b + 6]) << "reply " << r;
+  for (const NamedReply& reply : every_reply()) {
+    const ReplyTones word = reply_codeword(reply);
+    for (std::size_t b = 0; b < 6; ++b) EXPECT_NE(word[b], word[b + 6]) << "address " << int(reply.address);
   }
 }
