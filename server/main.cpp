@@ -3,6 +3,7 @@
 //
 //   dtmf-server                              # default speaker and microphone, port 50051
 //   dtmf-server --audio-out wav:sent.wav --audio-in none --db none   # no sound card
+//   dtmf-server --robots robots.json         # several robots, each by name (server/robot_roster.h)
 // Exit codes: 0 stopped cleanly, 1 an audio device, the database or the port could not be had,
 // 2 bad usage.
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
@@ -13,9 +14,13 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <csignal>
+#include <cstring>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "audio_program.h"
@@ -26,6 +31,7 @@
 #include "physical/portaudio_device.h"
 #include "physical/realtime_priority.h"
 #include "physical/wav_file.h"
+#include "robot_roster.h"
 #include "secret_file.h"
 #include "store_recorder.h"
 #include "teleop_service.h"
@@ -71,6 +77,8 @@ struct Flags {
   dtmf::program::KeyFlags keys;
   int robot_address = 0;
   std::string robot = "burger";
+  std::string robot_name = "robot";
+  std::string robots_file;
   dtmf::program::AudioProgramOptions program;
 };
 
@@ -140,6 +148,37 @@ std::unique_ptr<grpc::Server> start_serving(const Flags& f, const std::shared_pt
   return server;
 }
 
+// The robots to drive: --robots FILE, else one robot from --robot-name, --robot-address,
+// --key and --robot.
+std::vector<dtmf::server::RobotLinks> robot_links(const Flags& f) {
+  using namespace dtmf;
+  std::vector<server::RobotLinks> robots;
+  if (f.robots_file.empty()) {
+    server::RobotLinks r;
+    r.name = f.robot_name;
+    r.model = command::robot_model_by_name(f.robot);
+    r.links = link::make_links(program::link_options(f.keys, static_cast<std::uint8_t>(f.robot_address)));
+    robots.push_back(std::move(r));
+    return robots;
+  }
+  std::ifstream in(f.robots_file);
+  if (!in) throw std::runtime_error("cannot read --robots " + f.robots_file + ": " + std::strerror(errno));
+  std::stringstream text;
+  text << in.rdbuf();
+  for (const server::RobotEntry& e : server::parse_robots(text.str(), f.robots_file)) {
+    program::KeyFlags keys = f.keys;
+    keys.key_file = e.key_file;
+    server::RobotLinks r;
+    r.name = e.name;
+    r.model = command::robot_model_by_name(e.model);
+    r.links = link::make_links(program::link_options(keys, e.address));
+    spdlog::info("robot {}: address {}, {}, {}", e.name, e.address, e.key_file.empty() ? "no key" : "key " + e.key_file,
+                 e.model);
+    robots.push_back(std::move(r));
+  }
+  return robots;
+}
+
 int run(const Flags& f) {
   using namespace dtmf;
   const server::ServerSecurity security = read_security(f);
@@ -150,10 +189,18 @@ int run(const Flags& f) {
         "port {} can drive the robot",
         f.address, f.port);
   }
-  // The key before any device: a key file others may read stops the server here.
-  auto links = link::make_links(program::link_options(f.keys, static_cast<std::uint8_t>(f.robot_address)));
-  const LinkProfile& profile = default_profile(f, links);
-  if (f.keys.key_file.empty()) {
+  // The keys before any device: a key file others may read stops the server here.
+  std::vector<server::RobotLinks> robots = robot_links(f);
+  // The default profile: a keyed robot's, if any robot has a key (fast, authenticated); with
+  // several robots, one whose frames name the robot (fast).
+  const auto keyed = std::find_if(robots.begin(), robots.end(), [](const auto& r) { return r.links.front()->keyed(); });
+  const auto& default_links = (keyed != robots.end() ? *keyed : robots.front()).links;
+  const auto addressed =
+      std::find_if(default_links.begin(), default_links.end(), [](const auto& l) { return l->addresses_robots(); });
+  const LinkProfile& profile = robots.size() > 1 && f.profile.empty() && addressed != default_links.end()
+                                   ? (*addressed)->profile()
+                                   : default_profile(f, default_links);
+  if (keyed == robots.end()) {
     spdlog::info("no key: frames go unauthenticated (dtmf-server --key FILE)");
   } else if (f.allow_unauthenticated) {
     spdlog::warn(
@@ -177,7 +224,7 @@ int run(const Flags& f) {
   ::gethostname(hostname, sizeof hostname - 1);
   server::StoreRecorder recorder(store, hostname);
   server::Transmitter transmitter(
-      std::move(links), profile, std::move(speaker), std::move(microphone), recorder,
+      std::move(robots), profile, std::move(speaker), std::move(microphone), recorder,
       {.max_queue = f.max_queue, .realtime_audio = true, .allow_unauthenticated = f.allow_unauthenticated});
 
   server::ServiceOptions options;
@@ -187,7 +234,6 @@ int run(const Flags& f) {
                                                              : server::Policy::Fail;
   options.defaults.decision_timeout = std::chrono::milliseconds(static_cast<long>(f.decision_timeout_s * 1000));
   options.host = hostname;
-  options.robot = command::robot_model_by_name(f.robot);
   server::TeleopService service(transmitter, store, options);
 
   int port = 0;
@@ -262,10 +308,24 @@ int main(int argc, char** argv) {
                "the robot (a warning at start)")
       ->envname("DTMF_SERVER_ALLOW_ANYONE_ON_THE_NETWORK");
   dtmf::program::add_key_flags(app, f.keys, "DTMF_SERVER", "/var/lib/dtmf-server");
+  auto* robots = app.add_option("--robots", f.robots_file,
+                                "several robots: a JSON list of {name, address, key, model} (docs/protocol.md §9); "
+                                "instead of --robot-name, --robot-address, --key and --robot")
+                     ->envname("DTMF_SERVER_ROBOTS_FILE")
+                     ->check(CLI::ExistingFile);
+  app.add_option("--robot-name", f.robot_name, "the one robot's name (commands name it: dtmfctl --robot)")
+      ->envname("DTMF_SERVER_ROBOT_NAME")
+      ->check([](const std::string& name) {
+        return dtmf::server::robot_name_valid(name) ? std::string() : "1 to 32 letters, digits, - or _";
+      })
+      ->capture_default_str()
+      ->excludes(robots);
   app.add_option("--robot-address", f.robot_address, "the robot's address (0..7, dtmf-agent --address)")
       ->envname("DTMF_SERVER_ROBOT_ADDRESS")
       ->check(CLI::Range(0, 7))
-      ->capture_default_str();
+      ->capture_default_str()
+      ->excludes(robots);
+  app.get_option("--key")->excludes(robots);
   app.add_option("--robot", f.robot,
                  "TurtleBot3 model driven (as dtmf-agent --robot): Teleop's speeds are fractions of its limits")
       ->envname("TURTLEBOT3_MODEL")

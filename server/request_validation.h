@@ -21,6 +21,7 @@ struct CommandSettings {
   Policy policy;
   std::chrono::milliseconds decision_timeout;
   const LinkProfile* profile = nullptr;  // nullptr: the transmitter's default
+  std::size_t robot = 0;                 // the transmitter's robot (Transmitter::robot_named)
 };
 
 // The command a request asks for; throws RequestError.

@@ -10,10 +10,11 @@
 
 namespace dtmf::server {
 
-command::Velocity TeleopService::teleop_target(const v1::TeleopRequest& request) const {
+command::Velocity TeleopService::teleop_target(const v1::TeleopRequest& request, RobotIndex robot) const {
   const double lease_s = request.lease_s() == 0 ? 1.0 : request.lease_s();
   try {
-    return command::velocity_command(options_.robot, request.linear_mps(), request.angular_radps(), lease_s);
+    return command::velocity_command(transmitter_.model_of(robot), request.linear_mps(), request.angular_radps(),
+                                     lease_s);
   } catch (const command::ParameterError& e) {
     throw RequestError(e.what());
   }
@@ -46,7 +47,7 @@ grpc::Status TeleopService::Teleop(grpc::ServerContext* context,
   command::Velocity target;
   try {
     settings = settings_of(first.options());
-    target = teleop_target(first);
+    target = teleop_target(first, settings.robot);
   } catch (const RequestError& e) {
     return e.status();
   }
@@ -54,16 +55,19 @@ grpc::Status TeleopService::Teleop(grpc::ServerContext* context,
   setup.profile = settings.profile ? settings.profile : &transmitter_.profile();
   setup.decision_timeout = settings.decision_timeout;
   setup.first_lease_s = first.lease_s();
-  setup.target_of = [this](const v1::TeleopRequest& request) { return teleop_target(request); };
+  setup.robot = settings.robot;
+  setup.target_of = [this, robot = settings.robot](const v1::TeleopRequest& request) {
+    return teleop_target(request, robot);
+  };
   try {
-    const link::Link& link = transmitter_.link_of(*setup.profile);
+    const link::Link& link = transmitter_.link_of(*setup.profile, settings.robot);
     (void)link.frame_count(target);
     setup.carried_lease_s = std::get<command::Velocity>(link.as_received(target)).lease_s;
   } catch (const command::ParameterError& e) {
     return {grpc::StatusCode::INVALID_ARGUMENT, "profile " + setup.profile->name + ": " + e.what()};
   }
 
-  auto session = std::make_shared<TeleopSession>(options_.robot);
+  auto session = std::make_shared<TeleopSession>(transmitter_.model_of(settings.robot));
   const TeleopSlot slot(teleop_mutex_, teleop_, session);
   if (!slot.held()) {
     return {grpc::StatusCode::FAILED_PRECONDITION,

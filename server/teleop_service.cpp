@@ -38,7 +38,7 @@ v1::FrameEvent frame_event(ProgressEvent::Kind kind) {
 
 }  // namespace
 
-void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event) {
+void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event, const std::string& robot) {
   out.set_command_id(job.id());
   out.set_event(frame_event(event.kind));
   out.set_command(job.description());
@@ -46,6 +46,7 @@ void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event) {
   out.set_frame_count(static_cast<std::uint32_t>(event.frame_count > 0 ? event.frame_count : job.frame_count()));
   out.set_attempt(static_cast<std::uint32_t>(event.attempt));
   out.set_profile(job.profile().name);
+  out.set_robot(robot);
   if (const auto& frame = event.frame) {  // none while the command waits in the queue
     if (frame->word) out.set_word(*frame->word);
     if (frame->sequence) out.set_sequence(*frame->sequence);
@@ -98,7 +99,12 @@ TeleopService::TeleopService(Transmitter& transmitter, store::Store& store, Serv
 CommandSettings TeleopService::settings_of(const v1::CommandOptions& options, bool stop) const {
   CommandSettings settings = command_settings(options, options_.defaults);
   try {
-    settings.profile = &transmitter_.sendable_profile(settings.profile, stop);
+    settings.robot = transmitter_.robot_named(options.robot());
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(std::string("options.robot: ") + e.what());
+  }
+  try {
+    settings.profile = &transmitter_.sendable_profile(settings.profile, stop, settings.robot);
   } catch (const std::invalid_argument& e) {
     throw RequestError(std::string("options.profile: ") + e.what());
   }
@@ -110,10 +116,13 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
                                         const v1::CommandOptions& request_options, bool to_front, Write write) {
   std::shared_ptr<Job> job;
   std::string profile = transmitter_.profile().name;
+  std::string robot;
   try {
     const CommandSettings settings = settings_of(request_options, std::holds_alternative<command::Stop>(command));
     if (settings.profile) profile = settings.profile->name;
-    job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile);
+    robot = transmitter_.robot_name(settings.robot);
+    job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile,
+                              settings.robot);
   } catch (const RequestError& e) {
     return e.status();
   } catch (const command::ParameterError& e) {
@@ -135,7 +144,7 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
     const auto event = job->next_event(std::chrono::milliseconds(100));
     if (!event || client_gone) continue;
     v1::Progress progress;
-    fill_progress(progress, *job, *event);
+    fill_progress(progress, *job, *event, robot);
     if (!write(progress)) {
       client_gone = true;
       job->cancel();
@@ -192,10 +201,13 @@ grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const 
                                             grpc::ServerWriter<v1::RunTestSequenceResponse>* writer) {
   if (auto refused = refuse_while_teleop("RunTestSequence")) return *refused;
   const LinkProfile* profile = nullptr;
+  RobotIndex robot = 0;
   try {
     check_label("label", request->label());
     check_text("notes", request->notes(), kNotesLimit);
-    profile = settings_of(request->options()).profile;
+    const CommandSettings settings = settings_of(request->options());
+    profile = settings.profile;
+    robot = settings.robot;
   } catch (const RequestError& e) {
     return e.status();
   }
@@ -205,7 +217,8 @@ grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const 
   const auto commands = command::seed_test_sequence();
   // Frames per command are the link's business (a fast frame carries a whole command).
   std::uint32_t total = 0;
-  for (const auto& c : commands) total += static_cast<std::uint32_t>(transmitter_.link_of(*profile).frame_count(c));
+  for (const auto& c : commands)
+    total += static_cast<std::uint32_t>(transmitter_.link_of(*profile, robot).frame_count(c));
   std::uint32_t before = 0, done = 0;  // frames of the commands already through, and in all
   grpc::Status status = grpc::Status::OK;
   for (std::size_t k = 0; k < commands.size() && status.ok(); ++k) {

@@ -23,14 +23,12 @@ struct ServiceOptions {
   store::DatabaseUrl database;  // for reports
   CommandSettings defaults{Policy::Fail, std::chrono::seconds(60)};
   std::string host;
-  // The robot driven (dtmf-server --robot): Teleop's m/s and rad/s as fractions of its limits.
-  command::RobotModel robot = command::burger();
 };
 
 class TeleopSession;
 
 // A command's progress event as the API streams it.
-void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event);
+void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event, const std::string& robot);
 
 class TeleopService final : public v1::TeleopService::Service {
  public:
@@ -49,6 +47,7 @@ class TeleopService final : public v1::TeleopService::Service {
   grpc::Status EndRun(grpc::ServerContext*, const v1::EndRunRequest*, v1::EndRunResponse*) override;
   grpc::Status ListRuns(grpc::ServerContext*, const v1::ListRunsRequest*, v1::ListRunsResponse*) override;
   grpc::Status GetReport(grpc::ServerContext*, const v1::GetReportRequest*, v1::GetReportResponse*) override;
+  grpc::Status ListRobots(grpc::ServerContext*, const v1::ListRobotsRequest*, v1::ListRobotsResponse*) override;
 
  private:
   // Queues `command` and writes its progress through `write` until it ends.
@@ -63,7 +62,7 @@ class TeleopService final : public v1::TeleopService::Service {
                          std::string& run_id);
   grpc::Status end_run(const std::string& run_id);
   // The request's target for the robot model; throws RequestError naming the field.
-  command::Velocity teleop_target(const v1::TeleopRequest& request) const;
+  command::Velocity teleop_target(const v1::TeleopRequest& request, RobotIndex robot) const;
   // FAILED_PRECONDITION naming `rpc` while a Teleop stream drives.
   std::optional<grpc::Status> refuse_while_teleop(const char* rpc);
   // Stop overtook: the driving stream sends nothing more and ends.

@@ -120,7 +120,7 @@ grpc::Status TeleopStream::drive_frames() {
 }
 
 std::optional<grpc::Status> TeleopStream::send_frame(const command::Velocity& velocity) {
-  job_ = transmitter_.submit(velocity, Policy::Live, setup_.decision_timeout, false, setup_.profile);
+  job_ = transmitter_.submit(velocity, Policy::Live, setup_.decision_timeout, false, setup_.profile, setup_.robot);
   bool answered = false, confirmed = false, client_gone = false;
   double response_ms = 0;
   while (!job_->finished_and_drained()) {
@@ -142,7 +142,7 @@ std::optional<grpc::Status> TeleopStream::send_frame(const command::Velocity& ve
     }
     if (client_gone) continue;
     v1::Progress progress;
-    fill_progress(progress, *job_, *event);
+    fill_progress(progress, *job_, *event, transmitter_.robot_name(setup_.robot));
     if (!write_status(&progress)) {
       client_gone = true;
       job_->cancel();

@@ -44,6 +44,7 @@ class TeleopSlot {
 
 struct TeleopStreamSetup {
   const LinkProfile* profile = nullptr;
+  RobotIndex robot = 0;
   std::chrono::milliseconds decision_timeout{0};
   double carried_lease_s = 0;      // the lease as the frames carry it
   command::Velocity first_target;  // the first message's

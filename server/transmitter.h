@@ -15,6 +15,9 @@
 // cancelled command's queued frames never play, a chord already on air completes.
 // It only emits progress events: the caller's stream reads them, and the observer it is
 // given (store_recorder.h on a server) records them first.
+// It drives one robot or several (RobotLinks: a name, a model, and links bound to the
+// robot's address and key), all through its one loudspeaker: a command names its robot,
+// and only that robot's answer confirms its frames (link/fast_link.h).
 #pragma once
 
 #include <atomic>
@@ -26,6 +29,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "command/robot_model.h"
 #include "job.h"
 #include "physical/audio_io.h"
 #include "profile/link_profile.h"
@@ -49,6 +53,25 @@ class UnauthenticatedRefused : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// One robot the transmitter drives: its name, its TurtleBot3 model, and its links (one per
+// profile, link::make_links with the robot's address and key).
+struct RobotLinks {
+  std::string name = "robot";
+  command::RobotModel model = command::burger();
+  std::vector<std::unique_ptr<link::Link>> links;
+};
+// A robot's place among the transmitter's robots; 0 is the first (the only one by default).
+using RobotIndex = std::size_t;
+
+// What a sender knows of a robot (ListRobots).
+struct RobotStatus {
+  std::string name;
+  std::uint8_t address = 0;
+  std::string key_id;  // hex; empty without a key
+  std::string model;
+  std::optional<store::WallTime> last_answered;  // its last answer heard, if any
+};
+
 struct TransmitterOptions {
   std::size_t max_queue = 32;
   // Run the loudspeaker and microphone threads at real-time priority (physical/realtime_priority.h):
@@ -69,13 +92,18 @@ class Transmitter {
   Transmitter(std::vector<std::unique_ptr<link::Link>> links, const LinkProfile& profile,
               std::unique_ptr<physical::AudioSink> speaker, std::unique_ptr<physical::AudioSource> microphone,
               ProgressObserver& observer, TransmitterOptions options);
+  // Several robots, each with its own links. Names and addresses must differ, and so must
+  // keys (each key's counters are one sender's and one robot's); else std::invalid_argument.
+  Transmitter(std::vector<RobotLinks> robots, const LinkProfile& profile, std::unique_ptr<physical::AudioSink> speaker,
+              std::unique_ptr<physical::AudioSource> microphone, ProgressObserver& observer,
+              TransmitterOptions options);
   ~Transmitter();
 
   // Queues a command under sendable_profile(profile, command is a Stop). Throws QueueFull,
   // TransmitterUnavailable, UnauthenticatedRefused, command::ParameterError.
   std::shared_ptr<Job> submit(const command::Command& command, Policy policy,
                               std::chrono::milliseconds decision_timeout, bool to_front = false,
-                              const LinkProfile* profile = nullptr);
+                              const LinkProfile* profile = nullptr, RobotIndex robot = 0);
   // Answers the job awaiting a decision; false if no such job waits.
   bool decide(const std::string& command_id, reliability::Decision decision);
   // Commands submitted from now on belong to this test run (none: outside runs).
@@ -86,16 +114,22 @@ class Transmitter {
   const LinkProfile& profile() const { return profile_; }
   // The profile called `name` if this transmitter can send it; else std::invalid_argument.
   const LinkProfile& usable_profile(std::string_view name) const;
-  // The link this transmitter sends `profile` with.
-  const link::Link& link_of(const LinkProfile& profile) const;
-  // Whether this transmitter has a key (its links' frames carry MACs where they can).
-  bool keyed() const;
+  // The link this transmitter sends `profile` to `robot` with.
+  const link::Link& link_of(const LinkProfile& profile, RobotIndex robot = 0) const;
+  // Whether this transmitter has a key for `robot` (its frames carry MACs where they can).
+  bool keyed(RobotIndex robot = 0) const;
+  // The robot called `name`; an empty name is the only robot. std::invalid_argument naming
+  // the robots there are, for an unknown name or an empty one among several.
+  RobotIndex robot_named(std::string_view name) const;
+  const std::string& robot_name(RobotIndex robot) const { return robots_.at(robot).name; }
+  const command::RobotModel& model_of(RobotIndex robot) const { return robots_.at(robot).model; }
+  std::vector<RobotStatus> robots() const;
   // The profile a command asking for `requested` (nullptr: the default) goes out under: that
   // one, unless this transmitter has a key and it carries no MAC. Then a Stop goes under the
   // first profile that does, and any other command is refused (UnauthenticatedRefused)
   // unless unauthenticated commands are allowed. std::invalid_argument for a profile this
   // transmitter cannot send.
-  const LinkProfile& sendable_profile(const LinkProfile* requested, bool stop) const;
+  const LinkProfile& sendable_profile(const LinkProfile* requested, bool stop, RobotIndex robot = 0) const;
 
  private:
   struct HeardReply {
@@ -122,20 +156,29 @@ class Transmitter {
   // The first answer to `frame` of `link` heard after `since_ms`, or nothing by `until_ms`.
   std::optional<HeardReply> wait_reply(const link::Link& link, const link::TransmitFrame& frame, double since_ms,
                                        double until_ms);
-  link::Link& link_for(const LinkProfile& profile) const;
-  // The first link that authenticates its frames; std::invalid_argument if none does.
-  const link::Link& authenticated_link() const;
+  link::Link& link_for(const LinkProfile& profile, RobotIndex robot = 0) const;
+  // The robot's first link that authenticates its frames; std::invalid_argument if none does.
+  const link::Link& authenticated_link(RobotIndex robot = 0) const;
+  // The robot whose link `link` is.
+  RobotIndex robot_of(const link::Link& link) const;
+
+  struct Robot {
+    std::string name;
+    command::RobotModel model;
+    std::vector<std::unique_ptr<link::Link>> owned_links;
+    std::vector<const link::Link*> links;    // what this transmitter can send it and hear from it
+    std::optional<double> last_answered_ms;  // guarded by mutex_
+  };
 
   const LinkProfile& profile_;
-  std::vector<std::unique_ptr<link::Link>> owned_links_;
-  std::vector<const link::Link*> links_;  // what this transmitter can send and hear
+  std::vector<Robot> robots_;
   std::unique_ptr<physical::AudioSink> speaker_;
   std::unique_ptr<physical::AudioSource> microphone_;
   ProgressObserver& observer_;
   TransmitterOptions options_;
   const std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
 
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<std::shared_ptr<Job>> queue_;
   std::shared_ptr<Job> on_air_;

@@ -92,7 +92,7 @@ void Transmitter::send(Job& job) {
     continued = continued || attempt.retry.state() == RetryState::Continued;
   }
   // Allowed, but never to be taken for a keyed confirmation (--allow-unauthenticated-commands).
-  const bool untagged = keyed() && !job.frames().empty() && !job.frames().back()->authenticated;
+  const bool untagged = job.link().keyed() && !job.frames().empty() && !job.frames().back()->authenticated;
   end(job, continued ? Outcome::Continued : Outcome::Confirmed,
       untagged ? "unauthenticated: the robot's ACK carries no tag, and anyone within earshot can play one" : "");
 }
@@ -154,6 +154,10 @@ void Transmitter::await_answer(Job& job, FrameAttempt& attempt) {
     retry.on_answer(kind, reply->steady_ms);
     answer.kind = kind == reliability::Answer::Ack ? Kind::Ack : Kind::Nack;
     if (kind == reliability::Answer::Ack) job.link().confirmed(*attempt.frame);
+    {
+      std::lock_guard lock(mutex_);
+      robots_[robot_of(job.link())].last_answered_ms = reply->steady_ms;
+    }
     answer.response_time_ms = retry.response_time_ms();
     answer.answered_at = wall(reply->steady_ms);
   } else {

@@ -12,6 +12,10 @@ void add_global_options(CLI::App& app, GlobalOptions& options, bool with_server)
       ->envname("DTMF_SERVER")
       ->capture_default_str()
       ->group("Connection and output (before or after the subcommand)");
+  app.add_option("--robot", options.robot,
+                 "the robot to drive, by the name the server gives it (dtmfctl robots); default: the server's only one")
+      ->envname("DTMF_ROBOT")
+      ->group("Connection and output (before or after the subcommand)");
   app.add_option("--tls-ca", options.server.tls_ca,
                  "connect with TLS, trusting this PEM certificate (the server's or its CA's)")
       ->group("Connection and output (before or after the subcommand)");

@@ -1,7 +1,7 @@
 // dtmfctl's options that belong to no one subcommand: how to reach the server (--server,
-// --tls-ca, --token-file) and --json. They are the top-level app's, and every subcommand
-// falls through to it, so they work before or after the subcommand (as with kubectl, git
-// or grpcurl) and --help lists them once. Plain data: the offline commands need no gRPC.
+// --tls-ca, --token-file), which of its robots to drive (--robot) and --json. They are the top-level app's, and every
+// subcommand falls through to it, so they work before or after the subcommand (as with kubectl, git or grpcurl) and
+// --help lists them once. Plain data: the offline commands need no gRPC.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -17,6 +17,7 @@ struct ServerOptions {
 
 struct GlobalOptions {
   ServerOptions server;
+  std::string robot;  // --robot NAME: the robot a command is for (empty: the server's only one)
   bool json = false;  // one JSON object per line, in every subcommand that prints
 };
 

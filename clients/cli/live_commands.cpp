@@ -22,6 +22,7 @@ struct LiveOptions {
   bool json = false;
   std::string on_unconfirmed = "fail";
   std::string profile;  // empty: the server's default
+  std::string robot;    // empty: the server's only robot
   std::optional<double> speed, rotation, duration;
   std::string label, notes;
 };
@@ -35,6 +36,7 @@ v1::CommandOptions command_options(const LiveOptions& o) {
     options.set_on_unconfirmed(o.on_unconfirmed == "continue" ? v1::UNCONFIRMED_POLICY_CONTINUE
                                                               : v1::UNCONFIRMED_POLICY_FAIL);
   options.set_profile(o.profile);
+  options.set_robot(o.robot);
   return options;
 }
 
@@ -142,6 +144,7 @@ void add_live_commands(CLI::App& app, Action& run, const GlobalOptions& global) 
     command->callback([o, command, &global, &run] {
       run = [o, &global, kind = command->get_name()] {
         o->server = global.server;
+        o->robot = global.robot;
         o->json = global.json;  // one JSON object per progress event
         return run_live(kind, *o);
       };

@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
       "  dtmfctl drive --speed 50 --duration 2          (through dtmf-server: --server, DTMF_SERVER)\n"
       "  dtmfctl sequence --label general\n"
       "  dtmfctl teleop                                  (drive live from the keyboard; fast profile)\n"
+      "  dtmfctl robots; dtmfctl --robot beta drive --speed 30   (a server that drives several robots)\n"
       "  dtmfctl report --json");
 
   dtmf::cli::Action run;

@@ -94,6 +94,7 @@ void ProgressView::show(const v1::Progress& p, const std::optional<SequencePosit
                          {"frame", p.frame_bits()},
                          {"tones_hz", std::vector<double>(p.tones_hz().begin(), p.tones_hz().end())},
                          {"time_unix_ms", p.time_unix_ms()}};
+    event["robot"] = p.robot();
     if (p.has_word()) event["word"] = p.word();
     if (p.has_sequence()) event["sequence"] = p.sequence();
     if (p.event() != v1::FRAME_EVENT_QUEUED) event["authenticated"] = p.authenticated();

@@ -181,6 +181,33 @@ int run_runs(const ReportOptions& o) {
   return 0;
 }
 
+int run_robots(const ReportOptions& o) {
+  ServerConnection connection(o.server);
+  v1::ListRobotsResponse robots;
+  auto context = connection.context();
+  const grpc::Status status = connection.teleop().ListRobots(context.get(), {}, &robots);
+  if (!status.ok()) {
+    std::fprintf(stderr, "dtmfctl: %s\n", describe_status(status).c_str());
+    return caller_refused(status) ? kExitNotAuthorized : kExitUnreachable;
+  }
+  for (const auto& r : robots.robots()) {
+    if (o.json) {
+      std::printf("%s\n", nlohmann::json{{"name", r.name()},
+                                         {"address", r.address()},
+                                         {"key_id", r.key_id()},
+                                         {"model", r.model()},
+                                         {"last_answered_unix_ms", r.last_answered_unix_ms()}}
+                              .dump()
+                              .c_str());
+    } else {
+      std::printf("%-16s address %u  %-8s key %-18s last answered %s\n", r.name().c_str(), r.address(),
+                  r.model().c_str(), r.key_id().empty() ? "none" : r.key_id().c_str(),
+                  r.last_answered_unix_ms() ? when(r.last_answered_unix_ms()).c_str() : "never");
+    }
+  }
+  return 0;
+}
+
 int run_health(const ReportOptions& o) {
   ServerConnection connection(o.server);
   auto health = grpc::health::v1::Health::NewStub(connection.channel());
@@ -228,6 +255,9 @@ void add_run_commands(CLI::App& app, Action& run, const GlobalOptions& global) {
     if (o->csv && global.json) throw CLI::ValidationError("report", "--csv and --json exclude each other: choose one");
     run = with_global(run_report);
   });
+
+  CLI::App* robots = app.add_subcommand("robots", "the robots the server drives: names, addresses, keys, models");
+  robots->callback([with_global, &run] { run = with_global(run_robots); });
 
   CLI::App* health = app.add_subcommand("health", "is the server up and serving?");
   health->callback([with_global, &run] { run = with_global(run_health); });

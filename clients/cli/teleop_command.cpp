@@ -24,7 +24,8 @@ struct TeleopOptions {
   ServerOptions server;
   std::string profile = "fast";
   double lease_s = 1.0;
-  std::string robot = "burger";
+  std::string robot;  // its name (dtmfctl --robot); empty: the server's only one
+  std::string model;  // empty: the model the server gives the robot
 };
 
 constexpr int kRepeatMs = 100;
@@ -38,15 +39,19 @@ v1::TeleopRequest request_for(const TeleopTarget& target, const TeleopOptions& o
   r.set_linear_mps(target.linear_mps);
   r.set_angular_radps(target.angular_radps);
   r.set_lease_s(o.lease_s);
-  if (first) r.mutable_options()->set_profile(o.profile);
+  if (first) {
+    r.mutable_options()->set_profile(o.profile);
+    r.mutable_options()->set_robot(o.robot);
+  }
   return r;
 }
 
 // The Stop goes out with the stream's profile: the robot answers it as fast as it answered
 // the stream's frames.
-int send_stop(ServerConnection& connection, const std::string& profile) {
+int send_stop(ServerConnection& connection, const TeleopOptions& o) {
   v1::StopRequest stop;
-  stop.mutable_options()->set_profile(profile);
+  stop.mutable_options()->set_profile(o.profile);
+  stop.mutable_options()->set_robot(o.robot);
   auto context = connection.context();
   auto reader = connection.teleop().Stop(context.get(), stop);
   v1::StopResponse ignored;
@@ -57,14 +62,29 @@ int send_stop(ServerConnection& connection, const std::string& profile) {
   return exit_code_for(status);
 }
 
+// The model the server gives the robot (ListRobots); the keys' steps stay within its limits.
+std::string model_of(ServerConnection& connection, const TeleopOptions& o) {
+  v1::ListRobotsResponse robots;
+  auto context = connection.context();
+  const grpc::Status status = connection.teleop().ListRobots(context.get(), {}, &robots);
+  // A server from before ListRobots drives one robot of its --robot model: say which with --model.
+  if (status.error_code() == grpc::StatusCode::UNIMPLEMENTED) return "burger";
+  if (!status.ok()) throw std::runtime_error("the server's robots: " + describe_status(status));
+  for (const v1::Robot& r : robots.robots()) {
+    if (r.name() == o.robot || (o.robot.empty() && robots.robots_size() == 1)) return r.model();
+  }
+  // The server names what is wrong when the stream opens (options.robot).
+  return "burger";
+}
+
 int run_teleop(const TeleopOptions& o) {
   if (!::isatty(STDIN_FILENO) || !::isatty(STDOUT_FILENO)) {
     throw std::invalid_argument(
         "teleop needs a terminal to read keys from and draw on (stdin and stdout are not both terminals); "
         "from a script, use the Python client's Client.teleop() or the Teleop RPC");
   }
-  const command::RobotModel& model = command::robot_model_by_name(o.robot);
   ServerConnection connection(o.server);
+  const command::RobotModel& model = command::robot_model_by_name(o.model.empty() ? model_of(connection, o) : o.model);
   auto context = connection.context();
   auto stream = connection.teleop().Teleop(context.get());
 
@@ -112,7 +132,7 @@ int run_teleop(const TeleopOptions& o) {
   const grpc::Status status = stream->Finish();
   signal(SIGINT, SIG_DFL);
   signal(SIGTERM, SIG_DFL);
-  const int stopped = send_stop(connection, o.profile);
+  const int stopped = send_stop(connection, o);
   if (!status.ok()) {
     std::fprintf(stderr, "dtmfctl: teleop: %s\n", describe_status(status).c_str());
     return exit_code_for(status);
@@ -134,13 +154,14 @@ void add_teleop_command(CLI::App& app, Action& run, const GlobalOptions& global)
   teleop->add_option("--lease-s", o->lease_s, "how long the robot holds a target without a renewal (0.3..2)")
       ->check(CLI::Range(0.3, 2.0))
       ->capture_default_str();
-  teleop->add_option("--robot", o->robot, "TurtleBot3 model (its limits bound the keys' steps)")
-      ->envname("TURTLEBOT3_MODEL")
-      ->check(CLI::IsMember({"burger", "waffle", "waffle_pi"}))
-      ->capture_default_str();
+  teleop
+      ->add_option("--model", o->model,
+                   "TurtleBot3 model (its limits bound the keys' steps); default: the model the server gives the robot")
+      ->check(CLI::IsMember({"burger", "waffle", "waffle_pi"}));
   teleop->callback([o, &global, &run] {
     run = [o, &global] {
       o->server = global.server;
+      o->robot = global.robot;
       return run_teleop(*o);
     };
   });

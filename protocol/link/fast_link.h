@@ -14,6 +14,7 @@ class FastLink final : public Link {
   std::vector<TransmitFrame> plan(const command::Command& command) override;
   std::size_t frame_count(const command::Command& command) const override;
   bool can_authenticate() const override { return true; }
+  bool addresses_robots() const override { return true; }
   command::Command as_received(const command::Command& command) const override;
   int payload_bits(const command::Command& command) const override;
   TransmitFrame random_frame(std::uint64_t seed) override;

@@ -96,6 +96,9 @@ class Link {
   bool keyed() const { return options_.key != nullptr; }
   // Whether its format carries a MAC at all (the seed's 16-bit frames cannot).
   virtual bool can_authenticate() const = 0;
+  // Whether its frames name the robot they are for (the seed's 16-bit frames do not: every
+  // robot in the room that hears one executes it).
+  virtual bool addresses_robots() const = 0;
 
   // --- the sender ---
   // The frames of `command` in transmission order, with their audio, each numbered anew (a

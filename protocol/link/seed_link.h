@@ -15,6 +15,7 @@ class SeedLink final : public Link {
   std::vector<TransmitFrame> plan(const command::Command& command) override;
   std::size_t frame_count(const command::Command& command) const override;
   bool can_authenticate() const override { return false; }
+  bool addresses_robots() const override { return false; }
   std::optional<TransmitFrame> plan_payload_word(std::uint32_t word) const override;
   command::Command as_received(const command::Command& command) const override;
   int payload_bits(const command::Command& command) const override;

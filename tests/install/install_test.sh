@@ -23,7 +23,7 @@ done
 [ -x "$stage/usr/bin/dtmf-agent" ] || fail "/usr/bin/dtmf-agent is not executable"
 
 # The installed programs run from where they were installed.
-"$stage/usr/bin/dtmf-agent" --help | grep -q -- "--stop-robot" || fail "dtmf-agent --help does not offer --stop-robot"
+grep -q -- "--stop-robot" <<<"$("$stage/usr/bin/dtmf-agent" --help)" || fail "dtmf-agent --help does not offer --stop-robot"
 "$stage/usr/bin/dtmf-server" --help >/dev/null || fail "dtmf-server --help failed"
 [ "$("$stage/usr/bin/dtmfctl" encode --json --word 2861 | grep -o '"frame":"[01]*"')" = '"frame":"1011001011011101"' ] ||
   fail "the installed dtmfctl encodes word 2861 wrongly"
@@ -44,10 +44,14 @@ done
 grep -q '^ExecStopPost=-/usr/bin/dtmf-agent --stop-robot$' "$stage/usr/lib/systemd/system/dtmf-agent.service" ||
   fail "dtmf-agent.service does not stop the robot after the agent ends"
 # Each variable the settings files name is one a program reads.
+# (The help is read whole first: `--help | grep -q` under pipefail failed once the help grew
+# past one 4 KiB write, as grep -q left at its first match and the program's next write met
+# a closed pipe.)
 for pair in agent:dtmf-agent server:dtmf-server; do
   program=${pair#*:}
+  help=$("$stage/usr/bin/$program" --help)
   for var in $(sed -n 's/^#\{0,1\}\(DTMF_[A-Z_]*\)=.*/\1/p' "$stage/etc/default/$program"); do
-    "$stage/usr/bin/$program" --help | grep -q "$var" || fail "/etc/default/$program names $var, which $program does not read"
+    grep -q "$var" <<<"$help" || fail "/etc/default/$program names $var, which $program does not read"
   done
 done
 echo "PASS"

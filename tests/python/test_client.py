@@ -63,6 +63,17 @@ def test_a_bad_value_raises_bad_request_naming_the_field(robot):
         robot.turn(rotation=10, duration=9).result()
 
 
+def test_robots_lists_the_servers_robot_and_a_client_names_its_robot(system, robot):
+    robots = robot.robots()
+    assert [(r["name"], r["address"], r["model"], r["key_id"]) for r in robots] == [("robot", 0, "burger", "")]
+    assert robots[0]["last_answered_unix_ms"] > 0  # the system's readiness Stop was answered
+    with Client(system.address, robot="robot") as named:
+        assert named.reset().result().robot == "robot"
+    with Client(system.address, robot="nobody") as unknown:
+        with pytest.raises(BadRequest, match="options.robot: no robot called \"nobody\": this server drives robot"):
+            unknown.reset().result()
+
+
 def test_an_unreachable_server_raises_server_unreachable():
     with Client("127.0.0.1:1", timeout_s=2) as nowhere:
         with pytest.raises(ServerUnreachable, match="cannot reach dtmf-server at 127.0.0.1:1"):

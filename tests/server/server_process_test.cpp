@@ -283,6 +283,48 @@ TEST_F(TokenOnLoopbackServerProcess, DtmfctlWithoutTheTokenExitsWithItsOwnCode) 
   EXPECT_NE(help.out.find("5 the server refused the caller"), std::string::npos) << help.out;
 }
 
+namespace {
+
+// dtmf-server --robots: two robots by name, neither in the room.
+class RobotsFileServerProcess : public ServerProcess {
+ protected:
+  std::string extra_flags() override {
+    std::ofstream(path("robots.json")) << R"([{"name": "alpha", "address": 1},
+                                              {"name": "beta", "address": 2, "model": "waffle"}])";
+    return "--robots " + path("robots.json");
+  }
+  test_support::CommandResult dtmfctl(const std::string& args) {
+    return test_support::run_command(std::string(DTMFCTL_PATH) + " --server 127.0.0.1:" + std::to_string(port_) + " " +
+                                     args + " 2>&1");
+  }
+};
+
+}  // namespace
+
+TEST_F(RobotsFileServerProcess, DtmfctlListsTheRobotsAndACommandMustNameOneItKnows) {
+  const auto listed = dtmfctl("robots");
+  ASSERT_EQ(listed.exit_code, 0) << listed.out;
+  EXPECT_NE(listed.out.find("alpha"), std::string::npos) << listed.out;
+  EXPECT_NE(listed.out.find("address 2"), std::string::npos) << listed.out;
+  EXPECT_NE(listed.out.find("waffle"), std::string::npos) << listed.out;
+  const auto json = dtmfctl("robots --json");
+  ASSERT_EQ(json.exit_code, 0) << json.out;
+  EXPECT_NE(json.out.find(R"({"address":1,"key_id":"","last_answered_unix_ms":0,"model":"burger","name":"alpha"})"),
+            std::string::npos)
+      << json.out;
+
+  for (const std::string robot : {"--robot gamma ", ""}) {
+    const auto refused = dtmfctl(robot + "reset --on-unconfirmed continue");
+    EXPECT_EQ(refused.exit_code, 2) << refused.out;
+    EXPECT_NE(refused.out.find("options.robot"), std::string::npos) << refused.out;
+    EXPECT_NE(refused.out.find("alpha, beta"), std::string::npos) << refused.out;
+  }
+  // Named: it goes on air (no robot answers here, so it continues unconfirmed).
+  const auto sent = dtmfctl("--robot beta reset --on-unconfirmed continue --json");
+  EXPECT_EQ(sent.exit_code, 0) << sent.out;
+  EXPECT_NE(sent.out.find(R"("robot":"beta")"), std::string::npos) << sent.out;
+}
+
 TEST(ServerFlags, UsageErrorsAndABusyPortAreClear) {
   EXPECT_EQ(test_support::run_command(std::string(DTMF_SERVER_PATH) + " --port 70000").exit_code, 2);
   EXPECT_EQ(test_support::run_command(std::string(DTMF_SERVER_PATH) + " --on-unconfirmed maybe").exit_code, 2);
@@ -381,4 +423,19 @@ TEST(ServerFlags, ANameThatMerelyBeginsWith127IsNotLoopback) {
   const auto r = start_server("--address 127.0.0.1.nip.io");
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("--allow-anyone-on-the-network"), std::string::npos) << r.out;
+}
+
+TEST(ServerFlags, ABadRobotsFileStopsTheServerNamingWhatIsWrong) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("server-robots-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string file = write_file(dir / "robots.json", R"([{"name": "alpha", "address": 9}])", 0644);
+  const auto bad = start_server("--robots " + file);
+  EXPECT_EQ(bad.exit_code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("robot 1 (alpha): address 9 is outside 0..7"), std::string::npos) << bad.out;
+  // The one robot's flags and a robots file exclude each other.
+  const std::string good = write_file(dir / "good.json", R"([{"name": "alpha", "address": 1}])", 0644);
+  const auto both = start_server("--robots " + good + " --robot-address 3");
+  EXPECT_EQ(both.exit_code, 2) << both.out;
+  EXPECT_NE(both.out.find("--robot-address"), std::string::npos) << both.out;
+  fs::remove_all(dir);
 }

@@ -68,11 +68,14 @@ class CommandCall:
 
 class Client:
     """A connection to dtmf-server. target: "host:port"; token: the server's bearer token
-    (dtmf-server --auth-token-file); tls_ca: PEM file to trust for a TLS server."""
+    (dtmf-server --auth-token-file); tls_ca: PEM file to trust for a TLS server; robot: the
+    robot every command of this client drives, by the name the server gives it (robots());
+    None: the server's only robot (a server that drives several refuses with BadRequest)."""
 
     def __init__(self, target: str = DEFAULT_TARGET, *, token: Optional[str] = None,
-                 tls_ca: Optional[str] = None, timeout_s: float = 30.0):
+                 tls_ca: Optional[str] = None, timeout_s: float = 30.0, robot: Optional[str] = None):
         self.target = target
+        self.robot = robot
         self.timeout_s = timeout_s
         if tls_ca:
             with open(tls_ca, "rb") as f:
@@ -101,7 +104,7 @@ class Client:
               on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
         """Drive forward at speed percent (0..100) for duration seconds (0..8), or until
         the next command when duration is None."""
-        request = pb.DriveRequest(speed_percent=speed, options=_options(on_unconfirmed, profile))
+        request = pb.DriveRequest(speed_percent=speed, options=self._options(on_unconfirmed, profile))
         if duration is not None:
             request.duration_s = duration
         return self._command(self._stub.Drive, request)
@@ -110,22 +113,22 @@ class Client:
              on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
         """Turn in place at rotation percent (-100..100, positive is left) for duration
         seconds (0..8), or until the next command when duration is None."""
-        request = pb.TurnRequest(rotation_percent=rotation, options=_options(on_unconfirmed, profile))
+        request = pb.TurnRequest(rotation_percent=rotation, options=self._options(on_unconfirmed, profile))
         if duration is not None:
             request.duration_s = duration
         return self._command(self._stub.Turn, request)
 
     def stop(self, *, on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
-        return self._command(self._stub.Stop, pb.StopRequest(options=_options(on_unconfirmed, profile)))
+        return self._command(self._stub.Stop, pb.StopRequest(options=self._options(on_unconfirmed, profile)))
 
     def reset(self, *, on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
-        return self._command(self._stub.Reset, pb.ResetRequest(options=_options(on_unconfirmed, profile)))
+        return self._command(self._stub.Reset, pb.ResetRequest(options=self._options(on_unconfirmed, profile)))
 
     def run_sequence(self, label: str, notes: str = "", *,
                      on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
         """The seed's test sequence as a labelled test run (65 frames under the seed
         profile, one frame per command under fast); yields SequenceProgress."""
-        request = pb.RunTestSequenceRequest(label=label, notes=notes, options=_options(on_unconfirmed, profile))
+        request = pb.RunTestSequenceRequest(label=label, notes=notes, options=self._options(on_unconfirmed, profile))
         call = self._stub.RunTestSequence(request, metadata=self._metadata)
         return CommandCall(self, call, SequenceProgress.from_proto)
 
@@ -147,6 +150,7 @@ class Client:
 
         return TeleopStream(lambda requests: self._stub.Teleop(requests, metadata=self._metadata), stop_robot,
                             linear_mps=linear_mps, angular_radps=angular_radps, lease_s=lease_s, profile=profile,
+                            robot=self.robot or "",
                             on_status=on_status, stop_on_exit=stop_on_exit, repeat_s=repeat_s,
                             accept_timeout_s=self.timeout_s, target=self.target)
 
@@ -180,12 +184,27 @@ class Client:
             report.pop("frames")
         return report
 
+    def robots(self) -> list[dict[str, Any]]:
+        """The robots the server drives: name, address (0..7), key_id (empty without a
+        key), model, and last_answered_unix_ms (0: no answer since the server started)."""
+        return [message_to_dict(r) for r in self._unary(self._stub.ListRobots, pb.ListRobotsRequest()).robots]
+
     def health(self) -> str:
         """The server's health: "SERVING" or "NOT_SERVING" (its audio device is gone)."""
         response = self._unary(self._health.Check, health_pb2.HealthCheckRequest(service=""))
         return health_pb2.HealthCheckResponse.ServingStatus.Name(response.status)
 
     # --- plumbing ------------------------------------------------------------------------
+
+    def _options(self, on_unconfirmed: Optional[Unconfirmed], profile: Optional[str] = None) -> pb.CommandOptions:
+        options = pb.CommandOptions()
+        if on_unconfirmed is not None:
+            options.on_unconfirmed = on_unconfirmed.value
+        if profile is not None:
+            options.profile = profile
+        if self.robot is not None:
+            options.robot = self.robot
+        return options
 
     def _command(self, method: Any, request: Any) -> CommandCall:
         call = method(request, metadata=self._metadata)
@@ -198,12 +217,5 @@ class Client:
             raise errors.from_rpc_error(e, self.target) from None
 
 
-def _options(on_unconfirmed: Optional[Unconfirmed], profile: Optional[str] = None) -> pb.CommandOptions:
-    options = pb.CommandOptions()
-    if on_unconfirmed is not None:
-        options.on_unconfirmed = on_unconfirmed.value
-    if profile is not None:
-        options.profile = profile
-    return options
 
 

@@ -66,6 +66,7 @@ class Progress:
     # ACK, CONFIRMED: the answer spelled the frame's tag under the key. False: an untagged
     # ACK, which anyone within earshot can play (never a keyed confirmation).
     answer_authenticated: bool = False
+    robot: str = ""                 # the robot the command is for (its name on the server)
 
     @classmethod
     def from_proto(cls, p: pb.Progress) -> "Progress":
@@ -76,7 +77,7 @@ class Progress:
                    detail=p.detail, queue_position=p.queue_position, time_unix_ms=p.time_unix_ms,
                    profile=p.profile, sequence=p.sequence if p.HasField("sequence") else None,
                    authenticated=p.authenticated, synchronisation=p.synchronisation,
-                   answer_authenticated=p.answer_authenticated)
+                   answer_authenticated=p.answer_authenticated, robot=p.robot)
 
 
 @dataclass(frozen=True)

@@ -41,10 +41,11 @@ class TeleopStream:
     call close() yourself: until then the robot keeps the last target."""
 
     def __init__(self, open_call: Callable[[Iterator[pb.TeleopRequest]], Any], stop_robot: Callable[[], Any], *,
-                 linear_mps: float, angular_radps: float, lease_s: float, profile: str,
+                 linear_mps: float, angular_radps: float, lease_s: float, profile: str, robot: str = "",
                  on_status: Optional[Callable[[TeleopStatus], None]] = None, stop_on_exit: bool = True,
                  repeat_s: float = REPEAT_S, accept_timeout_s: float = 30.0, target: str = ""):
         self.profile = profile
+        self.robot = robot
         self.lease_s = lease_s
         self.stop_on_exit = stop_on_exit
         self._stop_robot = stop_robot
@@ -177,6 +178,7 @@ class TeleopStream:
             request = pb.TeleopRequest(linear_mps=items[-1][0], angular_radps=items[-1][1], lease_s=self.lease_s)
             if target is None:
                 request.options.profile = self.profile
+                request.options.robot = self.robot
             target = items[-1]
             yield request
 

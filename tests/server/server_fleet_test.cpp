@@ -1,0 +1,248 @@
+// One sender, several robots: the whole system in one process. A transmitter that drives
+// robots "alpha" (address 1) and "beta" (address 2) through one loudspeaker, two robot
+// agents listening in one simulated room (each hearing the sender, the other robot and
+// itself), and real gRPC on loopback. A command names its robot; only that robot moves, and
+// only its answer confirms the command. Both sides start at the same sequence number, so
+// every frame's number collides with the other robot's.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <thread>
+
+#include "agent.h"
+#include "live_system.h"
+#include "security/link_key.h"
+#include "sim/simulated_air.h"
+#include "teleop_service.h"
+
+using namespace dtmf;
+using namespace std::chrono_literals;
+using test_support::read_stream;
+
+namespace {
+
+const LinkProfile& fast = profile_by_name("fast");
+
+link::LinkOptions at(std::uint8_t address) {
+  link::LinkOptions o;
+  o.address = address;
+  o.first_sequence = 0;
+  return o;
+}
+
+// A robot agent on a station of the air: what it publishes on cmd_vel is kept.
+class Robot : public agent::CmdVelOutput {
+ public:
+  Robot(sim::SimulatedAir::Station station, std::uint8_t address)
+      : microphone_(std::move(station.microphone)),
+        replies_(std::move(station.speaker), std::chrono::milliseconds(0)),
+        store_([] {
+          store::StoreOptions none;
+          none.database = std::string();
+          return none;
+        }()),
+        timeline_(true) {
+    agent::AgentOptions options;
+    options.profiles = {&fast};
+    options.link = at(address);
+    agent_ =
+        std::make_unique<agent::Agent>(options, replies_, std::vector<agent::CmdVelOutput*>{this}, store_, timeline_);
+    thread_ = std::thread([this] {
+      std::vector<float> block(static_cast<std::size_t>(agent_->block_samples()));
+      while (const std::size_t got = microphone_->read(block))
+        agent_->process(std::span<const float>(block.data(), got));
+    });
+  }
+  ~Robot() override { thread_.join(); }  // the air stopped: the microphone ends
+
+  void publish(const agent::Velocity& v, double, std::chrono::system_clock::time_point) override {
+    std::lock_guard lock(mutex_);
+    moved_ = moved_ || v.linear_mps != 0 || v.angular_radps != 0;
+  }
+  bool moved() {
+    std::lock_guard lock(mutex_);
+    return moved_;
+  }
+
+ private:
+  std::unique_ptr<physical::AudioSource> microphone_;
+  agent::LiveReplyPlayer replies_;
+  store::Store store_;
+  agent::Timeline timeline_;
+  std::unique_ptr<agent::Agent> agent_;
+  std::thread thread_;
+  std::mutex mutex_;
+  bool moved_ = false;
+};
+
+class Fleet {
+ public:
+  Fleet() : air_(fast.sample_rate_hz, quiet_room(), 10) {
+    auto sender = air_.add_station("sender", 0.0);
+    auto alpha = air_.add_station("alpha", 1.0);
+    auto beta = air_.add_station("beta", 1.5);
+    air_.start();
+    alpha_ = std::make_unique<Robot>(std::move(alpha), 1);
+    beta_ = std::make_unique<Robot>(std::move(beta), 2);
+    store::StoreOptions none;
+    none.database = std::string();
+    none.spill_path = ::testing::TempDir() + "/fleet-" + std::to_string(::getpid()) + ".spill";
+    store_ = std::make_unique<store::Store>(none);
+    recorder_ = std::make_unique<server::StoreRecorder>(*store_, "test");
+    std::vector<server::RobotLinks> robots(2);
+    robots[0].name = "alpha";
+    robots[0].links = link::make_links(at(1));
+    robots[1].name = "beta";
+    robots[1].model = command::waffle();
+    robots[1].links = link::make_links(at(2));
+    transmitter_ =
+        std::make_unique<server::Transmitter>(std::move(robots), fast, std::move(sender.speaker),
+                                              std::move(sender.microphone), *recorder_, server::TransmitterOptions{});
+    service_ = std::make_unique<server::TeleopService>(*transmitter_, *store_, server::ServiceOptions{});
+    grpc::ServerBuilder builder;
+    builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port_);
+    builder.RegisterService(service_.get());
+    server_ = builder.BuildAndStart();
+    stub_ = v1::TeleopService::NewStub(
+        grpc::CreateChannel("127.0.0.1:" + std::to_string(port_), grpc::InsecureChannelCredentials()));
+  }
+  ~Fleet() {
+    transmitter_->shutdown();
+    server_->Shutdown(std::chrono::system_clock::now() + 2s);
+    air_.stop();
+  }
+
+  test_support::StreamResult<v1::DriveResponse> drive(const std::string& robot) {
+    v1::DriveRequest r;
+    r.set_speed_percent(30);
+    r.set_duration_s(1);
+    r.mutable_options()->set_robot(robot);
+    r.mutable_options()->set_on_unconfirmed(v1::UNCONFIRMED_POLICY_FAIL);
+    return read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return stub_->Drive(&c, r); });
+  }
+  v1::ListRobotsResponse robots() {
+    grpc::ClientContext c;
+    v1::ListRobotsResponse response;
+    EXPECT_TRUE(stub_->ListRobots(&c, {}, &response).ok());
+    return response;
+  }
+
+  v1::TeleopService::Stub& stub() { return *stub_; }
+  Robot& alpha() { return *alpha_; }
+  Robot& beta() { return *beta_; }
+
+ private:
+  static sim::ChannelConfig quiet_room() {
+    sim::ChannelConfig air;
+    air.noise = sim::parse_noise("white", -70);
+    return air;
+  }
+
+  sim::SimulatedAir air_;
+  std::unique_ptr<Robot> alpha_, beta_;
+  std::unique_ptr<store::Store> store_;
+  std::unique_ptr<server::StoreRecorder> recorder_;
+  std::unique_ptr<server::Transmitter> transmitter_;
+  std::unique_ptr<server::TeleopService> service_;
+  std::unique_ptr<grpc::Server> server_;
+  int port_ = 0;
+  std::unique_ptr<v1::TeleopService::Stub> stub_;
+};
+
+}  // namespace
+
+TEST(ServerFleet, ACommandMovesOnlyTheRobotItNamesAndOnlyItsAnswerConfirmsIt) {
+  Fleet fleet;
+  const auto to_beta = fleet.drive("beta");
+  ASSERT_TRUE(to_beta.status.ok()) << to_beta.status.error_message();
+  EXPECT_EQ(to_beta.responses.back().progress().event(), v1::FRAME_EVENT_CONFIRMED);
+  EXPECT_EQ(to_beta.responses.back().progress().robot(), "beta");
+  // Confirmed at its first transmission: beta's answer, and no other, was taken.
+  EXPECT_EQ(std::count_if(to_beta.responses.begin(), to_beta.responses.end(),
+                          [](const auto& r) { return r.progress().event() == v1::FRAME_EVENT_TRANSMITTING; }),
+            1);
+  std::this_thread::sleep_for(300ms);  // alpha heard the same frame: it must not have moved
+  EXPECT_TRUE(fleet.beta().moved());
+  EXPECT_FALSE(fleet.alpha().moved()) << "robot alpha executed beta's frame";
+
+  // Alpha's first frame carries the same sequence number beta's did (both links start at 0).
+  const auto to_alpha = fleet.drive("alpha");
+  ASSERT_TRUE(to_alpha.status.ok()) << to_alpha.status.error_message();
+  EXPECT_EQ(to_alpha.responses.back().progress().sequence(), to_beta.responses.back().progress().sequence());
+  EXPECT_TRUE(fleet.alpha().moved());
+
+  const auto robots = fleet.robots();
+  ASSERT_EQ(robots.robots_size(), 2);
+  EXPECT_EQ(robots.robots(0).name(), "alpha");
+  EXPECT_EQ(robots.robots(0).address(), 1u);
+  EXPECT_EQ(robots.robots(1).name(), "beta");
+  EXPECT_EQ(robots.robots(1).address(), 2u);
+  EXPECT_EQ(robots.robots(1).model(), "waffle");
+  EXPECT_GT(robots.robots(0).last_answered_unix_ms(), 0);
+  EXPECT_GE(robots.robots(0).last_answered_unix_ms(), robots.robots(1).last_answered_unix_ms())
+      << "alpha answered last";
+}
+
+TEST(ServerFleet, AnUnknownOrMissingRobotNameIsInvalidArgumentNamingTheRobots) {
+  Fleet fleet;
+  for (const std::string name : {"gamma", ""}) {
+    const auto r = fleet.drive(name);
+    EXPECT_EQ(r.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << "\"" << name << "\"";
+    EXPECT_NE(r.status.error_message().find("options.robot"), std::string::npos) << r.status.error_message();
+    EXPECT_NE(r.status.error_message().find("alpha, beta"), std::string::npos) << r.status.error_message();
+  }
+  EXPECT_FALSE(fleet.alpha().moved());
+  EXPECT_FALSE(fleet.beta().moved());
+  const v1::ListRobotsResponse robots = fleet.robots();
+  for (const auto& robot : robots.robots()) EXPECT_EQ(robot.last_answered_unix_ms(), 0) << robot.name();
+}
+
+TEST(ServerFleet, AProfileWhoseFramesNameNoRobotIsRefusedAmongSeveral) {
+  Fleet fleet;
+  v1::DriveRequest r;
+  r.set_speed_percent(30);
+  r.mutable_options()->set_robot("alpha");
+  r.mutable_options()->set_profile("seed");
+  const auto refused =
+      read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return fleet.stub().Drive(&c, r); });
+  EXPECT_EQ(refused.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(refused.status.error_message().find("options.profile: profile seed names no robot"), std::string::npos)
+      << refused.status.error_message();
+  EXPECT_FALSE(fleet.alpha().moved());
+  EXPECT_FALSE(fleet.beta().moved());
+}
+
+TEST(ServerFleet, RobotsMustNotShareANameAnAddressOrAKey) {
+  struct NullObserver : server::ProgressObserver {
+    void observe(const server::Job&, const server::ProgressEvent&) override {}
+  } observer;
+  std::array<unsigned char, security::kKeyBytes> bytes{};
+  bytes.fill(7);
+  const auto key = security::LinkKey::from_bytes(bytes);
+  const auto two = [&](std::uint8_t b, const std::string& name_b, bool keys) {
+    std::vector<server::RobotLinks> robots(2);
+    link::LinkOptions first = at(1), second = at(b);
+    if (keys) first.key = second.key = key;
+    robots[0].name = "alpha";
+    robots[0].links = link::make_links(first);
+    robots[1].name = name_b;
+    robots[1].links = link::make_links(second);
+    return robots;
+  };
+  sim::SimulatedAir air(fast.sample_rate_hz, {}, 10);
+  const auto expect_refused = [&](std::vector<server::RobotLinks> robots, const std::string& why) {
+    auto station = air.add_station(why, 0);
+    try {
+      server::Transmitter t(std::move(robots), fast, std::move(station.speaker), std::move(station.microphone),
+                            observer, {});
+      ADD_FAILURE() << "accepted robots that share " << why;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
+  expect_refused(two(1, "beta", false), "address 1");
+  expect_refused(two(2, "alpha", false), "alpha");
+  expect_refused(two(2, "beta", true), "key " + key->id_hex());
+}
