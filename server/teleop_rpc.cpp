@@ -20,20 +20,37 @@ command::Velocity TeleopService::teleop_target(const v1::TeleopRequest& request,
   }
 }
 
-std::optional<grpc::Status> TeleopService::refuse_while_teleop(const char* rpc) {
-  std::lock_guard lock(teleop_mutex_);
-  if (teleop_.expired()) return std::nullopt;
-  return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
-                      std::string(rpc) +
-                          " refused: a Teleop stream drives the robot; end that stream first, or send "
-                          "Stop (which overtakes and ends it)");
+namespace {
+
+// The robot `options` name, or nothing for a name no robot has.
+std::optional<RobotIndex> robot_of(const Transmitter& transmitter, const v1::CommandOptions& options) {
+  try {
+    return transmitter.robot_named(options.robot());
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
 }
 
-void TeleopService::halt_teleop() {
+}  // namespace
+
+std::optional<grpc::Status> TeleopService::refuse_while_teleop(const char* rpc, const v1::CommandOptions& options) {
+  const auto robot = robot_of(transmitter_, options);
+  if (!robot) return std::nullopt;
+  std::lock_guard lock(teleop_mutex_);
+  if (teleop_[*robot].expired()) return std::nullopt;
+  return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
+                      std::string(rpc) + " refused: a Teleop stream drives the robot (" +
+                          transmitter_.robot_name(*robot) +
+                          "); end that stream first, or send Stop (which overtakes and ends it)");
+}
+
+void TeleopService::halt_teleop(const v1::CommandOptions& options) {
+  const auto robot = robot_of(transmitter_, options);
+  if (!robot) return;
   std::shared_ptr<TeleopSession> active;
   {
     std::lock_guard lock(teleop_mutex_);
-    active = teleop_.lock();
+    active = teleop_[*robot].lock();
   }
   if (active)
     active->halt("a Stop call overtook this Teleop stream: the robot stops; open a new stream to drive again");
@@ -68,13 +85,15 @@ grpc::Status TeleopService::Teleop(grpc::ServerContext* context,
   }
 
   auto session = std::make_shared<TeleopSession>(transmitter_.model_of(settings.robot));
-  const TeleopSlot slot(teleop_mutex_, teleop_, session);
+  const TeleopSlot slot(teleop_mutex_, teleop_[settings.robot], session);
   if (!slot.held()) {
-    return {grpc::StatusCode::FAILED_PRECONDITION,
-            "another Teleop stream drives the robot; one stream drives at a time (end it, or send Stop)"};
+    return {grpc::StatusCode::FAILED_PRECONDITION, "another Teleop stream drives the robot (" +
+                                                       transmitter_.robot_name(settings.robot) +
+                                                       "); one stream drives a robot at a time (end it, or send Stop)"};
   }
   setup.first_target = target;
-  spdlog::info("teleop stream opened ({}, lease {:.2f} s)", setup.profile->name, target.lease_s);
+  spdlog::info("teleop stream opened (robot {}, {}, lease {:.2f} s)", transmitter_.robot_name(settings.robot),
+               setup.profile->name, target.lease_s);
   grpc::Status status;
   {
     TeleopStream driving(*context, *stream, session, transmitter_, std::move(setup));

@@ -94,7 +94,7 @@ auto progress_to(grpc::ServerWriter<Response>* writer) {
 }  // namespace
 
 TeleopService::TeleopService(Transmitter& transmitter, store::Store& store, ServiceOptions options)
-    : transmitter_(transmitter), store_(store), options_(std::move(options)) {}
+    : transmitter_(transmitter), store_(store), options_(std::move(options)), teleop_(transmitter.robots().size()) {}
 
 CommandSettings TeleopService::settings_of(const v1::CommandOptions& options, bool stop) const {
   CommandSettings settings = command_settings(options, options_.defaults);
@@ -155,7 +155,7 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
 
 grpc::Status TeleopService::Drive(grpc::ServerContext* context, const v1::DriveRequest* request,
                                   grpc::ServerWriter<v1::DriveResponse>* writer) {
-  if (auto refused = refuse_while_teleop("Drive")) return *refused;
+  if (auto refused = refuse_while_teleop("Drive", request->options())) return *refused;
   try {
     return run_command(context, drive_command(*request), request->options(), false, progress_to(writer));
   } catch (const RequestError& e) {
@@ -165,7 +165,7 @@ grpc::Status TeleopService::Drive(grpc::ServerContext* context, const v1::DriveR
 
 grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnRequest* request,
                                  grpc::ServerWriter<v1::TurnResponse>* writer) {
-  if (auto refused = refuse_while_teleop("Turn")) return *refused;
+  if (auto refused = refuse_while_teleop("Turn", request->options())) return *refused;
   try {
     return run_command(context, turn_command(*request), request->options(), false, progress_to(writer));
   } catch (const RequestError& e) {
@@ -175,13 +175,13 @@ grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnReq
 
 grpc::Status TeleopService::Stop(grpc::ServerContext* context, const v1::StopRequest* request,
                                  grpc::ServerWriter<v1::StopResponse>* writer) {
-  halt_teleop();
+  halt_teleop(request->options());
   return run_command(context, command::Stop{}, request->options(), true, progress_to(writer));
 }
 
 grpc::Status TeleopService::Reset(grpc::ServerContext* context, const v1::ResetRequest* request,
                                   grpc::ServerWriter<v1::ResetResponse>* writer) {
-  if (auto refused = refuse_while_teleop("Reset")) return *refused;
+  if (auto refused = refuse_while_teleop("Reset", request->options())) return *refused;
   return run_command(context, command::Reset{}, request->options(), false, progress_to(writer));
 }
 
@@ -199,7 +199,7 @@ grpc::Status TeleopService::Decide(grpc::ServerContext*, const v1::DecideRequest
 
 grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const v1::RunTestSequenceRequest* request,
                                             grpc::ServerWriter<v1::RunTestSequenceResponse>* writer) {
-  if (auto refused = refuse_while_teleop("RunTestSequence")) return *refused;
+  if (auto refused = refuse_while_teleop("RunTestSequence", request->options())) return *refused;
   const LinkProfile* profile = nullptr;
   RobotIndex robot = 0;
   try {

@@ -63,10 +63,11 @@ class TeleopService final : public v1::TeleopService::Service {
   grpc::Status end_run(const std::string& run_id);
   // The request's target for the robot model; throws RequestError naming the field.
   command::Velocity teleop_target(const v1::TeleopRequest& request, RobotIndex robot) const;
-  // FAILED_PRECONDITION naming `rpc` while a Teleop stream drives.
-  std::optional<grpc::Status> refuse_while_teleop(const char* rpc);
+  // FAILED_PRECONDITION naming `rpc` while a Teleop stream drives the robot `options` name
+  // (nothing for a name no robot has: the command's own checks refuse it).
+  std::optional<grpc::Status> refuse_while_teleop(const char* rpc, const v1::CommandOptions& options);
   // Stop overtook: the driving stream sends nothing more and ends.
-  void halt_teleop();
+  void halt_teleop(const v1::CommandOptions& options);
 
   Transmitter& transmitter_;
   store::Store& store_;
@@ -74,7 +75,9 @@ class TeleopService final : public v1::TeleopService::Service {
   std::mutex runs_mutex_;
   std::optional<store::TestRunRow> active_run_;
   std::mutex teleop_mutex_;
-  std::weak_ptr<TeleopSession> teleop_;  // the slot (teleop_stream.h: TeleopSlot)
+  // Each robot's slot (teleop_stream.h: TeleopSlot): one stream drives a robot at a time,
+  // and streams to different robots share the transmitter's queue.
+  std::vector<std::weak_ptr<TeleopSession>> teleop_;
 };
 
 }  // namespace dtmf::server

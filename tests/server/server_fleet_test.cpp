@@ -15,11 +15,13 @@
 #include "live_system.h"
 #include "security/link_key.h"
 #include "sim/simulated_air.h"
+#include "teleop_client.h"
 #include "teleop_service.h"
 
 using namespace dtmf;
 using namespace std::chrono_literals;
 using test_support::read_stream;
+using test_support::TeleopClient;
 
 namespace {
 
@@ -212,6 +214,41 @@ TEST(ServerFleet, AProfileWhoseFramesNameNoRobotIsRefusedAmongSeveral) {
       << refused.status.error_message();
   EXPECT_FALSE(fleet.alpha().moved());
   EXPECT_FALSE(fleet.beta().moved());
+}
+
+TEST(ServerFleet, EachRobotHasItsOwnTeleopStreamAndAStopEndsOnlyItsRobots) {
+  Fleet fleet;
+  TeleopClient alpha(fleet.stub(), 0.1, 0, 1.0, "fast", "alpha");
+  TeleopClient beta(fleet.stub(), 0.05, 0, 1.0, "fast", "beta");
+  ASSERT_TRUE(alpha.confirmed(0.1, 0, 10s)) << "alpha's stream drove nothing";
+  ASSERT_TRUE(beta.confirmed(0.05, 0, 10s)) << "beta's stream drove nothing";
+  EXPECT_TRUE(fleet.alpha().moved());
+  EXPECT_TRUE(fleet.beta().moved());
+
+  // One stream drives a robot at a time: a second one to alpha, and a Drive to alpha, are
+  // refused naming alpha.
+  {
+    TeleopClient again(fleet.stub(), 0.02, 0, 1.0, "fast", "alpha");
+    EXPECT_TRUE(again.ended(5s));
+    const grpc::Status status = again.finish();
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+    EXPECT_NE(status.error_message().find("the robot (alpha)"), std::string::npos) << status.error_message();
+  }
+  const auto drive = fleet.drive("alpha");
+  EXPECT_EQ(drive.status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_NE(drive.status.error_message().find("the robot (alpha)"), std::string::npos) << drive.status.error_message();
+
+  // Stop to beta ends beta's stream; alpha's goes on.
+  v1::StopRequest stop;
+  stop.mutable_options()->set_robot("beta");
+  const auto stopped =
+      read_stream<v1::StopResponse>([&](grpc::ClientContext& c) { return fleet.stub().Stop(&c, stop); });
+  EXPECT_TRUE(stopped.status.ok()) << stopped.status.error_message();
+  EXPECT_TRUE(beta.ended(5s));
+  EXPECT_EQ(beta.finish().error_code(), grpc::StatusCode::ABORTED);
+  alpha.target(0.12, 0);
+  EXPECT_TRUE(alpha.confirmed(0.12, 0, 10s)) << "alpha's stream ended with beta's";
+  EXPECT_TRUE(alpha.close().ok());
 }
 
 TEST(ServerFleet, RobotsMustNotShareANameAnAddressOrAKey) {

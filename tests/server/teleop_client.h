@@ -24,10 +24,10 @@ namespace dtmf::test_support {
 class TeleopClient {
  public:
   TeleopClient(v1::TeleopService::Stub& stub, double linear, double angular, double lease_s,
-               const std::string& profile = "fast")
+               const std::string& profile = "fast", const std::string& robot = "")
       : lease_s_(lease_s) {
     stream_ = stub.Teleop(&context_);
-    target(linear, angular, profile);
+    target(linear, angular, profile, robot);
     reader_ = std::thread([this] {
       v1::TeleopResponse r;
       while (stream_->Read(&r)) {
@@ -59,12 +59,13 @@ class TeleopClient {
     }
   }
 
-  void target(double linear, double angular, const std::string& profile = "") {
+  void target(double linear, double angular, const std::string& profile = "", const std::string& robot = "") {
     v1::TeleopRequest r;
     r.set_linear_mps(linear);
     r.set_angular_radps(angular);
     r.set_lease_s(lease_s_);
     if (!profile.empty()) r.mutable_options()->set_profile(profile);
+    if (!robot.empty()) r.mutable_options()->set_robot(robot);
     {
       std::lock_guard lock(mutex_);
       last_ = r;

@@ -139,8 +139,9 @@ class Client:
         left positive) and returns once the server has taken it. lease_s (0.3..2): how long
         the robot holds a target without a renewal; profile: one that carries velocity
         ("fast"); on_status: called with each TeleopStatus (on the stream's reader thread). One
-        stream drives at a time: a second one, and drive(), turn(), reset() or run_sequence()
-        meanwhile, are refused (FAILED_PRECONDITION); stop() overtakes and ends it.
+        stream drives a robot at a time: a second one to it, and drive(), turn(), reset() or
+        run_sequence() for it meanwhile, are refused (FAILED_PRECONDITION); stop() overtakes
+        and ends it. Clients naming different robots (Client(robot=...)) drive them at once.
 
         Use it in a with-block: leaving it half-closes the stream and, unless stop_on_exit is
         False, sends a Stop (with this profile) and waits for the robot to confirm it, so the
