@@ -118,8 +118,6 @@ const link::Link& Transmitter::link_of(const LinkProfile& profile, RobotIndex ro
   return link_for(profile, robot);
 }
 
-bool Transmitter::keyed(RobotIndex robot) const { return robots_.at(robot).links.front()->keyed(); }
-
 RobotIndex Transmitter::robot_named(std::string_view name) const {
   std::vector<std::string> names;
   for (RobotIndex r = 0; r < robots_.size(); ++r) {

@@ -116,8 +116,6 @@ class Transmitter {
   const LinkProfile& usable_profile(std::string_view name) const;
   // The link this transmitter sends `profile` to `robot` with.
   const link::Link& link_of(const LinkProfile& profile, RobotIndex robot = 0) const;
-  // Whether this transmitter has a key for `robot` (its frames carry MACs where they can).
-  bool keyed(RobotIndex robot = 0) const;
   // The robot called `name`; an empty name is the only robot. std::invalid_argument naming
   // the robots there are, for an unknown name or an empty one among several.
   RobotIndex robot_named(std::string_view name) const;

@@ -10,7 +10,10 @@
 //       last accepted is the last frame again (answered, not executed) or refused; a new one
 //       is kept (security/counter_store.h) before the frame acts
 // A frame for another robot is nobody's business here: no reception at all; nor is an echo of
-// a frame taken lately, other than the newest (reliability/echo_memory.h). Pure logic, but
+// a frame taken lately, other than the newest (reliability/echo_memory.h). A frame this robot
+// cannot check (another key's, sealed without a key, plain where only sealed ones are taken)
+// is refused and left unanswered, and a broken one is NACKed only where its address reads
+// as this robot's (Reception::answered): another robot's answer must not sound over its own. Pure logic, but
 // for the counter store it is given.
 #pragma once
 

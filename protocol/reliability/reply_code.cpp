@@ -8,7 +8,12 @@ namespace {
 
 constexpr int kAddresses = 8;
 constexpr int kSequences = 16;
-constexpr int kReplies = 17 + (kAddresses - 1) * (kSequences + 1);
+constexpr int kRepliesPerAddress = kSequences + 1;  // ACK 0..15, then NACK
+constexpr int kReplies = kAddresses * kRepliesPerAddress;
+// Address 0's words come first (ACK 0..15, NACK); then every other address's ACKs, then
+// their NACKs.
+constexpr int kOtherAcks = kRepliesPerAddress;
+constexpr int kOtherNacks = kOtherAcks + (kAddresses - 1) * kSequences;
 
 // Each word's tones, band by band. The first 17 (ACK 0..15, then NACK, address 0) were found
 // on 2026-11-25 by a seeded random search (std::mt19937 seeded 20261125, a word kept when it
@@ -43,16 +48,17 @@ constexpr std::string_view kWords[kReplies] = {
 int word_index(const NamedReply& reply) {
   const int address = reply.address % kAddresses;
   if (address == 0) return reply.ack ? reply.sequence % kSequences : kSequences;
-  return reply.ack ? 17 + (address - 1) * kSequences + reply.sequence % kSequences
-                   : 17 + (kAddresses - 1) * kSequences + (address - 1);
+  return reply.ack ? kOtherAcks + (address - 1) * kSequences + reply.sequence % kSequences
+                   : kOtherNacks + (address - 1);
 }
 
 NamedReply reply_of(int index) {
-  if (index < 17) return {index < kSequences, static_cast<std::uint8_t>(index < kSequences ? index : 0), 0};
-  const int rest = index - 17;
-  if (rest < (kAddresses - 1) * kSequences)
+  if (index < kOtherAcks) return {index < kSequences, static_cast<std::uint8_t>(index < kSequences ? index : 0), 0};
+  if (index < kOtherNacks) {
+    const int rest = index - kOtherAcks;
     return {true, static_cast<std::uint8_t>(rest % kSequences), static_cast<std::uint8_t>(1 + rest / kSequences)};
-  return {false, 0, static_cast<std::uint8_t>(1 + rest - (kAddresses - 1) * kSequences)};
+  }
+  return {false, 0, static_cast<std::uint8_t>(1 + index - kOtherNacks)};
 }
 
 ReplyTones tones_of(std::string_view word) {
