@@ -20,9 +20,10 @@
 namespace dtmf::program {
 
 struct KeyFlags {
-  std::string key_file;   // empty: no key
-  std::string state_dir;  // where the counters live
-  bool new_key = false;   // the robot's --new-key: the key was just made, it has no state yet
+  std::string key_file;       // empty: no key
+  std::string state_dir;      // where the counters live
+  bool new_key = false;       // the robot's --new-key: the key was just made, it has no state yet
+  std::string room_key_file;  // empty: no room key (docs/security.md, "The room key")
 };
 
 // A user's own state directory: $XDG_STATE_HOME/dtmf-teleop, else ~/.local/state/dtmf-teleop.
@@ -50,6 +51,28 @@ inline void add_new_key_flag(CLI::App& app, KeyFlags& flags, const std::string& 
       ->needs(app.get_option("--key"));
 }
 
+// --room-key FILE (PREFIX_ROOM_KEY_FILE): the key every robot and sender of a room holds for the
+// stop every robot obeys (dtmfctl stop --all).
+inline void add_room_key_flag(CLI::App& app, KeyFlags& flags, const std::string& env_prefix) {
+  app.add_option("--room-key", flags.room_key_file,
+                 "the room key every robot and sender of the room holds (dtmfctl keygen FILE): it authenticates the "
+                 "stop for every robot (dtmfctl stop --all); its counters are kept in --state-dir")
+      ->envname(env_prefix + "_ROOM_KEY_FILE");
+}
+
+// The sender's link for the stop every robot obeys: with --room-key, keyed with the room key,
+// its counters following the clock (security/room_freshness.h); without, plain.
+inline link::LinkOptions room_link_options(const KeyFlags& flags) {
+  link::LinkOptions options;
+  if (flags.room_key_file.empty()) return options;
+  options.key = security::LinkKey::load(flags.room_key_file);
+  options.counters = security::FileCounterStore::open_sender(
+      flags.state_dir, *options.key, std::chrono::system_clock::now, security::CounterPace::Clock);
+  spdlog::info("room key {} from {}: stops for every robot go authenticated", options.key->id_hex(),
+               flags.room_key_file);
+  return options;
+}
+
 // The sender's link options the flags give (dtmf-server, dtmfctl encode): nothing but the
 // address without a key; with one, its counters, locked for this process from now on.
 inline link::LinkOptions link_options(const KeyFlags& flags, std::uint8_t address = 0) {
@@ -68,6 +91,13 @@ inline link::LinkOptions link_options(const KeyFlags& flags, std::uint8_t addres
 inline link::LinkOptions robot_link_options(const KeyFlags& flags, std::uint8_t address) {
   link::LinkOptions options;
   options.address = address;
+  if (!flags.room_key_file.empty()) {
+    options.room_key = security::LinkKey::load(flags.room_key_file);
+    options.room_counters =
+        security::FileCounterStore::open_robot(flags.state_dir, *options.room_key, security::RobotKey::Room);
+    spdlog::info("room key {} from {}: a stop for every robot is taken only under it (newest room counter {})",
+                 options.room_key->id_hex(), flags.room_key_file, options.room_counters->last_accepted());
+  }
   if (flags.key_file.empty()) return options;
   options.key = security::LinkKey::load(flags.key_file);
   const auto counters = security::FileCounterStore::open_robot(

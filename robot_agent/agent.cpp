@@ -86,6 +86,7 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
   if (r.answered) replies_.play(std::move(answer), r.heard_ms);
   store::ReceptionRow row;
   row.host = options_.host;
+  row.robot_address = link.options().address;
   row.profile = profile.name;
   row.started_at = timeline_.wall(r.start_ms);
   row.heard_at = timeline_.wall(r.heard_ms);

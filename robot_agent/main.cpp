@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   app.add_option("--host", f.host, "name of this robot in the log (default: hostname)");
   dtmf::program::add_key_flags(app, f.keys, "DTMF_AGENT", "/var/lib/dtmf-agent");
   dtmf::program::add_new_key_flag(app, f.keys, "DTMF_AGENT");
+  dtmf::program::add_room_key_flag(app, f.keys, "DTMF_AGENT");
   app.add_option("--address", f.address, "this robot's address (0..7): it takes the frames sent to it")
       ->envname("DTMF_AGENT_ADDRESS")
       ->check(CLI::Range(0, 7))

@@ -16,6 +16,8 @@ std::string outcome_name(Outcome outcome) {
       return "cancelled";
     case Outcome::Unavailable:
       return "failed";
+    case Outcome::Sent:
+      return "sent";
   }
   return "failed";
 }

@@ -23,9 +23,11 @@ namespace dtmf::server {
 // What to do with a frame the robot did not confirm after the profile's retransmissions.
 // Live (teleop): send each frame once and go on; the next target, or the lease's renewal,
 // is worth more than a stale one sent again.
-enum class Policy { Ask, Continue, Fail, Live };
+// Unanswered: frames no robot answers (a stop for every robot): each played once, and done.
+enum class Policy { Ask, Continue, Fail, Live, Unanswered };
 
-enum class Outcome { Pending, Confirmed, Continued, Failed, Cancelled, Unavailable };
+// Sent: an unanswered command's frames all played.
+enum class Outcome { Pending, Confirmed, Continued, Failed, Cancelled, Unavailable, Sent };
 std::string outcome_name(Outcome outcome);
 
 struct ProgressEvent {
@@ -39,7 +41,8 @@ struct ProgressEvent {
     AwaitingDecision,
     Confirmed,
     Continued,
-    Failed
+    Failed,
+    Sent  // an unanswered command's frames all played
   };
   explicit ProgressEvent(Kind k) : kind(k) {}
   Kind kind;
@@ -77,6 +80,9 @@ class Job {
   int frame_count() const;
   Policy policy() const { return policy_; }
   const std::optional<std::string>& run_id() const { return run_id_; }
+  // The robot it is for, by the name its sender gives it; empty for a stop for every robot.
+  const std::string& robot() const { return robot_; }
+  void set_robot(std::string name) { robot_ = std::move(name); }
   std::chrono::milliseconds decision_timeout() const { return decision_timeout_; }
   std::string description() const;
 
@@ -107,6 +113,7 @@ class Job {
   Policy policy_;
   std::chrono::milliseconds decision_timeout_;
   std::optional<std::string> run_id_;
+  std::string robot_;
 
   std::mutex mutex_;
   std::condition_variable changed_;

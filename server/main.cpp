@@ -79,6 +79,7 @@ struct Flags {
   std::string robot = "burger";
   std::string robot_name = "robot";
   std::string robots_file;
+  std::string host;  // this sender's name in the database; empty: the machine's
   dtmf::program::AudioProgramOptions program;
 };
 
@@ -191,6 +192,7 @@ int run(const Flags& f) {
   }
   // The keys before any device: a key file others may read stops the server here.
   std::vector<server::RobotLinks> robots = robot_links(f);
+  std::vector<std::unique_ptr<link::Link>> room_links = link::make_links(program::room_link_options(f.keys));
   // The default profile: a keyed robot's, if any robot has a key (fast, authenticated); with
   // several robots, one whose frames name the robot (fast).
   const auto keyed = std::find_if(robots.begin(), robots.end(), [](const auto& r) { return r.links.front()->keyed(); });
@@ -220,12 +222,14 @@ int run(const Flags& f) {
   store_options.database = db;
   store_options.spill_path = f.spill_file.empty() ? store::default_spill_path("dtmf-server") : f.spill_file;
   store::Store store(store_options);
-  char hostname[256] = {};
-  ::gethostname(hostname, sizeof hostname - 1);
+  char machine[256] = {};
+  ::gethostname(machine, sizeof machine - 1);
+  const std::string hostname = f.host.empty() ? std::string(machine) : f.host;
   server::StoreRecorder recorder(store, hostname);
   server::Transmitter transmitter(
       std::move(robots), profile, std::move(speaker), std::move(microphone), recorder,
-      {.max_queue = f.max_queue, .realtime_audio = true, .allow_unauthenticated = f.allow_unauthenticated});
+      {.max_queue = f.max_queue, .realtime_audio = true, .allow_unauthenticated = f.allow_unauthenticated},
+      std::move(room_links));
 
   server::ServiceOptions options;
   options.database = db;
@@ -287,6 +291,9 @@ int main(int argc, char** argv) {
                  "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
       ->envname("DTMF_DB_URL");
   app.add_option("--spill-file", f.spill_file, "where log rows wait while the database is away");
+  app.add_option("--host", f.host,
+                 "name of this sender in the database (default: hostname); give each server in a room its own")
+      ->envname("DTMF_SERVER_HOST");
   app.add_option("--on-unconfirmed", f.on_unconfirmed,
                  "default policy for a frame unconfirmed after the automatic retry")
       ->check(CLI::IsMember({"ask", "continue", "fail"}))
@@ -308,6 +315,7 @@ int main(int argc, char** argv) {
                "the robot (a warning at start)")
       ->envname("DTMF_SERVER_ALLOW_ANYONE_ON_THE_NETWORK");
   dtmf::program::add_key_flags(app, f.keys, "DTMF_SERVER", "/var/lib/dtmf-server");
+  dtmf::program::add_room_key_flag(app, f.keys, "DTMF_SERVER");
   auto* robots = app.add_option("--robots", f.robots_file,
                                 "several robots: a JSON list of {name, address, key, model} (docs/protocol.md §9); "
                                 "instead of --robot-name, --robot-address, --key and --robot")

@@ -2,6 +2,7 @@
 // (store::RunReader: the SQL is the store's, this file only maps its values to messages).
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "run_reader.h"
@@ -19,6 +20,7 @@ void fill_run(v1::Run& run, const store::RunSummary& summary) {
   run.set_started_unix_ms(static_cast<std::int64_t>(summary.started_unix_ms));
   run.set_ended_unix_ms(summary.ended_unix_ms ? static_cast<std::int64_t>(*summary.ended_unix_ms) : 0);
   run.set_transmissions_sent(summary.transmissions_sent);
+  for (const auto& robot : summary.robots) run.add_robots(robot);
 }
 
 void fill_frame(v1::FrameRecord& frame, const store::FrameRecord& record) {
@@ -53,6 +55,9 @@ void fill_report(v1::GetReportResponse& response, const store::RunReport& report
   response.set_refused_authentication(report.refused_authentication);
   response.set_sender_confirmed_unauthenticated(report.sender_confirmed_unauthenticated);
   response.set_refused_authentication_peak_per_minute(report.refused_authentication_peak_per_minute);
+  response.set_robot(report.robot.value_or(""));
+  response.set_every_robot_stops_sent(report.every_robot_stops_sent);
+  response.set_every_robot_stops_executed(report.every_robot_stops_executed);
   using R = v1::GetReportResponse;
   const auto measure = [&](const std::optional<double>& value, void (R::*setter)(double)) {
     if (value) (response.*setter)(*value);
@@ -157,17 +162,28 @@ grpc::Status TeleopService::GetReport(grpc::ServerContext*, const v1::GetReportR
                                       v1::GetReportResponse* response) {
   try {
     check_text("run_id", request->run_id(), kIdLimit);
+    check_text("robot", request->robot(), kIdLimit);
   } catch (const RequestError& e) {
     return e.status();
   }
   if (store::database_disabled(options_.database)) return no_database();
   store_.flush(std::chrono::seconds(5));  // the run's last rows first
+  const std::optional<std::string> robot =
+      request->robot().empty() ? std::nullopt : std::optional<std::string>(request->robot());
   store::RunSelector which;
   if (request->run_case() == v1::GetReportRequest::kRunId) which = request->run_id();
   if (request->run_case() == v1::GetReportRequest::kRunNumber) which = std::int64_t{request->run_number()};
   try {
-    const auto report = store::RunReader(options_.database).report(which, request->include_frames());
+    const auto report = store::RunReader(options_.database).report(which, request->include_frames(), robot);
     if (!report) return {grpc::StatusCode::NOT_FOUND, "no such test run (see ListRuns)"};
+    const auto& named = report->run.robots;
+    if (robot && std::find(named.begin(), named.end(), *robot) == named.end()) {
+      std::string all;
+      for (const auto& n : named) all += (all.empty() ? "" : ", ") + n;
+      return {grpc::StatusCode::NOT_FOUND, "robot: no command of run " + std::to_string(report->run.number) +
+                                               " named robot \"" + *robot +
+                                               "\" (its robots: " + (all.empty() ? "none named" : all) + ")"};
+    }
     fill_report(*response, *report);
     return grpc::Status::OK;
   } catch (const std::exception& e) {

@@ -36,6 +36,11 @@ store::CommandRow command_row(const Job& job, const std::string& host, store::Wa
   row.frame_count = job.frame_count();
   row.requested_at = requested_at;
   row.host = host;
+  row.every_robot = command::every_robot(job.command());
+  if (!row.every_robot) {
+    row.robot = job.robot();
+    row.robot_address = job.link().options().address;
+  }
   return row;
 }
 
@@ -94,6 +99,7 @@ std::vector<TransmissionRecord::Row> TransmissionRecord::on_event(const Job& job
       break;
     case Kind::Confirmed:
     case Kind::Continued:
+    case Kind::Sent:
     case Kind::Failed: {
       store::CommandRow& command = command_of(job, event.time);
       command.finished_at = event.time;

@@ -44,6 +44,11 @@ std::optional<grpc::Status> TeleopService::refuse_while_teleop(const char* rpc, 
                           "); end that stream first, or send Stop (which overtakes and ends it)");
 }
 
+namespace {
+constexpr const char* kOvertaken =
+    "a Stop call overtook this Teleop stream: the robot stops; open a new stream to drive again";
+}  // namespace
+
 void TeleopService::halt_teleop(const v1::CommandOptions& options) {
   const auto robot = robot_of(transmitter_, options);
   if (!robot) return;
@@ -52,8 +57,18 @@ void TeleopService::halt_teleop(const v1::CommandOptions& options) {
     std::lock_guard lock(teleop_mutex_);
     active = teleop_[*robot].lock();
   }
-  if (active)
-    active->halt("a Stop call overtook this Teleop stream: the robot stops; open a new stream to drive again");
+  if (active) active->halt(kOvertaken);
+}
+
+void TeleopService::halt_every_teleop() {
+  std::vector<std::shared_ptr<TeleopSession>> active;
+  {
+    std::lock_guard lock(teleop_mutex_);
+    for (const auto& slot : teleop_) active.push_back(slot.lock());
+  }
+  for (const auto& session : active) {
+    if (session) session->halt(kOvertaken);
+  }
 }
 
 grpc::Status TeleopService::Teleop(grpc::ServerContext* context,

@@ -32,6 +32,8 @@ v1::FrameEvent frame_event(ProgressEvent::Kind kind) {
       return v1::FRAME_EVENT_CONTINUED;
     case K::Failed:
       return v1::FRAME_EVENT_FAILED;
+    case K::Sent:
+      return v1::FRAME_EVENT_SENT;
   }
   return v1::FRAME_EVENT_UNSPECIFIED;
 }
@@ -71,6 +73,7 @@ grpc::Status outcome_status(Job& job) {
   switch (job.outcome()) {
     case Outcome::Confirmed:
     case Outcome::Continued:
+    case Outcome::Sent:
       return grpc::Status::OK;
     case Outcome::Cancelled:
       return {grpc::StatusCode::CANCELLED, detail};
@@ -135,6 +138,35 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
   } catch (const TransmitterUnavailable& e) {
     return {grpc::StatusCode::UNAVAILABLE, e.what()};
   }
+  return follow(context, job, robot, write);
+}
+
+grpc::Status TeleopService::stop_every_robot(grpc::ServerContext* context, const v1::StopRequest& request,
+                                             grpc::ServerWriter<v1::StopResponse>* writer) {
+  std::shared_ptr<Job> job;
+  try {
+    if (!request.options().robot().empty())
+      throw RequestError("options.robot: a stop for every robot names none (leave it empty, or drop all_robots)");
+    const LinkProfile* profile = command_settings(request.options(), options_.defaults).profile;
+    halt_every_teleop();
+    job = transmitter_.submit_every_robot_stop(profile);
+  } catch (const RequestError& e) {
+    return e.status();
+  } catch (const RoomKeyMissing& e) {
+    return {grpc::StatusCode::FAILED_PRECONDITION, std::string("all_robots: ") + e.what()};
+  } catch (const std::invalid_argument& e) {
+    return {grpc::StatusCode::INVALID_ARGUMENT, std::string("options.profile: ") + e.what()};
+  } catch (const QueueFull& e) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
+  } catch (const TransmitterUnavailable& e) {
+    return {grpc::StatusCode::UNAVAILABLE, e.what()};
+  }
+  return follow(context, job, "", progress_to(writer));
+}
+
+template <class Write>
+grpc::Status TeleopService::follow(grpc::ServerContext* context, const std::shared_ptr<Job>& job,
+                                   const std::string& robot, Write write) {
   bool client_gone = false;
   while (!job->finished_and_drained()) {
     if (!client_gone && context->IsCancelled()) {
@@ -175,6 +207,7 @@ grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnReq
 
 grpc::Status TeleopService::Stop(grpc::ServerContext* context, const v1::StopRequest* request,
                                  grpc::ServerWriter<v1::StopResponse>* writer) {
+  if (request->all_robots()) return stop_every_robot(context, *request, writer);
   halt_teleop(request->options());
   return run_command(context, command::Stop{}, request->options(), true, progress_to(writer));
 }

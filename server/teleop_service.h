@@ -54,6 +54,13 @@ class TeleopService final : public v1::TeleopService::Service {
   template <class Write>
   grpc::Status run_command(grpc::ServerContext* context, const command::Command& command,
                            const v1::CommandOptions& options, bool to_front, Write write);
+  // Writes the progress of `job` through `write` until it ends; its status.
+  template <class Write>
+  grpc::Status follow(grpc::ServerContext* context, const std::shared_ptr<Job>& job, const std::string& robot,
+                      Write write);
+  // Stop with all_robots: every Teleop stream halted, one stop every robot executes.
+  grpc::Status stop_every_robot(grpc::ServerContext* context, const v1::StopRequest& request,
+                                grpc::ServerWriter<v1::StopResponse>* writer);
   // The request's options over the server's defaults, with the profile the command goes out
   // under (Transmitter::sendable_profile: with a key, a Stop always authenticated); throws
   // RequestError.
@@ -68,6 +75,7 @@ class TeleopService final : public v1::TeleopService::Service {
   std::optional<grpc::Status> refuse_while_teleop(const char* rpc, const v1::CommandOptions& options);
   // Stop overtook: the driving stream sends nothing more and ends.
   void halt_teleop(const v1::CommandOptions& options);
+  void halt_every_teleop();
 
   Transmitter& transmitter_;
   store::Store& store_;

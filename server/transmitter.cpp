@@ -44,8 +44,9 @@ Transmitter::Transmitter(std::vector<std::unique_ptr<link::Link>> links, const L
 Transmitter::Transmitter(std::vector<RobotLinks> robots, const LinkProfile& profile,
                          std::unique_ptr<physical::AudioSink> speaker,
                          std::unique_ptr<physical::AudioSource> microphone, ProgressObserver& observer,
-                         TransmitterOptions options)
+                         TransmitterOptions options, std::vector<std::unique_ptr<link::Link>> room_links)
     : profile_(profile),
+      room_links_(room_links.empty() ? link::make_links({}) : std::move(room_links)),
       speaker_(std::move(speaker)),
       microphone_(std::move(microphone)),
       observer_(observer),
@@ -187,10 +188,16 @@ std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy
                                          std::chrono::milliseconds decision_timeout, bool to_front,
                                          const LinkProfile* profile, RobotIndex robot) {
   link::Link& link = link_for(sendable_profile(profile, std::holds_alternative<command::Stop>(command), robot), robot);
+  return enqueue(link, command, policy, decision_timeout, to_front);
+}
+
+std::shared_ptr<Job> Transmitter::enqueue(link::Link& link, const command::Command& command, Policy policy,
+                                          std::chrono::milliseconds decision_timeout, bool to_front) {
   std::shared_ptr<Job> job;
   {
     std::lock_guard lock(mutex_);
     job = std::make_shared<Job>(link, command, policy, decision_timeout, run_id_);
+    if (!command::every_robot(command)) job->set_robot(robots_[robot_of(link)].name);
     if (stopping_) throw TransmitterUnavailable("the server is shutting down");
     if (!unavailable_.empty()) throw TransmitterUnavailable(unavailable_);
     if (queue_.size() >= options_.max_queue) {

@@ -17,7 +17,9 @@
 // given (store_recorder.h on a server) records them first.
 // It drives one robot or several (RobotLinks: a name, a model, and links bound to the
 // robot's address and key), all through its one loudspeaker: a command names its robot,
-// and only that robot's answer confirms its frames (link/fast_link.h).
+// and only that robot's answer confirms its frames (link/fast_link.h). A stop for every robot
+// goes on links of its own, keyed with the room key (transmitter_room.cpp), and no robot
+// answers it.
 #pragma once
 
 #include <atomic>
@@ -43,6 +45,12 @@ class QueueFull : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 class TransmitterUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+// A stop for every robot, from a sender whose robots have keys and which has no room key:
+// FAILED_PRECONDITION, naming the flags.
+class RoomKeyMissing : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
@@ -94,9 +102,11 @@ class Transmitter {
               ProgressObserver& observer, TransmitterOptions options);
   // Several robots, each with its own links. Names and addresses must differ, and so must
   // keys (each key's counters are one sender's and one robot's); else std::invalid_argument.
+  // `room_links`: what sends the stop for every robot (link::make_links with the room key,
+  // program::room_link_options); none given: links without a key.
   Transmitter(std::vector<RobotLinks> robots, const LinkProfile& profile, std::unique_ptr<physical::AudioSink> speaker,
-              std::unique_ptr<physical::AudioSource> microphone, ProgressObserver& observer,
-              TransmitterOptions options);
+              std::unique_ptr<physical::AudioSource> microphone, ProgressObserver& observer, TransmitterOptions options,
+              std::vector<std::unique_ptr<link::Link>> room_links = {});
   ~Transmitter();
 
   // Queues a command under sendable_profile(profile, command is a Stop). Throws QueueFull,
@@ -104,6 +114,14 @@ class Transmitter {
   std::shared_ptr<Job> submit(const command::Command& command, Policy policy,
                               std::chrono::milliseconds decision_timeout, bool to_front = false,
                               const LinkProfile* profile = nullptr, RobotIndex robot = 0);
+  // Queues a stop for every robot in the room at the front, under `profile` (nullptr: the
+  // first the room links have whose frames name robots), sent the profile's broadcast copies
+  // and answered by none (link::TransmitFrame::broadcast). Throws RoomKeyMissing when a robot
+  // has a key and the room links none; std::invalid_argument for a profile that names no
+  // robot; and what submit() throws.
+  std::shared_ptr<Job> submit_every_robot_stop(const LinkProfile* profile = nullptr);
+  // Whether the stop for every robot goes authenticated (the room links have a key).
+  bool room_keyed() const { return room_links_.front()->keyed(); }
   // Answers the job awaiting a decision; false if no such job waits.
   bool decide(const std::string& command_id, reliability::Decision decision);
   // Commands submitted from now on belong to this test run (none: outside runs).
@@ -135,9 +153,13 @@ class Transmitter {
     double steady_ms;
   };
 
+  std::shared_ptr<Job> enqueue(link::Link& link, const command::Command& command, Policy policy,
+                               std::chrono::milliseconds decision_timeout, bool to_front);
   void run();
   void listen();
   void send(Job& job);
+  // A frame no robot answers: played, and the command goes on.
+  void send_unanswered(Job& job);
   // One frame of `job` through the retry controller, `attempt` its state (seed Fig. 8).
   struct FrameAttempt;
   // Each false when the command ended there (cancelled, the loudspeaker failed, no decision).
@@ -170,6 +192,7 @@ class Transmitter {
 
   const LinkProfile& profile_;
   std::vector<Robot> robots_;
+  std::vector<std::unique_ptr<link::Link>> room_links_;  // the stop for every robot
   std::unique_ptr<physical::AudioSink> speaker_;
   std::unique_ptr<physical::AudioSource> microphone_;
   ProgressObserver& observer_;

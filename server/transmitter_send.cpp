@@ -28,6 +28,7 @@ void Transmitter::emit(Job& job, ProgressEvent event) {
 void Transmitter::end(Job& job, Outcome outcome, const std::string& detail) {
   ProgressEvent last{outcome == Outcome::Confirmed   ? Kind::Confirmed
                      : outcome == Outcome::Continued ? Kind::Continued
+                     : outcome == Outcome::Sent      ? Kind::Sent
                                                      : Kind::Failed};
   last.outcome = outcome;
   last.frame_count = job.frame_count();
@@ -59,7 +60,21 @@ struct Transmitter::FrameAttempt {
   }
 };
 
+void Transmitter::send_unanswered(Job& job) {
+  for (int index = 0; index < job.frame_count(); ++index) {
+    FrameAttempt attempt{index, job.frames()[static_cast<std::size_t>(index)],
+                         reliability::RetryController({0, job.profile().timing.ack_timeout_ms}), 0, std::nullopt};
+    attempt.retry.start();
+    if (!transmit(job, attempt)) return;
+  }
+  end(job, Outcome::Sent,
+      std::to_string(job.frame_count()) +
+          " copies played; no robot answers a stop for every robot, each that heard "
+          "one stopped");
+}
+
 void Transmitter::send(Job& job) {
+  if (job.policy() == Policy::Unanswered) return send_unanswered(job);
   const LinkProfile& profile = job.profile();
   const int retransmissions = job.policy() == Policy::Live ? 0 : profile.timing.auto_retransmissions;
   const reliability::RetryPolicy policy{retransmissions, profile.timing.ack_timeout_ms};

@@ -25,6 +25,7 @@ struct LiveOptions {
   std::string robot;    // empty: the server's only robot
   std::optional<double> speed, rotation, duration;
   std::string label, notes;
+  bool all_robots = false;  // stop: every robot in the room
 };
 
 // With a person at the terminal the server asks (and we ask them); otherwise the flag decides.
@@ -103,6 +104,13 @@ int run_live(const std::string& kind, const LiveOptions& o) {
   if (kind == "stop") {
     v1::StopRequest r;
     *r.mutable_options() = command_options(o);
+    if (o.all_robots) {
+      if (!o.robot.empty()) {
+        std::fprintf(stderr, "dtmfctl: stop --all stops every robot; drop --robot %s\n", o.robot.c_str());
+        return 2;
+      }
+      r.set_all_robots(true);
+    }
     return stream<v1::StopResponse>(connection, view, [&](grpc::ClientContext& c) { return teleop.Stop(&c, r); });
   }
   if (kind == "reset") {
@@ -160,7 +168,11 @@ void add_live_commands(CLI::App& app, Action& run, const GlobalOptions& global) 
       ->required();
   turn->add_option("--duration", o->duration, "seconds, 0..8");
   common(turn);
-  common(app.add_subcommand("stop", "stop the robot now (goes ahead of queued commands)"));
+  CLI::App* stop = app.add_subcommand("stop", "stop the robot now (goes ahead of queued commands)");
+  stop->add_flag("--all", o->all_robots,
+                 "every robot in the room, whatever this server drives: one frame each robot executes and none "
+                 "answers (with keyed robots, under the room key: dtmf-server --room-key)");
+  common(stop);
   common(app.add_subcommand("reset", "reset the robot's command state (RESET)"));
   CLI::App* sequence =
       app.add_subcommand("sequence", "run the seed's 65-frame test sequence as a labelled run, then print its report");

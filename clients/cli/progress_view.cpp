@@ -32,6 +32,7 @@ std::string describe(const v1::Progress& p) {
     case v1::FRAME_EVENT_CONFIRMED:
     case v1::FRAME_EVENT_CONTINUED:
     case v1::FRAME_EVENT_FAILED:
+    case v1::FRAME_EVENT_SENT:
       return p.command() + ": " + event_name(p.event()) + (p.detail().empty() ? "" : " (" + p.detail() + ")");
     default:
       break;
@@ -71,7 +72,7 @@ std::string describe(const v1::Progress& p) {
 bool closes_line(v1::FrameEvent e) {
   return e == v1::FRAME_EVENT_ACK || e == v1::FRAME_EVENT_NACK || e == v1::FRAME_EVENT_NO_ANSWER ||
          e == v1::FRAME_EVENT_AWAITING_DECISION || e == v1::FRAME_EVENT_QUEUED || e == v1::FRAME_EVENT_CONFIRMED ||
-         e == v1::FRAME_EVENT_CONTINUED || e == v1::FRAME_EVENT_FAILED;
+         e == v1::FRAME_EVENT_CONTINUED || e == v1::FRAME_EVENT_FAILED || e == v1::FRAME_EVENT_SENT;
 }
 
 }  // namespace

@@ -48,10 +48,13 @@ v1::TeleopRequest request_for(const TeleopTarget& target, const TeleopOptions& o
 
 // The Stop goes out with the stream's profile: the robot answers it as fast as it answered
 // the stream's frames.
-int send_stop(ServerConnection& connection, const TeleopOptions& o) {
+int send_stop(ServerConnection& connection, const TeleopOptions& o, bool every_robot) {
   v1::StopRequest stop;
   stop.mutable_options()->set_profile(o.profile);
-  stop.mutable_options()->set_robot(o.robot);
+  if (every_robot)
+    stop.set_all_robots(true);
+  else
+    stop.mutable_options()->set_robot(o.robot);
   auto context = connection.context();
   auto reader = connection.teleop().Stop(context.get(), stop);
   v1::StopResponse ignored;
@@ -104,6 +107,7 @@ int run_teleop(const TeleopOptions& o) {
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
   bool stream_open = stream->Write(request_for(view.target, o, true));
+  bool every_robot = false;  // e: stop every robot in the room
   {
     TeleopScreen screen;
     auto last_sent = std::chrono::steady_clock::now();
@@ -112,7 +116,8 @@ int run_teleop(const TeleopOptions& o) {
       bool changed = false;
       if (key) {
         const KeyEffect effect = apply_key(*key, view.target, model);
-        if (effect == KeyEffect::Quit) break;
+        every_robot = effect == KeyEffect::StopEveryRobot;
+        if (effect == KeyEffect::Quit || every_robot) break;
         changed = effect == KeyEffect::Changed;
       }
       const auto now = std::chrono::steady_clock::now();
@@ -123,16 +128,22 @@ int run_teleop(const TeleopOptions& o) {
       std::lock_guard lock(mutex);
       screen.draw(view);
     }
-    view.note = "stopping the robot ...";
+    view.note = every_robot ? "stopping every robot in the room ..." : "stopping the robot ...";
     std::lock_guard lock(mutex);
     screen.draw(view);
   }
+  // An emergency goes out before anything else; it also ends this stream (ABORTED).
+  const int stopped_all = every_robot ? send_stop(connection, o, true) : 0;
   stream->WritesDone();
   reader.join();
   const grpc::Status status = stream->Finish();
   signal(SIGINT, SIG_DFL);
   signal(SIGTERM, SIG_DFL);
-  const int stopped = send_stop(connection, o);
+  if (every_robot) {
+    std::printf("teleop ended; a stop for every robot sent (%s)\n", stopped_all == 0 ? "played" : "refused");
+    return stopped_all;
+  }
+  const int stopped = send_stop(connection, o, false);
   if (!status.ok()) {
     std::fprintf(stderr, "dtmfctl: teleop: %s\n", describe_status(status).c_str());
     return exit_code_for(status);
@@ -147,7 +158,8 @@ void add_teleop_command(CLI::App& app, Action& run, const GlobalOptions& global)
   auto o = std::make_shared<TeleopOptions>();
   CLI::App* teleop = app.add_subcommand(
       "teleop",
-      "drive live from the keyboard (turtlebot3_teleop_key's keys: w/x linear, a/d angular, s/space stop, q quit)");
+      "drive live from the keyboard (turtlebot3_teleop_key's keys: w/x linear, a/d angular, s/space stop, q quit; "
+      "e stops every robot in the room)");
   teleop->add_option("--profile", o->profile, "link profile; it must carry velocity commands (fast)")
       ->envname("DTMF_PROFILE")
       ->capture_default_str();

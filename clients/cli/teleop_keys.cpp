@@ -42,6 +42,10 @@ KeyEffect apply_key(int key, TeleopTarget& target, const command::RobotModel& mo
     case ' ':
       target = {};
       break;
+    case 'e':
+    case 'E':
+      target = {};
+      return KeyEffect::StopEveryRobot;
     case 'q':
     case 'Q':
     case 3:  // Ctrl-C where the terminal passes it through

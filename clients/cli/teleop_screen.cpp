@@ -95,7 +95,9 @@ void TeleopScreen::draw(const TeleopView& v) {
     line(row++, "last frame     -");
   }
   row++;
-  line(row++, "keys: w/x linear +-%.2f m/s   a/d angular +-%.1f rad/s   s/space stop   q quit (with a stop)",
+  line(row++,
+       "keys: w/x linear +-%.2f m/s   a/d angular +-%.1f rad/s   s/space stop   e stop every robot   q quit (with a "
+       "stop)",
        kLinearStep_mps, kAngularStep_radps);
   line(row++, "%s", v.note.c_str());
   refresh();

@@ -78,17 +78,22 @@ nlohmann::json to_json(const TestRunRow& r) {
 }
 
 nlohmann::json to_json(const CommandRow& r) {
-  return {{"id", r.id},
-          {"run_id", optional_json(r.run_id)},
-          {"kind", r.kind},
-          {"parameters", r.parameters},
-          {"profile", r.profile},
-          {"frame_count", r.frame_count},
-          {"requested_at", iso_time(r.requested_at)},
-          {"finished_at", optional_time(r.finished_at)},
-          {"outcome", r.outcome},
-          {"detail", text_or_null(r.detail)},
-          {"host", text_or_null(r.host)}};
+  nlohmann::json row = {{"id", r.id},
+                        {"run_id", optional_json(r.run_id)},
+                        {"kind", r.kind},
+                        {"parameters", r.parameters},
+                        {"profile", r.profile},
+                        {"frame_count", r.frame_count},
+                        {"requested_at", iso_time(r.requested_at)},
+                        {"finished_at", optional_time(r.finished_at)},
+                        {"outcome", r.outcome},
+                        {"detail", text_or_null(r.detail)},
+                        {"host", text_or_null(r.host)}};
+  // Migration 010's columns.
+  row["robot"] = optional_json(r.robot);
+  row["robot_address"] = optional_json(r.robot_address);
+  row["every_robot"] = r.every_robot;
+  return row;
 }
 
 nlohmann::json to_json(const FrameAttemptRow& r) {
@@ -109,23 +114,25 @@ nlohmann::json to_json(const FrameAttemptRow& r) {
 }
 
 nlohmann::json to_json(const ReceptionRow& r) {
-  return {{"id", r.id},
-          {"host", text_or_null(r.host)},
-          {"profile", r.profile},
-          {"started_at", optional_time(r.started_at)},
-          {"heard_at", iso_time(r.heard_at)},
-          {"frame", r.frame},
-          {"frame_width", r.frame_width},
-          {"crc_ok", r.crc_ok},
-          {"reply", optional_json(r.reply)},
-          {"word", optional_json(r.word)},
-          {"event", text_or_null(r.event)},
-          {"reason", text_or_null(r.reason)},
-          {"authenticated", r.authenticated},
-          {"command_state", text_or_null(r.command_state)},
-          {"command", text_or_null(r.command)},
-          {"linear_mps", optional_json(r.linear_mps)},
-          {"angular_rps", optional_json(r.angular_radps)}};
+  nlohmann::json row = {{"id", r.id},
+                        {"host", text_or_null(r.host)},
+                        {"profile", r.profile},
+                        {"started_at", optional_time(r.started_at)},
+                        {"heard_at", iso_time(r.heard_at)},
+                        {"frame", r.frame},
+                        {"frame_width", r.frame_width},
+                        {"crc_ok", r.crc_ok},
+                        {"reply", optional_json(r.reply)},
+                        {"word", optional_json(r.word)},
+                        {"event", text_or_null(r.event)},
+                        {"reason", text_or_null(r.reason)},
+                        {"authenticated", r.authenticated},
+                        {"command_state", text_or_null(r.command_state)},
+                        {"command", text_or_null(r.command)},
+                        {"linear_mps", optional_json(r.linear_mps)},
+                        {"angular_rps", optional_json(r.angular_radps)}};
+  row["robot_address"] = optional_json(r.robot_address);  // migration 010
+  return row;
 }
 
 }  // namespace dtmf::store

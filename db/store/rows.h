@@ -47,9 +47,12 @@ struct CommandRow {
   int frame_count = 1;
   WallTime requested_at{};
   std::optional<WallTime> finished_at;
-  std::string outcome = "queued";  // queued, transmitting, confirmed, continued, failed, cancelled
+  std::string outcome = "queued";  // queued, transmitting, confirmed, continued, failed, cancelled, sent
   std::string detail;
-  std::string host;
+  std::string host;                  // the sender
+  std::optional<std::string> robot;  // the robot it is for, by name; none for every robot
+  std::optional<int> robot_address;  // the address its frames carry
+  bool every_robot = false;          // a stop for every robot (migration 010)
 };
 
 struct FrameAttemptRow {
@@ -87,6 +90,7 @@ struct ReceptionRow {
   std::string command;
   std::optional<double> linear_mps;
   std::optional<double> angular_radps;  // the column angular_rps (rad/s)
+  std::optional<int> robot_address;     // the robot's address (dtmf-agent --address); host names it
 };
 
 nlohmann::json to_json(const TestRunRow& row);

@@ -9,7 +9,7 @@ namespace {
 
 constexpr const char* kRunColumns =
     "id::text AS id, number, label, profile, extract(epoch FROM started_at) * 1000 AS started_ms, "
-    "extract(epoch FROM ended_at) * 1000 AS ended_ms, transmissions_sent";
+    "extract(epoch FROM ended_at) * 1000 AS ended_ms, transmissions_sent, array_to_string(robots, ' ') AS robots";
 
 constexpr const char* kFrameColumns =
     "command_id::text AS command_id, coalesce(command_kind, '') AS command, position, attempt, word, "
@@ -30,6 +30,8 @@ RunSummary run_of(const pqxx::row& row) {
   run.started_unix_ms = row["started_ms"].as<double>();
   run.ended_unix_ms = optional_field<double>(row["ended_ms"]);
   run.transmissions_sent = row["transmissions_sent"].as<std::int64_t>();
+  std::istringstream robots(row["robots"].as<std::string>());  // names have no spaces (robot_roster.h)
+  for (std::string name; robots >> name;) run.robots.push_back(name);
   return run;
 }
 
@@ -79,6 +81,9 @@ void fill_figures(RunReport& report, const pqxx::row& r) {
   report.latency_avg_ms = measure("latency_avg_ms");
   report.latency_min_ms = measure("latency_min_ms");
   report.latency_max_ms = measure("latency_max_ms");
+  report.robot = optional_field<std::string>(r["robot"]);
+  report.every_robot_stops_sent = count("every_robot_stops_sent");
+  report.every_robot_stops_executed = count("every_robot_stops_executed");
 }
 
 // pqxx's own errors become DatabaseError, which says what to do.
@@ -105,7 +110,8 @@ std::vector<RunSummary> RunReader::list_runs(int limit) const {
   });
 }
 
-std::optional<RunReport> RunReader::report(const RunSelector& which, bool include_frames) const {
+std::optional<RunReport> RunReader::report(const RunSelector& which, bool include_frames,
+                                           const std::optional<std::string>& robot) const {
   return with_database(database_, [&](pqxx::read_transaction& tx) -> std::optional<RunReport> {
     const std::string select = std::string("SELECT ") + kRunColumns + " FROM runs ";
     pqxx::result runs;
@@ -119,10 +125,15 @@ std::optional<RunReport> RunReader::report(const RunSelector& which, bool includ
     if (runs.empty()) return std::nullopt;
     RunReport report;
     report.run = run_of(runs[0]);
-    fill_figures(report, tx.exec_params("SELECT * FROM run_report($1::uuid)", report.run.id)[0]);
+    fill_figures(report, robot
+                             ? tx.exec_params("SELECT * FROM run_report($1::uuid, $2::text)", report.run.id, *robot)[0]
+                             : tx.exec_params("SELECT * FROM run_report($1::uuid)", report.run.id)[0]);
     if (include_frames) {
       for (const auto& row :
-           tx.exec_params(std::string("SELECT ") + kFrameColumns + " FROM run_frames($1::uuid)", report.run.id)) {
+           tx.exec_params(std::string("SELECT ") + kFrameColumns +
+                              " FROM run_frames($1::uuid) f WHERE $2::text IS NULL OR f.command_id IN "
+                              "(SELECT id FROM commands WHERE robot = $2::text)",
+                          report.run.id, robot)) {
         report.frames.push_back(frame_of(row));
       }
     }

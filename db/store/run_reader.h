@@ -25,6 +25,7 @@ struct RunSummary {
   double started_unix_ms = 0;
   std::optional<double> ended_unix_ms;  // nullopt while the run goes on
   std::int64_t transmissions_sent = 0;
+  std::vector<std::string> robots;  // named by its commands (migration 010)
 };
 
 // One frame attempt of a run, with the robot's side matched to it (run_frames()).
@@ -54,7 +55,9 @@ struct RunReport {
   std::int64_t sender_confirmed_unauthenticated = 0, refused_authentication_peak_per_minute = 0;
   std::optional<double> false_positive_rate_pct, success_rate_pct, sender_confirmed_rate_pct, error_catch_rate_pct,
       response_time_avg_ms, response_time_min_ms, response_time_max_ms, latency_avg_ms, latency_min_ms, latency_max_ms;
-  std::vector<FrameRecord> frames;  // with include_frames only
+  std::vector<FrameRecord> frames;   // with include_frames only
+  std::optional<std::string> robot;  // the robot reported; none: the whole room (migration 010)
+  std::int64_t every_robot_stops_sent = 0, every_robot_stops_executed = 0;
 };
 
 // Which run: the newest (monostate), by id, or by number.
@@ -66,8 +69,9 @@ class RunReader {
 
   // Newest first; limit 0: all.
   std::vector<RunSummary> list_runs(int limit) const;
-  // nullopt: no such run.
-  std::optional<RunReport> report(const RunSelector& which, bool include_frames) const;
+  // nullopt: no such run. `robot`: one robot's figures and frames (run_report(run, robot)).
+  std::optional<RunReport> report(const RunSelector& which, bool include_frames,
+                                  const std::optional<std::string>& robot = std::nullopt) const;
 
  private:
   DatabaseUrl database_;

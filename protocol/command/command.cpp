@@ -39,7 +39,7 @@ std::string format(const char* fmt, double a, double b = 0, double c = 0) {
 
 struct Describer {
   std::string operator()(const Reset&) const { return "reset"; }
-  std::string operator()(const Stop&) const { return "stop"; }
+  std::string operator()(const Stop& c) const { return c.every_robot ? "stop every_robot" : "stop"; }
   std::string operator()(const DriveForDuration& c) const {
     return format("drive_for_duration speed=%.1f%% duration=%.2fs", c.speed_percent, c.duration_s);
   }

@@ -45,7 +45,12 @@ struct DriveForward {
 struct Turn {
   double rotation_percent = 0;  // -100..100, until the next command
 };
-struct Stop {};
+// STOP. `every_robot`: a stop for every robot in the room, whatever its address, which no
+// robot answers (docs/protocol.md §10, "A stop for every robot"); only formats whose frames
+// name robots carry it (fast).
+struct Stop {
+  bool every_robot = false;
+};
 // Live driving (teleop): linear and angular speed together, as fractions of the robot's
 // limits (positive: forward, and left / counter-clockwise), held for lease_s unless a newer
 // Velocity renews it; then the robot stops by itself. Only profiles with whole-command
@@ -67,5 +72,10 @@ std::optional<Mode> mode_from_word(Word word);
 std::string describe(const Command& command);
 // "reset", "drive_for_duration", ..., "velocity"
 std::string kind_name(const Command& command);
+// Whether `command` is for every robot in the room (a Stop with every_robot).
+inline bool every_robot(const Command& command) {
+  const auto* stop = std::get_if<Stop>(&command);
+  return stop && stop->every_robot;
+}
 
 }  // namespace dtmf::command

@@ -21,7 +21,7 @@ std::uint32_t encode_payload(const Command& command) {
   return std::visit(
       Overloaded{
           [](const Reset&) { return pack(PayloadKind::Reset, 0, 0); },
-          [](const Stop&) { return pack(PayloadKind::Stop, 0, 0); },
+          [](const Stop& c) { return pack(PayloadKind::Stop, c.every_robot ? kEveryRobotField : 0, 0); },
           [](const DriveForDuration& c) {
             return pack(PayloadKind::DriveForDuration, encode_field(kSpeedField12, c.speed_percent),
                         encode_field(kDurationField12, c.duration_s));
@@ -57,7 +57,8 @@ ParameterDecode decode_payload(std::uint32_t payload) {
     case PayloadKind::Reset:
       return a == 0 && b == 0 ? ParameterDecode{Reset{}, {}} : refuse("RESET with fields");
     case PayloadKind::Stop:
-      return a == 0 && b == 0 ? ParameterDecode{Stop{}, {}} : refuse("STOP with fields");
+      if (b != 0 || (a != 0 && a != kEveryRobotField)) return refuse("STOP with fields");
+      return {Stop{a == kEveryRobotField}, {}};
     case PayloadKind::DriveForDuration:
     case PayloadKind::TurnForDuration: {
       const bool drive = kind == PayloadKind::DriveForDuration;

@@ -5,6 +5,7 @@
 //                4 DRIVE_FORWARD, 5 TURN, 6 VELOCITY; 7 reserved (docs/protocol.md §10: the
 //                header of a long frame)
 //   bits 23..12  field A: speed_percent or rotation_percent, 12 bits (code 0 unused);
+//                STOP: 0 this robot, 1 every robot in the room (kEveryRobotField)
 //                VELOCITY: linear_fraction -1..1, 12 bits (code 2048 is exactly zero)
 //   bits 11..0   field B: duration_s, 12 bits, for the *_FOR_DURATION kinds; else 0;
 //                VELOCITY: angular_fraction -1..1 in bits 11..4 (8 bits, code 128 is zero)
@@ -35,6 +36,8 @@ inline constexpr FieldSpec kAngularFraction8{"angular_fraction", -1.0, 1.0, 8};
 inline constexpr FieldSpec kLeaseField4{"lease_s", 0.25, 2.0, 4};
 inline constexpr double kMinLease_s = 0.3;
 inline constexpr double kMaxLease_s = 2.0;
+// STOP's field A for a stop every robot executes, whatever the frame's address.
+inline constexpr Word kEveryRobotField = 1;
 
 // The payload's kind field: the fast format's own numbering of the commands, fixed on its
 // wire. It is not the seed's mode word (command.h, `Mode`: the seed report's numbering, fixed

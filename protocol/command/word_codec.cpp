@@ -68,7 +68,13 @@ namespace {
 
 struct ParameterEncoder {
   std::optional<Word> operator()(const Reset&) const { return std::nullopt; }
-  std::optional<Word> operator()(const Stop&) const { return std::nullopt; }
+  std::optional<Word> operator()(const Stop& c) const {
+    if (c.every_robot)
+      throw ParameterError("profile",
+                           "a stop for every robot needs a profile whose frames name robots (fast); the seed "
+                           "profile's words name none, and every robot that heard one would answer it");
+    return std::nullopt;
+  }
   std::optional<Word> operator()(const DriveForDuration& c) const {
     return pack_pair(encode_field(kDurationField, c.duration_s), encode_field(kSpeedField6, c.speed_percent));
   }

@@ -42,9 +42,10 @@ class FastReceiver final : public FrameReceiver {
   FastReceiver(const LinkProfile& profile, const LinkOptions& options)
       : admission_(profile, options),
         path_(profile,
-              options.key ? reliability::SealedCheck(
-                                [this](const reliability::FrameBits& bits) { return admission_.authentic(bits); })
-                          : reliability::SealedCheck(),
+              options.key || options.room_key ? reliability::SealedCheck([this](const reliability::FrameBits& bits) {
+                return admission_.authentic(bits);
+              })
+                                              : reliability::SealedCheck(),
               !options.key || options.accept_unauthenticated) {}
   std::span<const Reception> feed(std::span<const float> samples) override {
     receptions_.clear();
@@ -115,8 +116,23 @@ TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation
   return f;
 }
 
+std::vector<TransmitFrame> FastLink::broadcast_frames(std::uint32_t payload) {
+  std::vector<TransmitFrame> frames;
+  for (int copy = 0; copy < profile().timing.broadcast_copies; ++copy) {
+    // Sealed, it carries its whole counter: room counters come from several senders and
+    // name times (security/room_freshness.h), so no robot could complete low bits.
+    TransmitFrame f = keyed() ? sealed_frame(payload, true, options_.counters->next_counter()) : plain_frame(payload);
+    f.synchronisation = false;
+    f.broadcast = true;
+    f.next_frame_after_ms = f.tone_ms + profile().timing.gap_ms;  // no answer to wait for
+    frames.push_back(std::move(f));
+  }
+  return frames;
+}
+
 std::vector<TransmitFrame> FastLink::plan(const command::Command& command) {
   const std::uint32_t payload = command::encode_payload(command);  // throws before a counter is used
+  if (command::every_robot(command)) return broadcast_frames(payload);
   if (!keyed()) return {plain_frame(payload)};
   std::vector<TransmitFrame> frames;
   security::CounterStore& counters = *options_.counters;
@@ -131,6 +147,7 @@ std::vector<TransmitFrame> FastLink::plan(const command::Command& command) {
 
 std::size_t FastLink::frame_count(const command::Command& command) const {
   command::encode_payload(command);  // throws for what no frame can carry
+  if (command::every_robot(command)) return static_cast<std::size_t>(profile().timing.broadcast_copies);
   return 1;
 }
 

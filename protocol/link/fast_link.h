@@ -30,6 +30,9 @@ class FastLink final : public Link {
  private:
   TransmitFrame plain_frame(std::uint32_t payload);
   TransmitFrame sealed_frame(std::uint32_t payload, bool synchronisation, std::uint64_t counter) const;
+  // A stop for every robot: the profile's broadcast copies, sealed under the room key (this
+  // link's key) with the whole counter, or plain.
+  std::vector<TransmitFrame> broadcast_frames(std::uint32_t payload);
 
   std::uint8_t next_sequence_;
 };

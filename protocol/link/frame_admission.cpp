@@ -38,6 +38,14 @@ security::FrameMacInput mac_input(const reliability::SealedFrame& f, std::uint64
   return {f.address, static_cast<std::uint8_t>(f.form), counter, f.payload};
 }
 
+// A stop for every robot under the room key carries its whole counter (synchronisation form)
+// and no payload: its MAC covers the payload the room key's frames always mean.
+const std::uint32_t kRoomStopPayload = command::encode_payload(command::Stop{true});
+
+security::FrameMacInput room_mac_input(const reliability::SealedFrame& f) {
+  return {f.address, static_cast<std::uint8_t>(f.form), f.counter, kRoomStopPayload};
+}
+
 // The counter a frame stands for, after the last accepted: a synchronisation carries all of
 // it, a command its low bits (security/freshness.h).
 std::uint64_t completed_counter(const reliability::SealedFrame& f, std::uint64_t last_accepted) {
@@ -58,7 +66,9 @@ FrameAdmission::FrameAdmission(const LinkProfile& profile, const LinkOptions& op
       options_(options),
       // Within this, the sender cannot have sent 15 new frames: no sequence number comes round.
       echoes_(static_cast<double>(reliability::EchoMemory::kFramesRemembered) * 1000.0 *
-              profile.hops().frame_samples() / profile.sample_rate_hz) {}
+              profile.hops().frame_samples() / profile.sample_rate_hz) {
+  if (options_.room_key) room_.emplace(options_.room_counters->last_accepted());
+}
 
 std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
   Reception r;
@@ -79,13 +89,15 @@ std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
     r.answered = address_read(heard.bits, r.bit_count) == options_.address;
     return r;
   }
-  const std::uint8_t address = sealed ? reliability::sealed_frame_unpack(heard.bits)->address
-                                      : reliability::command_frame_unpack(heard.bits.low64())->address;
-  if (address != options_.address) return std::nullopt;  // another robot's frame: not ours to answer
-  if (echoes_.is_echo(r.bits, r.heard_ms)) {             // the room's, not the sender's: not ours to answer either
+  if (echoes_.is_echo(r.bits, r.heard_ms)) {  // the room's, not the sender's: not ours to answer
     ++echoes_ignored_;
     return std::nullopt;
   }
+  // Every robot's, whatever its address.
+  if (sealed ? admit_sealed_room_stop(r) : admit_plain_room_stop(r)) return r;
+  const std::uint8_t address = sealed ? reliability::sealed_frame_unpack(heard.bits)->address
+                                      : reliability::command_frame_unpack(heard.bits.low64())->address;
+  if (address != options_.address) return std::nullopt;  // another robot's frame: not ours to answer either
   if (sealed)
     admit_sealed(r);
   else
@@ -114,8 +126,59 @@ void FrameAdmission::admit_plain(Reception& r) {
   take_command(r, *decoded.command);
 }
 
+bool FrameAdmission::admit_plain_room_stop(Reception& r) {
+  const reliability::CommandFrame frame = *reliability::command_frame_unpack(r.bits.low64());
+  const auto decoded = command::decode_payload(frame.payload);
+  if (!decoded.command || !command::every_robot(*decoded.command)) return false;
+  r.sequence = frame.sequence;
+  r.answered = false;  // every robot heard it: no answer could say whose
+  if (options_.room_key) {
+    refuse(r, RefusalReason::Authentication,
+           "an unauthenticated stop for every robot, and this robot takes one only under the room key (--room-key)");
+  } else if (options_.key && !options_.accept_unauthenticated) {
+    refuse(r, RefusalReason::Authentication,
+           "an unauthenticated stop for every robot, and this robot has a key: a stop for every robot must come "
+           "under the room key (dtmf-agent --room-key)");
+  } else {
+    take_command(r, *decoded.command);
+  }
+  return true;
+}
+
+bool FrameAdmission::room_authentic(const reliability::SealedFrame& frame) const {
+  return options_.room_key && frame.form == reliability::SealedForm::Sync &&
+         security::frame_mac(*options_.room_key, room_mac_input(frame)) == frame.mac;
+}
+
+bool FrameAdmission::admit_sealed_room_stop(Reception& r) {
+  const reliability::SealedFrame frame = *reliability::sealed_frame_unpack(r.bits);
+  if (!room_authentic(frame)) return false;
+  r.answered = false;
+  r.counter = frame.counter;
+  switch (room_->check(frame.counter)) {
+    case security::Freshness::Stale:
+      refuse(r, RefusalReason::Authentication,
+             "a stop for every robot with room counter " + std::to_string(frame.counter) +
+                 ", older than the room's window: a frame captured and played again");
+      return true;
+    case security::Freshness::Repeat:  // the newest one's echo, or played again: stopped already
+      r.authenticated = true;
+      r.event = ReceptionEvent::Repeat;
+      r.detail = "repeat of room counter " + std::to_string(frame.counter) + ", not executed again";
+      return true;
+    case security::Freshness::New:
+      break;
+  }
+  options_.room_counters->accept(frame.counter);  // kept before the stop acts (only the newest is)
+  room_->take(frame.counter);
+  r.authenticated = true;
+  take_command(r, command::Stop{true});
+  return true;
+}
+
 bool FrameAdmission::authentic(const reliability::FrameBits& bits) const {
   const auto frame = reliability::sealed_frame_unpack(bits);
+  if (frame && room_authentic(*frame)) return true;
   if (!frame || !options_.key) return false;
   const std::uint64_t counter = completed_counter(*frame, options_.counters->last_accepted());
   return security::frame_mac(*options_.key, mac_input(*frame, counter)) == frame->mac;

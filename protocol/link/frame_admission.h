@@ -13,8 +13,11 @@
 // a frame taken lately, other than the newest (reliability/echo_memory.h). A frame this robot
 // cannot check (another key's, sealed without a key, plain where only sealed ones are taken)
 // is refused and left unanswered, and a broken one is NACKed only where its address reads
-// as this robot's (Reception::answered): another robot's answer must not sound over its own. Pure logic, but
-// for the counter store it is given.
+// as this robot's (Reception::answered): another robot's answer must not sound over its own.
+// A stop for every robot is taken whatever its address and never answered: with a room key
+// only sealed under it, in synchronisation form with its whole counter, fresh by the room's
+// window (security/room_freshness.h); without one, plain, where the robot takes plain frames.
+// Pure logic, but for the counter stores it is given.
 #pragma once
 
 #include <optional>
@@ -24,6 +27,7 @@
 #include "reliability/echo_memory.h"
 #include "reliability/sequence_filter.h"
 #include "security/frame_mac.h"
+#include "security/room_freshness.h"
 
 namespace dtmf::link {
 
@@ -41,6 +45,11 @@ class FrameAdmission {
  private:
   void admit_plain(Reception& r);
   void admit_sealed(Reception& r);
+  // Whether the frame is a stop for every robot; if so, `r` says what became of it.
+  bool admit_plain_room_stop(Reception& r);
+  bool admit_sealed_room_stop(Reception& r);
+  // Whether `frame` is sealed under the room key: a stop for every robot.
+  bool room_authentic(const reliability::SealedFrame& frame) const;
   void take_command(Reception& r, const command::Command& command);
 
   const LinkProfile& profile_;
@@ -48,6 +57,7 @@ class FrameAdmission {
   reliability::SequenceFilter sequence_;
   reliability::EchoMemory echoes_;
   std::size_t echoes_ignored_ = 0;
+  std::optional<security::RoomFreshness> room_;  // with a room key
 };
 
 // The MAC input of an 80-bit frame whose counter the robot completed as `counter`.

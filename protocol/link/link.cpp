@@ -46,6 +46,8 @@ Link::Link(const LinkProfile& profile, LinkOptions options) : profile_(profile),
   if (options_.address > 7)
     throw std::invalid_argument("a robot's address is 0..7, not " + std::to_string(options_.address));
   if (options_.key && !options_.counters) options_.counters = std::make_shared<security::MemoryCounterStore>();
+  if (options_.room_key && !options_.room_counters)
+    options_.room_counters = std::make_shared<security::MemoryCounterStore>();
 }
 
 std::optional<TransmitFrame> Link::plan_payload_word(std::uint32_t) const { return std::nullopt; }

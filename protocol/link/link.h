@@ -40,6 +40,12 @@ struct LinkOptions {
   // program (security/counter_file.h); none given with a key, one in memory for this link.
   std::shared_ptr<security::CounterStore> counters;
   std::uint8_t address = 0;  // the robot's address (0..7): a robot takes frames sent to it
+  // The robot's: the room key, which every robot and sender of a room holds for the stop every
+  // robot obeys (docs/security.md, "The room key"), and the newest room counter taken
+  // (security/room_freshness.h). With it, a stop for every robot is taken only under it. A
+  // sender sends that stop on a link of its own whose `key` is the room key.
+  std::shared_ptr<const security::LinkKey> room_key;
+  std::shared_ptr<security::CounterStore> room_counters;
   // A robot with a key that executes unauthenticated frames too (the seed profile's, which
   // cannot carry a MAC): the exception `dtmf-agent --accept-unauthenticated` makes.
   bool accept_unauthenticated = false;

@@ -34,6 +34,9 @@ struct LinkTiming {
   double ack_ms = 0;             // the robot's ACK / NACK chord
   double ack_timeout_ms = 0;     // from the start of a frame's chord until it counts as unanswered
   int auto_retransmissions = 0;  // retransmissions before the caller is asked
+  // A frame no robot answers (a stop for every robot) is sent this many times, each copy
+  // numbered anew: no answer tells the sender it was heard (0: the format cannot send one).
+  int broadcast_copies = 0;
 };
 
 // Spectrum analysis shared by both sides.

@@ -79,9 +79,10 @@ std::uint64_t clock_counter_floor(std::chrono::system_clock::time_point now) {
 }
 
 std::shared_ptr<FileCounterStore> FileCounterStore::open_sender(std::filesystem::path directory, const LinkKey& key,
-                                                                Clock clock) {
+                                                                Clock clock, CounterPace pace) {
   std::shared_ptr<FileCounterStore> store(
       new FileCounterStore(std::move(directory), key, Role::Sender, std::move(clock)));
+  store->pace_ = pace;
   store->start_sender();
   return store;
 }
@@ -227,6 +228,11 @@ void FileCounterStore::start_robot(RobotKey start) {
                              ". The robot cannot tell which frames are old. Make a new key (dtmfctl keygen), "
                              "install it on both sides, and start dtmf-agent --new-key");
   }
+  if (start == RobotKey::Room && !accepted) {
+    write_file(name, "accepted 0\n");
+    last_accepted_ = 0;
+    return;
+  }
   if (start == RobotKey::New) {
     if (accepted) {
       throw std::runtime_error("key " + key_id_ + " has been used here (last accepted " + std::to_string(*accepted) +
@@ -256,6 +262,7 @@ void FileCounterStore::write_sender() {
 std::uint64_t FileCounterStore::next_counter() {
   std::lock_guard lock(mutex_);
   require(Role::Sender, "next_counter");
+  if (pace_ == CounterPace::Clock) next_ = std::max(next_, clock_counter_floor(clock_()));
   if (next_ >= reserved_) {
     if (next_ + kSenderBlock >= kCounterLimit) {
       throw std::runtime_error("the freshness counter of key " + key_id_ +

@@ -51,6 +51,16 @@ enum class RobotKey {
   Paired,  // the key's state is on disk: missing, the robot cannot tell which frames are old
   New,     // the key was just made (dtmf-agent --new-key): "accepted 0" is written, and state
            // already there for it is refused
+  Room,    // the room key (room_freshness.h): its frames only stop robots, so with no state
+           // "accepted 0" is written and any counter is new; a replayed stop could only stop
+           // a robot that missed it, which jamming the air does as well (docs/security.md)
+};
+
+// How a sender's counters advance.
+enum class CounterPace {
+  Frames,  // one per frame, from where the last run stopped (or the clock's floor, if higher)
+  Clock,   // never below the clock's floor at the time a counter is taken: the room key's,
+           // whose counters, from several senders, must name times (room_freshness.h)
 };
 
 class FileCounterStore final : public CounterStore {
@@ -60,7 +70,8 @@ class FileCounterStore final : public CounterStore {
   // The sender's counters (next_counter, last_confirmed, confirmed): the lock is taken and
   // the file read before this returns; no file means counters start from the clock.
   static std::shared_ptr<FileCounterStore> open_sender(std::filesystem::path directory, const LinkKey& key,
-                                                       Clock clock = std::chrono::system_clock::now);
+                                                       Clock clock = std::chrono::system_clock::now,
+                                                       CounterPace pace = CounterPace::Frames);
   // The robot's accepted counter (last_accepted, accept): the lock is taken and the file read
   // (or, for a new key, written) before this returns.
   static std::shared_ptr<FileCounterStore> open_robot(std::filesystem::path directory, const LinkKey& key,
@@ -94,6 +105,7 @@ class FileCounterStore final : public CounterStore {
   std::string key_id_;
   Role role_;
   Clock clock_;
+  CounterPace pace_ = CounterPace::Frames;
   int directory_fd_ = -1, lock_fd_ = -1;
   mutable std::mutex mutex_;
   std::uint64_t next_ = 0, reserved_ = 0, last_accepted_ = 0;

@@ -37,3 +37,11 @@ TEST(TeleopKeys, StepsStopAtTheModelsLimitsExactly) {
   // The target is always one a Velocity command accepts.
   EXPECT_NO_THROW(command::velocity_command(command::burger(), t.linear_mps, -1.82, 1.0));
 }
+
+TEST(TeleopKeys, EStopsEveryRobotEvenWhenThisOneStandsStill) {
+  TeleopTarget t;
+  apply_key('w', t, command::burger());
+  EXPECT_EQ(apply_key('e', t, command::burger()), KeyEffect::StopEveryRobot);
+  EXPECT_EQ(t, TeleopTarget{});
+  EXPECT_EQ(apply_key('E', t, command::burger()), KeyEffect::StopEveryRobot) << "others may still move";
+}

@@ -3,6 +3,7 @@
 
 #include "command/command_payload.h"
 #include "command/robot_model.h"
+#include "command/word_codec.h"
 
 #include <cmath>
 
@@ -47,13 +48,26 @@ TEST(CommandPayload, PayloadsThatNoSenderMakesAreRefused) {
   EXPECT_FALSE(decode_payload(0x6800800).command) << "a velocity with a lease of code 0";
   EXPECT_FALSE(decode_payload(0x7000000).command) << "kind 7 is reserved (extended frame)";
   EXPECT_FALSE(decode_payload(0x8000000).command) << "wider than 27 bits";
-  EXPECT_FALSE(decode_payload(0x1001000).command) << "STOP with a field";
+  EXPECT_FALSE(decode_payload(0x1002000).command) << "STOP with a field A other than every robot's";
+  EXPECT_FALSE(decode_payload(0x1000001).command) << "STOP with a field B";
   EXPECT_FALSE(decode_payload(0x0000001).command) << "RESET with a field";
   EXPECT_FALSE(decode_payload(0x4800001).command) << "DRIVE_FORWARD with a duration";
   EXPECT_FALSE(decode_payload(0x2000800).command) << "a speed of code 0";
   const auto refused = decode_payload(0x2800000);
   EXPECT_FALSE(refused.command);
   EXPECT_NE(refused.error.find("0x2800000"), std::string::npos) << refused.error;
+}
+
+TEST(CommandPayload, AStopForEveryRobotIsStopWithFieldAOne) {
+  EXPECT_EQ(encode_payload(Stop{true}), 0x1001000u);
+  EXPECT_EQ(encode_payload(Stop{}), 0x1000000u) << "a robot's own stop is unchanged";
+  const auto decoded = decode_payload(0x1001000);
+  ASSERT_TRUE(decoded.command) << decoded.error;
+  EXPECT_TRUE(every_robot(*decoded.command));
+  EXPECT_FALSE(every_robot(*decode_payload(0x1000000).command));
+  EXPECT_EQ(describe(*decoded.command), "stop every_robot");
+  EXPECT_EQ(kind_name(*decoded.command), "stop");
+  EXPECT_THROW(encode(Stop{true}), ParameterError) << "the seed's words name no robot";
 }
 
 TEST(CommandPayload, VelocityCarriesBothSpeedsAndTheLeaseFinerThanTurtlebot3Teleop) {

@@ -144,11 +144,12 @@ TEST(MigrateCommand, MigratesReportsStatusAndFailsClearly) {
 // ones docs/database.md defines.
 namespace {
 
-// The body between the $$ of the newest migration's `FUNCTION run_report(run uuid`.
+// The body between the $$ of the newest migration's `FUNCTION run_report(run uuid,` (the
+// room's: its second parameter on the next line).
 std::string newest_report_body() {
   const auto& all = known_migrations();
   for (auto m = all.rbegin(); m != all.rend(); ++m) {
-    const auto at = m->sql.rfind("FUNCTION run_report(run uuid");
+    const auto at = m->sql.rfind("FUNCTION run_report(run uuid,\n");
     if (at == std::string::npos) continue;
     const auto open = m->sql.find("$$", at), close = m->sql.find("$$", open + 2);
     return std::string(m->sql.substr(open + 2, close - open - 2));
@@ -190,7 +191,8 @@ TEST(Migrations, TheNewestRunReportIsTheOneLiveAndDocumented) {
   TempDatabase db;
   auto c = connect(db.url());
   migrate(*c);
-  EXPECT_EQ(db.query<long>("SELECT count(*) FROM pg_proc WHERE proname = 'run_report'"), 2) << "by id and by number";
+  EXPECT_EQ(db.query<long>("SELECT count(*) FROM pg_proc WHERE proname = 'run_report'"), 4)
+      << "by id and by number, each for the room and for one robot";
   const std::string body = newest_report_body();
   ASSERT_FALSE(body.empty());
   EXPECT_EQ(

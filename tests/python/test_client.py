@@ -74,6 +74,18 @@ def test_robots_lists_the_servers_robot_and_a_client_names_its_robot(system, rob
             unknown.reset().result()
 
 
+def test_a_stop_for_every_robot_is_sent_twice_and_answered_by_none(system):
+    # A client bound to its robot still stops every robot: the name is left out.
+    with Client(system.address, robot="robot") as named:
+        events = list(named.stop(all_robots=True))
+    assert [e.event for e in events] == [FrameEvent.QUEUED] + [FrameEvent.TRANSMITTING] * 2 + [FrameEvent.SENT]
+    assert events[-1].event.is_final
+    assert (events[-1].command, events[-1].robot, events[-1].profile) == ("stop every_robot", "", "fast")
+    with Client(system.address) as client:
+        with pytest.raises(BadRequest, match="options.profile: profile seed names no robot"):
+            client.stop(all_robots=True, profile="seed").result()
+
+
 def test_an_unreachable_server_raises_server_unreachable():
     with Client("127.0.0.1:1", timeout_s=2) as nowhere:
         with pytest.raises(ServerUnreachable, match="cannot reach dtmf-server at 127.0.0.1:1"):
@@ -124,6 +136,14 @@ def test_a_run_frames_commands_and_reports_them_as_a_dict(robot):
     assert by_number["run"]["run_id"] == run_id and "frames" not in by_number
     with pytest.raises(NotFound):
         robot.report(999999)
+
+    # The run's one robot, by name: the same figures as the room's (migration 010).
+    assert runs[0]["robots"] == ["robot"]
+    own = robot.report(run_id, robot="robot")
+    assert (own["robot"], own["transmissions_sent"], own["sender_confirmed"]) == ("robot", 2, 2)
+    assert report["robot"] == ""
+    with pytest.raises(NotFound, match='no command of run .* named robot "nobody"'):
+        robot.report(run_id, robot="nobody")
 
 
 # --- Teleop: the bidirectional stream of server/teleop_rpc.cpp, live ---------------------------

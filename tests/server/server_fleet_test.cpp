@@ -34,10 +34,28 @@ link::LinkOptions at(std::uint8_t address) {
   return o;
 }
 
+std::shared_ptr<const security::LinkKey> test_key(unsigned char seed) {
+  std::array<unsigned char, security::kKeyBytes> bytes{};
+  bytes.fill(seed);
+  return security::LinkKey::from_bytes(bytes);
+}
+
+// Which keys the fleet holds: none; each robot its own; each its own and the room key.
+enum class Keys { None, Own, OwnAndRoom };
+
+// Robot `address`'s options (the sender's and the agent's alike, with fresh counters each).
+link::LinkOptions keyed_at(std::uint8_t address, Keys keys, bool robot_side) {
+  link::LinkOptions o = at(address);
+  if (keys == Keys::None) return o;
+  o.key = test_key(address);
+  if (keys == Keys::OwnAndRoom && robot_side) o.room_key = test_key(0x99);
+  return o;
+}
+
 // A robot agent on a station of the air: what it publishes on cmd_vel is kept.
 class Robot : public agent::CmdVelOutput {
  public:
-  Robot(sim::SimulatedAir::Station station, std::uint8_t address)
+  Robot(sim::SimulatedAir::Station station, link::LinkOptions link)
       : microphone_(std::move(station.microphone)),
         replies_(std::move(station.speaker), std::chrono::milliseconds(0)),
         store_([] {
@@ -48,7 +66,7 @@ class Robot : public agent::CmdVelOutput {
         timeline_(true) {
     agent::AgentOptions options;
     options.profiles = {&fast};
-    options.link = at(address);
+    options.link = std::move(link);
     agent_ =
         std::make_unique<agent::Agent>(options, replies_, std::vector<agent::CmdVelOutput*>{this}, store_, timeline_);
     thread_ = std::thread([this] {
@@ -61,11 +79,19 @@ class Robot : public agent::CmdVelOutput {
 
   void publish(const agent::Velocity& v, double, std::chrono::system_clock::time_point) override {
     std::lock_guard lock(mutex_);
-    moved_ = moved_ || v.linear_mps != 0 || v.angular_radps != 0;
+    const bool moving = v.linear_mps != 0 || v.angular_radps != 0;
+    if (moving_ && !moving) stopped_at_ = std::chrono::steady_clock::now();
+    moving_ = moving;
+    moved_ = moved_ || moving;
   }
   bool moved() {
     std::lock_guard lock(mutex_);
     return moved_;
+  }
+  // When it last came to a standstill (it was moving, and published zero), if it is still.
+  std::optional<std::chrono::steady_clock::time_point> standing_since() {
+    std::lock_guard lock(mutex_);
+    return moving_ ? std::nullopt : stopped_at_;
   }
 
  private:
@@ -77,17 +103,19 @@ class Robot : public agent::CmdVelOutput {
   std::thread thread_;
   std::mutex mutex_;
   bool moved_ = false;
+  bool moving_ = false;
+  std::optional<std::chrono::steady_clock::time_point> stopped_at_;
 };
 
 class Fleet {
  public:
-  Fleet() : air_(fast.sample_rate_hz, quiet_room(), 10) {
+  explicit Fleet(Keys keys = Keys::None) : air_(fast.sample_rate_hz, quiet_room(), 10) {
     auto sender = air_.add_station("sender", 0.0);
     auto alpha = air_.add_station("alpha", 1.0);
     auto beta = air_.add_station("beta", 1.5);
     air_.start();
-    alpha_ = std::make_unique<Robot>(std::move(alpha), 1);
-    beta_ = std::make_unique<Robot>(std::move(beta), 2);
+    alpha_ = std::make_unique<Robot>(std::move(alpha), keyed_at(1, keys, true));
+    beta_ = std::make_unique<Robot>(std::move(beta), keyed_at(2, keys, true));
     store::StoreOptions none;
     none.database = std::string();
     none.spill_path = ::testing::TempDir() + "/fleet-" + std::to_string(::getpid()) + ".spill";
@@ -95,13 +123,15 @@ class Fleet {
     recorder_ = std::make_unique<server::StoreRecorder>(*store_, "test");
     std::vector<server::RobotLinks> robots(2);
     robots[0].name = "alpha";
-    robots[0].links = link::make_links(at(1));
+    robots[0].links = link::make_links(keyed_at(1, keys, false));
     robots[1].name = "beta";
     robots[1].model = command::waffle();
-    robots[1].links = link::make_links(at(2));
-    transmitter_ =
-        std::make_unique<server::Transmitter>(std::move(robots), fast, std::move(sender.speaker),
-                                              std::move(sender.microphone), *recorder_, server::TransmitterOptions{});
+    robots[1].links = link::make_links(keyed_at(2, keys, false));
+    link::LinkOptions room;
+    if (keys == Keys::OwnAndRoom) room.key = test_key(0x99);
+    transmitter_ = std::make_unique<server::Transmitter>(std::move(robots), fast, std::move(sender.speaker),
+                                                         std::move(sender.microphone), *recorder_,
+                                                         server::TransmitterOptions{}, link::make_links(room));
     service_ = std::make_unique<server::TeleopService>(*transmitter_, *store_, server::ServiceOptions{});
     grpc::ServerBuilder builder;
     builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port_);
@@ -249,6 +279,68 @@ TEST(ServerFleet, EachRobotHasItsOwnTeleopStreamAndAStopEndsOnlyItsRobots) {
   alpha.target(0.12, 0);
   EXPECT_TRUE(alpha.confirmed(0.12, 0, 10s)) << "alpha's stream ended with beta's";
   EXPECT_TRUE(alpha.close().ok());
+}
+
+TEST(ServerFleet, AStopForEveryRobotStopsThemAllAtOnceAndEndsEveryStream) {
+  for (const Keys keys : {Keys::None, Keys::OwnAndRoom}) {
+    SCOPED_TRACE(keys == Keys::None ? "no keys" : "own keys and the room key");
+    Fleet fleet(keys);
+    // Leases of 2 s, renewed every second: a robot that stops within 300 ms of the stop's
+    // first copy was stopped by it, not by a lease.
+    TeleopClient alpha(fleet.stub(), 0.1, 0, 2.0, "fast", "alpha");
+    TeleopClient beta(fleet.stub(), 0.05, 0, 2.0, "fast", "beta");
+    ASSERT_TRUE(alpha.confirmed(0.1, 0, 10s)) << "alpha's stream drove nothing";
+    ASSERT_TRUE(beta.confirmed(0.05, 0, 10s)) << "beta's stream drove nothing";
+    ASSERT_TRUE(fleet.alpha().moved() && fleet.beta().moved());
+
+    v1::StopRequest stop;
+    stop.set_all_robots(true);
+    const auto stopped =
+        read_stream<v1::StopResponse>([&](grpc::ClientContext& c) { return fleet.stub().Stop(&c, stop); });
+    ASSERT_TRUE(stopped.status.ok()) << stopped.status.error_message();
+    const v1::Progress& last = stopped.responses.back().progress();
+    EXPECT_EQ(last.event(), v1::FRAME_EVENT_SENT);
+    EXPECT_EQ(last.robot(), "");
+    EXPECT_EQ(last.command(), "stop every_robot");
+    std::optional<std::chrono::system_clock::time_point> first_copy;
+    int copies = 0;
+    for (const auto& r : stopped.responses) {
+      EXPECT_NE(r.progress().event(), v1::FRAME_EVENT_ACK) << "a stop for every robot was answered";
+      if (r.progress().event() != v1::FRAME_EVENT_TRANSMITTING) continue;
+      ++copies;
+      EXPECT_EQ(r.progress().authenticated(), keys != Keys::None);
+      if (!first_copy)
+        first_copy = std::chrono::system_clock::time_point(std::chrono::milliseconds(r.progress().time_unix_ms()));
+    }
+    EXPECT_EQ(copies, 2);
+    const auto sent_steady = std::chrono::steady_clock::now() - (std::chrono::system_clock::now() - *first_copy);
+    EXPECT_TRUE(alpha.ended(5s));
+    EXPECT_TRUE(beta.ended(5s));
+    EXPECT_EQ(alpha.finish().error_code(), grpc::StatusCode::ABORTED);
+    EXPECT_EQ(beta.finish().error_code(), grpc::StatusCode::ABORTED);
+    for (Robot* robot : {&fleet.alpha(), &fleet.beta()}) {
+      const auto still = robot->standing_since();
+      ASSERT_TRUE(still.has_value()) << "a robot still moves";
+      const double after_ms = std::chrono::duration<double, std::milli>(*still - sent_steady).count();
+      std::printf("stopped %.0f ms after the stop's first copy began\n", after_ms);
+      EXPECT_LT(after_ms, 300.0) << "stopped by its lease, not by the stop";
+    }
+  }
+}
+
+TEST(ServerFleet, KeyedRobotsTakeAStopForEveryRobotOnlyUnderTheRoomKey) {
+  Fleet fleet(Keys::Own);
+  v1::StopRequest stop;
+  stop.set_all_robots(true);
+  const auto refused =
+      read_stream<v1::StopResponse>([&](grpc::ClientContext& c) { return fleet.stub().Stop(&c, stop); });
+  EXPECT_EQ(refused.status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_NE(refused.status.error_message().find("dtmf-server --room-key"), std::string::npos)
+      << refused.status.error_message();
+  stop.mutable_options()->set_robot("alpha");
+  const auto named = read_stream<v1::StopResponse>([&](grpc::ClientContext& c) { return fleet.stub().Stop(&c, stop); });
+  EXPECT_EQ(named.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(named.status.error_message().find("options.robot"), std::string::npos) << named.status.error_message();
 }
 
 TEST(ServerFleet, RobotsMustNotShareANameAnAddressOrAKey) {

@@ -49,7 +49,8 @@ class CommandCall:
             raise errors.from_rpc_error(e, self._client.target) from None
 
     def result(self) -> Any:
-        """The final event (CONFIRMED or CONTINUED); raises if the command failed."""
+        """The final event (CONFIRMED, CONTINUED, or SENT for a stop to every robot); raises if
+        the command failed."""
         for _ in self:
             pass
         return self.last
@@ -118,8 +119,15 @@ class Client:
             request.duration_s = duration
         return self._command(self._stub.Turn, request)
 
-    def stop(self, *, on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
-        return self._command(self._stub.Stop, pb.StopRequest(options=self._options(on_unconfirmed, profile)))
+    def stop(self, *, on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None,
+             all_robots: bool = False) -> CommandCall:
+        """Stop this client's robot, ahead of queued commands. all_robots: one stop that every
+        robot in the room executes and none answers (its final event SENT); with keyed robots
+        it needs the server's room key (else TeleopError, code FAILED_PRECONDITION)."""
+        options = self._options(on_unconfirmed, profile)
+        if all_robots:
+            options.ClearField("robot")
+        return self._command(self._stub.Stop, pb.StopRequest(options=options, all_robots=all_robots))
 
     def reset(self, *, on_unconfirmed: Optional[Unconfirmed] = None, profile: Optional[str] = None) -> CommandCall:
         return self._command(self._stub.Reset, pb.ResetRequest(options=self._options(on_unconfirmed, profile)))
@@ -171,11 +179,13 @@ class Client:
         """Test runs, newest first (limit 0: all)."""
         return [message_to_dict(r) for r in self._unary(self._stub.ListRuns, pb.ListRunsRequest(limit=limit)).runs]
 
-    def report(self, run: Optional[str | int] = None, *, frames: bool = False) -> dict[str, Any]:
+    def report(self, run: Optional[str | int] = None, *, frames: bool = False,
+               robot: Optional[str] = None) -> dict[str, Any]:
         """The seed's Appendix A table of a run (id, number, or None for the latest) as a
         dict; rates absent for want of data are None. frames=True adds every chord played,
-        with its response time and latency, under "frames"."""
-        request = pb.GetReportRequest(include_frames=frames)
+        with its response time and latency, under "frames". robot: one robot of the run (its
+        name, as in runs()[i]["robots"]); None: the whole room."""
+        request = pb.GetReportRequest(include_frames=frames, robot=robot or "")
         if isinstance(run, int):
             request.run_number = run
         elif run:

@@ -22,11 +22,12 @@ class FrameEvent(enum.Enum):
     CONFIRMED = pb.FRAME_EVENT_CONFIRMED
     CONTINUED = pb.FRAME_EVENT_CONTINUED
     FAILED = pb.FRAME_EVENT_FAILED
+    SENT = pb.FRAME_EVENT_SENT  # a stop for every robot played whole: no robot answers it
     UNSPECIFIED = pb.FRAME_EVENT_UNSPECIFIED
 
     @property
     def is_final(self) -> bool:
-        return self in (FrameEvent.CONFIRMED, FrameEvent.CONTINUED, FrameEvent.FAILED)
+        return self in (FrameEvent.CONFIRMED, FrameEvent.CONTINUED, FrameEvent.FAILED, FrameEvent.SENT)
 
 
 class Decision(enum.Enum):

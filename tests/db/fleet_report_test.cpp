@@ -1,0 +1,168 @@
+// Database: one run of a sender driving two robots (migration 010). run_report(run) covers
+// the whole room, run_report(run, robot) one robot; a stop for every robot is counted apart
+// (no robot answers it); a robot of another sender in the same room, at another address, is
+// no false positive of this run; RunReader and the runs view name the run's robots.
+#include <gtest/gtest.h>
+
+#include "run_reader.h"
+#include "store.h"
+#include "temp_database.h"
+
+using namespace dtmf::store;
+using dtmf::test_support::TempDatabase;
+using std::chrono::milliseconds;
+
+namespace {
+
+constexpr int kSlotMs = 400;
+
+struct FleetRun {
+  TestRunRow run;
+  WallTime t0 = WallClock::now() - std::chrono::hours(1);
+  int slot = 0;
+
+  // A command of one frame to `robot` at `address`, its ACK heard; heard by the robot unless
+  // `dropped`. Returns the frame's start.
+  void command(Store& store, const std::string& robot, int address, bool dropped) {
+    CommandRow c;
+    c.run_id = run.id;
+    c.kind = "drive_for_duration";
+    c.profile = "fast";
+    c.requested_at = t0 + milliseconds(slot * kSlotMs);
+    c.outcome = "confirmed";
+    c.robot = robot;
+    c.robot_address = address;
+    c.host = "sender-a";
+    store.write(c);
+    const WallTime start = c.requested_at;
+    store.write(attempt(c.id, 0, start, "ack"));
+    if (!dropped) store.write(reception(robot, address, start + milliseconds(120), "drive_for_duration"));
+    ++slot;
+  }
+
+  // A stop for every robot: two copies, no answer, each executed by both robots.
+  void stop_every_robot(Store& store) {
+    CommandRow c;
+    c.run_id = run.id;
+    c.kind = "stop";
+    c.profile = "fast";
+    c.frame_count = 2;
+    c.requested_at = t0 + milliseconds(slot * kSlotMs);
+    c.outcome = "sent";
+    c.every_robot = true;
+    c.host = "sender-a";
+    store.write(c);
+    for (int copy = 0; copy < 2; ++copy) {
+      const WallTime start = c.requested_at + milliseconds(copy * 110);
+      FrameAttemptRow a = attempt(c.id, copy, start, "");
+      a.answer.reset();
+      store.write(a);
+      store.write(reception("alpha", 1, start + milliseconds(80), "stop every_robot", a.frame));
+      store.write(reception("beta", 2, start + milliseconds(81), "stop every_robot", a.frame));
+    }
+    ++slot;
+  }
+
+  FrameAttemptRow attempt(const std::string& command_id, int position, WallTime start, const std::string& answer) {
+    FrameAttemptRow a;
+    a.run_id = run.id;
+    a.command_id = command_id;
+    a.position = position;
+    a.frame = std::to_string(100000 + slot * 4 + position);
+    a.frame_width = 50;
+    a.tones_hz = {1000.0};
+    a.chord_started_at = start;
+    a.chord_ended_at = start + milliseconds(102);
+    if (!answer.empty()) {
+      a.answer = answer;
+      a.answered_at = start + milliseconds(150);
+    }
+    return a;
+  }
+
+  ReceptionRow reception(const std::string& robot, int address, WallTime heard, const std::string& command,
+                         std::string frame = "") {
+    ReceptionRow r;
+    r.host = robot;
+    r.robot_address = address;
+    r.profile = "fast";
+    r.heard_at = heard;
+    r.frame = frame.empty() ? std::to_string(100000 + slot * 4) : frame;
+    r.frame_width = 50;
+    r.crc_ok = true;
+    r.event = "command";
+    r.command = command;
+    if (command != "stop every_robot") r.reply = "ack";
+    return r;
+  }
+};
+
+}  // namespace
+
+TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
+  TempDatabase db;
+  StoreOptions options;
+  options.database = db.url();
+  options.spill_path = ::testing::TempDir() + "/fleet-report-" + std::to_string(::getpid()) + ".spill";
+  FleetRun f;
+  f.run.label = "fleet";
+  f.run.profile = "fast";
+  f.run.started_at = f.t0 - milliseconds(100);
+  f.run.ended_at = f.t0 + milliseconds(20 * kSlotMs);
+  {
+    Store store(options);
+    store.write(f.run);
+    for (int i = 0; i < 4; ++i) f.command(store, "alpha", 1, false);
+    for (int i = 0; i < 3; ++i) f.command(store, "beta", 2, i == 1);  // beta missed one frame
+    f.stop_every_robot(store);
+    // Another sender's robot in the same room took its own frame meanwhile: not this run's.
+    store.write(f.reception("gamma", 5, f.t0 + milliseconds(3 * kSlotMs + 50), "turn", "777777"));
+    ASSERT_TRUE(store.flush(std::chrono::seconds(30)));
+  }
+
+  pqxx::connection c(db.url());
+  pqxx::work tx(c);
+  const auto report = [&](const std::string& robot) {
+    return tx.exec("SELECT * FROM run_report('" + f.run.id + "'::uuid" + (robot.empty() ? "" : ", '" + robot + "'") +
+                   ")")[0];
+  };
+  const pqxx::row room = report("");
+  EXPECT_TRUE(room["robot"].is_null());
+  EXPECT_EQ(room["transmissions_sent"].as<int>(), 7) << "the stop's copies are no transmissions";
+  EXPECT_EQ(room["transmissions_received"].as<int>(), 6) << "gamma's and the stop's receptions left out";
+  EXPECT_EQ(room["successfully_matched"].as<int>(), 6);
+  EXPECT_EQ(room["dropped"].as<int>(), 1);
+  EXPECT_EQ(room["false_positives"].as<int>(), 0) << "another sender's robot is no false positive";
+  EXPECT_EQ(room["sender_confirmed"].as<int>(), 7);
+  EXPECT_EQ(room["every_robot_stops_sent"].as<int>(), 1);
+  EXPECT_EQ(room["every_robot_stops_executed"].as<int>(), 4) << "two copies, each executed by both robots";
+
+  const pqxx::row alpha = report("alpha"), beta = report("beta");
+  EXPECT_EQ(alpha["robot"].as<std::string>(), "alpha");
+  EXPECT_EQ(alpha["transmissions_sent"].as<int>(), 4);
+  EXPECT_EQ(alpha["successfully_matched"].as<int>(), 4);
+  EXPECT_EQ(alpha["every_robot_stops_executed"].as<int>(), 2);
+  EXPECT_EQ(beta["transmissions_sent"].as<int>(), 3);
+  EXPECT_EQ(beta["successfully_matched"].as<int>(), 2);
+  EXPECT_EQ(beta["dropped"].as<int>(), 1);
+  EXPECT_EQ(beta["false_positives"].as<int>(), 0);
+  // The robots add up to the room.
+  for (const char* column : {"transmissions_sent", "transmissions_received", "successfully_matched", "dropped",
+                             "sender_confirmed", "every_robot_stops_executed"}) {
+    EXPECT_EQ(alpha[column].as<int>() + beta[column].as<int>(), room[column].as<int>()) << column;
+  }
+  EXPECT_EQ(report("gamma")["transmissions_sent"].as<int>(), 0) << "no command of this run named gamma";
+  const pqxx::row listed =
+      tx.exec("SELECT robots::text, transmissions_sent FROM runs WHERE id = '" + f.run.id + "'")[0];
+  EXPECT_EQ(listed[0].as<std::string>(), "{alpha,beta}");
+  EXPECT_EQ(listed[1].as<int>(), 7);
+
+  const RunReader reader(db.url());
+  const auto read = reader.report(f.run.id, true, std::string("beta"));
+  ASSERT_TRUE(read.has_value());
+  EXPECT_EQ(read->run.robots, (std::vector<std::string>{"alpha", "beta"}));
+  EXPECT_EQ(read->robot, "beta");
+  EXPECT_EQ(read->transmissions_sent, 3);
+  EXPECT_EQ(read->frames.size(), 3u) << "beta's frames only";
+  EXPECT_EQ(reader.report(f.run.id, false)->every_robot_stops_sent, 1);
+}
