@@ -26,13 +26,15 @@ from rooms_section import rooms_section  # noqa: E402
 from answers_section import answers_section  # noqa: E402
 from targets_section import targets_section  # noqa: E402
 from teleop_section import teleop_section  # noqa: E402
+from fleet_section import fleet_section  # noqa: E402
 from robot_section import robot_section  # noqa: E402
 from round_trip_rooms_section import load_rooms, round_trip_rooms_section, round_trip_targets_section  # noqa: E402
 
 BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "answers", "talkoff_speech", "talkoff_music",
            "talkoff_noise", "roundtrip", "roundtrip_room", "e2e", "e2e_room", "teleop"]
-# Run only where they apply (dtmf-bench-lost: hopped frames without a key): listed under "not run" only when they failed.
-OPTIONAL_BENCHES = ["lost"]
+# Run only where they apply (dtmf-bench-lost: hopped frames without a key; dtmf-bench-room-stop:
+# profiles whose frames name robots): listed under "not run" only when they failed.
+OPTIONAL_BENCHES = ["lost", "room_stop", "fleet_teleop"]
 TALKOFF = [("speech", "speech (espeak-ng)"), ("music", "music-like (sox synth)"), ("noise", "noise (white, pink, brown)")]
 
 
@@ -504,6 +506,7 @@ def main() -> int:
     rooms_round_trip = load_rooms(args.directory, profiles)
     round_trip_rooms_section(w, rooms_round_trip, profiles)
     teleop_section(w, data, profiles, ok)
+    fleet_section(w, data, profiles, ok)
     robot_section(w, args.directory)
     targets_section(w, data, profiles, ok, decoder_factor)
     round_trip_targets_section(w, rooms_round_trip, profiles)

@@ -133,9 +133,11 @@ void Agent::on_reception(const link::Link& link, const link::Reception& r) {
     execute(*r.command, r.start_ms, r.heard_ms, row);
     heard.executed = r.command;
   }
-  spdlog::info("t={:.3f}s {} frame {}{}{}{}: ACK ({}), {}", r.heard_ms / 1000.0, profile.name, bits, number,
+  // A stop for every robot is no robot's to answer (link/frame_admission.h).
+  spdlog::info("t={:.3f}s {} frame {}{}{}{}: {} ({}), {}", r.heard_ms / 1000.0, profile.name, bits, number,
                r.payload_word ? " word " + std::to_string(*r.payload_word) : "",
-               r.authenticated ? " authenticated" : "", link::event_name(r.event), r.detail);
+               r.authenticated ? " authenticated" : "", r.answered ? "ACK" : "not answered", link::event_name(r.event),
+               r.detail);
   store_.write(row);
   told(heard);
 }

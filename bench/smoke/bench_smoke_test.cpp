@@ -133,6 +133,41 @@ TEST(BenchSmoke, SeedAnswersAreHeardBesideItsOwnLongFrames) {
   }
 }
 
+// The stop for every robot: heard by all three robots in the seminar room, unanswered, and
+// not when noise drowns it.
+TEST(BenchSmoke, RoomStopIsExecutedByEveryRobotAndNotWhenDrowned) {
+  for (const char* keyed : {"", " --authenticated"}) {
+    for (const char* noise : {"-50", "0"}) {
+      const auto doc = run(std::string(ROOM_STOP_PATH) + " --profile fast" + keyed + " --stops 5 --rirs " + RIRS_DIR +
+                               " --room seminar_room_clap --noise-dbfs " + noise,
+                           std::string("room-stop") + (*keyed ? "-keyed" : "") + noise);
+      ASSERT_EQ(doc["cases"].size(), 1u) << doc.dump();
+      const auto& c = doc["cases"][0];
+      EXPECT_EQ(c["other_commands"], 0) << c.dump();
+      EXPECT_EQ(c["answered"], 0) << c.dump();
+      if (std::string(noise) == "-50") {
+        EXPECT_EQ(c["all_in_time"], 5) << c.dump();
+        EXPECT_LE(c["decision_max_ms"].get<double>(), 300.0) << c.dump();
+      } else {
+        EXPECT_LT(c["all_in_time"].get<int>(), 5) << "pink noise at full scale drowned nothing: " << c.dump();
+      }
+    }
+  }
+}
+
+// Three Teleop streams to three robots through one sender: each robot renews its own lease
+// and executes only its own frames.
+TEST(BenchSmoke, FleetTeleopDrivesThreeRobotsEachWithItsOwnFrames) {
+  const auto doc =
+      run(std::string(FLEET_TELEOP_PATH) + " --seconds 5 --authenticated --rir " + RIRS_DIR + "/seminar_room_clap.wav",
+          "fleet-teleop");
+  ASSERT_EQ(doc["robots"].size(), 3u) << doc.dump();
+  for (const auto& r : doc["robots"]) {
+    EXPECT_GT(r["renewals_per_s"].get<double>(), 0.0) << r.dump();
+    EXPECT_EQ(r["wrong"], 0) << "a robot executed another's frame: " << r.dump();
+  }
+}
+
 TEST(BenchSmoke, TalkoffFindsNothingInSilence) {
   // 10 s of silence (raw float32 zeros) on stdin.
   const auto doc =

@@ -31,14 +31,8 @@ stop_all() {
 case $action in
   stop)
     stop_all
-    # The sinks too: the air is as the tests without the room know it (PulseAudio keeps
-    # rendering an idle null sink).
-    if [ -S "$air/native" ]; then
-      LC_ALL=C timeout 5 pactl list short modules | awk -v sinks=" ${ROOM_SINKS[*]} " \
-        '$2 == "module-null-sink" && match($0, /sink_name=[^ \t]+/) &&
-         index(sinks, " " substr($0, RSTART + 10, RLENGTH - 10) " ") { print $1 }' |
-        while read -r module; do LC_ALL=C timeout 5 pactl unload-module "$module"; done
-    fi
+    # The sinks too: the air is as the tests without the room know it.
+    [ -S "$air/native" ] && room_unload_sinks "${ROOM_SINKS[@]}"
     exit 0 ;;
   start) ;;
   *) echo "room_fixture.sh: start or stop, not '$action'" >&2; exit 2 ;;

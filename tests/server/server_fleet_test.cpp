@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "agent.h"
+#include "fleet_system.h"
 #include "live_system.h"
 #include "security/link_key.h"
 #include "sim/simulated_air.h"
@@ -34,117 +35,13 @@ link::LinkOptions at(std::uint8_t address) {
   return o;
 }
 
-std::shared_ptr<const security::LinkKey> test_key(unsigned char seed) {
-  std::array<unsigned char, security::kKeyBytes> bytes{};
-  bytes.fill(seed);
-  return security::LinkKey::from_bytes(bytes);
-}
+using test_support::FleetKeys;
+using Robot = test_support::FleetRobot;
 
-// Which keys the fleet holds: none; each robot its own; each its own and the room key.
-enum class Keys { None, Own, OwnAndRoom };
-
-// Robot `address`'s options (the sender's and the agent's alike, with fresh counters each).
-link::LinkOptions keyed_at(std::uint8_t address, Keys keys, bool robot_side) {
-  link::LinkOptions o = at(address);
-  if (keys == Keys::None) return o;
-  o.key = test_key(address);
-  if (keys == Keys::OwnAndRoom && robot_side) o.room_key = test_key(0x99);
-  return o;
-}
-
-// A robot agent on a station of the air: what it publishes on cmd_vel is kept.
-class Robot : public agent::CmdVelOutput {
+// Robots alpha (address 1, 1 m from the sender) and beta (address 2, 1.5 m), beta a Waffle.
+class Fleet : public test_support::FleetSystem {
  public:
-  Robot(sim::SimulatedAir::Station station, link::LinkOptions link)
-      : microphone_(std::move(station.microphone)),
-        replies_(std::move(station.speaker), std::chrono::milliseconds(0)),
-        store_([] {
-          store::StoreOptions none;
-          none.database = std::string();
-          return none;
-        }()),
-        timeline_(true) {
-    agent::AgentOptions options;
-    options.profiles = {&fast};
-    options.link = std::move(link);
-    agent_ =
-        std::make_unique<agent::Agent>(options, replies_, std::vector<agent::CmdVelOutput*>{this}, store_, timeline_);
-    thread_ = std::thread([this] {
-      std::vector<float> block(static_cast<std::size_t>(agent_->block_samples()));
-      while (const std::size_t got = microphone_->read(block))
-        agent_->process(std::span<const float>(block.data(), got));
-    });
-  }
-  ~Robot() override { thread_.join(); }  // the air stopped: the microphone ends
-
-  void publish(const agent::Velocity& v, double, std::chrono::system_clock::time_point) override {
-    std::lock_guard lock(mutex_);
-    const bool moving = v.linear_mps != 0 || v.angular_radps != 0;
-    if (moving_ && !moving) stopped_at_ = std::chrono::steady_clock::now();
-    moving_ = moving;
-    moved_ = moved_ || moving;
-  }
-  bool moved() {
-    std::lock_guard lock(mutex_);
-    return moved_;
-  }
-  // When it last came to a standstill (it was moving, and published zero), if it is still.
-  std::optional<std::chrono::steady_clock::time_point> standing_since() {
-    std::lock_guard lock(mutex_);
-    return moving_ ? std::nullopt : stopped_at_;
-  }
-
- private:
-  std::unique_ptr<physical::AudioSource> microphone_;
-  agent::LiveReplyPlayer replies_;
-  store::Store store_;
-  agent::Timeline timeline_;
-  std::unique_ptr<agent::Agent> agent_;
-  std::thread thread_;
-  std::mutex mutex_;
-  bool moved_ = false;
-  bool moving_ = false;
-  std::optional<std::chrono::steady_clock::time_point> stopped_at_;
-};
-
-class Fleet {
- public:
-  explicit Fleet(Keys keys = Keys::None) : air_(fast.sample_rate_hz, quiet_room(), 10) {
-    auto sender = air_.add_station("sender", 0.0);
-    auto alpha = air_.add_station("alpha", 1.0);
-    auto beta = air_.add_station("beta", 1.5);
-    air_.start();
-    alpha_ = std::make_unique<Robot>(std::move(alpha), keyed_at(1, keys, true));
-    beta_ = std::make_unique<Robot>(std::move(beta), keyed_at(2, keys, true));
-    store::StoreOptions none;
-    none.database = std::string();
-    none.spill_path = ::testing::TempDir() + "/fleet-" + std::to_string(::getpid()) + ".spill";
-    store_ = std::make_unique<store::Store>(none);
-    recorder_ = std::make_unique<server::StoreRecorder>(*store_, "test");
-    std::vector<server::RobotLinks> robots(2);
-    robots[0].name = "alpha";
-    robots[0].links = link::make_links(keyed_at(1, keys, false));
-    robots[1].name = "beta";
-    robots[1].model = command::waffle();
-    robots[1].links = link::make_links(keyed_at(2, keys, false));
-    link::LinkOptions room;
-    if (keys == Keys::OwnAndRoom) room.key = test_key(0x99);
-    transmitter_ = std::make_unique<server::Transmitter>(std::move(robots), fast, std::move(sender.speaker),
-                                                         std::move(sender.microphone), *recorder_,
-                                                         server::TransmitterOptions{}, link::make_links(room));
-    service_ = std::make_unique<server::TeleopService>(*transmitter_, *store_, server::ServiceOptions{});
-    grpc::ServerBuilder builder;
-    builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port_);
-    builder.RegisterService(service_.get());
-    server_ = builder.BuildAndStart();
-    stub_ = v1::TeleopService::NewStub(
-        grpc::CreateChannel("127.0.0.1:" + std::to_string(port_), grpc::InsecureChannelCredentials()));
-  }
-  ~Fleet() {
-    transmitter_->shutdown();
-    server_->Shutdown(std::chrono::system_clock::now() + 2s);
-    air_.stop();
-  }
+  explicit Fleet(FleetKeys keys = FleetKeys::None) : FleetSystem(options(keys)) {}
 
   test_support::StreamResult<v1::DriveResponse> drive(const std::string& robot) {
     v1::DriveRequest r;
@@ -152,35 +49,23 @@ class Fleet {
     r.set_duration_s(1);
     r.mutable_options()->set_robot(robot);
     r.mutable_options()->set_on_unconfirmed(v1::UNCONFIRMED_POLICY_FAIL);
-    return read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return stub_->Drive(&c, r); });
+    return read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return stub().Drive(&c, r); });
   }
   v1::ListRobotsResponse robots() {
     grpc::ClientContext c;
     v1::ListRobotsResponse response;
-    EXPECT_TRUE(stub_->ListRobots(&c, {}, &response).ok());
+    EXPECT_TRUE(stub().ListRobots(&c, {}, &response).ok());
     return response;
   }
-
-  v1::TeleopService::Stub& stub() { return *stub_; }
-  Robot& alpha() { return *alpha_; }
-  Robot& beta() { return *beta_; }
+  Robot& alpha() { return robot(0); }
+  Robot& beta() { return robot(1); }
 
  private:
-  static sim::ChannelConfig quiet_room() {
-    sim::ChannelConfig air;
-    air.noise = sim::parse_noise("white", -70);
-    return air;
+  static test_support::FleetOptions options(FleetKeys keys) {
+    test_support::FleetOptions o;
+    o.keys = keys;
+    return o;
   }
-
-  sim::SimulatedAir air_;
-  std::unique_ptr<Robot> alpha_, beta_;
-  std::unique_ptr<store::Store> store_;
-  std::unique_ptr<server::StoreRecorder> recorder_;
-  std::unique_ptr<server::Transmitter> transmitter_;
-  std::unique_ptr<server::TeleopService> service_;
-  std::unique_ptr<grpc::Server> server_;
-  int port_ = 0;
-  std::unique_ptr<v1::TeleopService::Stub> stub_;
 };
 
 }  // namespace
@@ -282,8 +167,8 @@ TEST(ServerFleet, EachRobotHasItsOwnTeleopStreamAndAStopEndsOnlyItsRobots) {
 }
 
 TEST(ServerFleet, AStopForEveryRobotStopsThemAllAtOnceAndEndsEveryStream) {
-  for (const Keys keys : {Keys::None, Keys::OwnAndRoom}) {
-    SCOPED_TRACE(keys == Keys::None ? "no keys" : "own keys and the room key");
+  for (const FleetKeys keys : {FleetKeys::None, FleetKeys::OwnAndRoom}) {
+    SCOPED_TRACE(keys == FleetKeys::None ? "no keys" : "own keys and the room key");
     Fleet fleet(keys);
     // Leases of 2 s, renewed every second: a robot that stops within 300 ms of the stop's
     // first copy was stopped by it, not by a lease.
@@ -308,7 +193,7 @@ TEST(ServerFleet, AStopForEveryRobotStopsThemAllAtOnceAndEndsEveryStream) {
       EXPECT_NE(r.progress().event(), v1::FRAME_EVENT_ACK) << "a stop for every robot was answered";
       if (r.progress().event() != v1::FRAME_EVENT_TRANSMITTING) continue;
       ++copies;
-      EXPECT_EQ(r.progress().authenticated(), keys != Keys::None);
+      EXPECT_EQ(r.progress().authenticated(), keys != FleetKeys::None);
       if (!first_copy)
         first_copy = std::chrono::system_clock::time_point(std::chrono::milliseconds(r.progress().time_unix_ms()));
     }
@@ -329,7 +214,7 @@ TEST(ServerFleet, AStopForEveryRobotStopsThemAllAtOnceAndEndsEveryStream) {
 }
 
 TEST(ServerFleet, KeyedRobotsTakeAStopForEveryRobotOnlyUnderTheRoomKey) {
-  Fleet fleet(Keys::Own);
+  Fleet fleet(FleetKeys::Own);
   v1::StopRequest stop;
   stop.set_all_robots(true);
   const auto refused =
