@@ -65,6 +65,9 @@ def fleet_section(w, data, profiles, ok):
           "frames each robot executed per second; *lapses*: standstills while its stream held a non-zero target; "
           "*wrong*: velocities a robot executed from another robot's range.")
         w("")
+        when = sorted({data[p]["fleet_teleop"].get("measured_utc", "at an unknown time") for p in teleop_shown})
+        w(f"Measured {', '.join(when)}, {data[teleop_shown[0]]['fleet_teleop']['seconds']:.0f} s each.")
+        w("")
         w("| profile | robot | renewals a second | press → cmd_vel (median / p95 / max) | presses reached "
           "| lapses | wrong |")
         w("|---|---|---|---|---|---|---|")

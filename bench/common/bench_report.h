@@ -1,5 +1,5 @@
 // What every benchmark program shares: writing its JSON file, a 95 % confidence interval
-// for a rate, and running independent jobs on a few threads.
+// for a rate, running independent jobs on a few threads, and the time it measured.
 //
 // Header-only. The JSON files are read by bench/write_benchmarks.py (docs/benchmarks.md);
 // each carries the benchmark's name, the profile and the settings that produced it.
@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
 #include <exception>
 #include <fstream>
 #include <functional>
@@ -39,6 +40,14 @@ inline std::pair<double, double> wilson95(std::uint64_t k, std::uint64_t n) {
   const double centre = (p + z * z / (2 * nn)) / (1 + z * z / nn);
   const double half = z * std::sqrt(p * (1 - p) / nn + z * z / (4 * nn * nn)) / (1 + z * z / nn);
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+// Now, as a benchmark's JSON names when it measured: "2026-11-29 14:26 UTC".
+inline std::string utc_now_text() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  return text;
 }
 
 // The p-quantile (0..1) of `v`, interpolated between the two nearest ranks; 0 when empty.

@@ -186,6 +186,7 @@ int main(int argc, char** argv) {
             {"authenticated", authenticated}, {"seconds", driven_s}, {"lease_s", lease_s}, {"robots", robots}};
         out["press_to_cmd_vel_ms"] = summary(all_ms);
         out["rir"] = rir;
+        out["measured_utc"] = utc_now_text();
         if (!json_path.empty()) write_json(json_path, out);
         return 0;
       },

@@ -19,7 +19,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
-#include <ctime>
 #include <future>
 #include <memory>
 
@@ -178,12 +177,7 @@ int main(int argc, char** argv) {
                               {"within_ms", within_ms},
                               {"cases", nlohmann::json::array()}};
         out["noise_dbfs"] = noise_dbfs;
-    out["measured_utc"] = [] {
-      const std::time_t now = std::time(nullptr);
-      char text[32];
-      std::strftime(text, sizeof text, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-      return std::string(text);
-    }();
+        out["measured_utc"] = utc_now_text();
         std::printf("%-22s %9s %9s %9s %9s %8s %8s %8s %6s %6s\n", "room", "all 3", "robot 1m", "robot 2m", "robot 3m",
                     "median", "p95", "most", "other", "answ");
         for (const std::string& room : rooms) {

@@ -31,10 +31,12 @@
 #include "physical/wav_file.h"
 #include "support/free_port.h"
 #include "support/processes.h"
+#include "support/read_file.h"
 #include "support/wait_for.h"
 
 using namespace dtmf;
 using namespace std::chrono_literals;
+using test_support::read_file;
 using test_support::run_command;
 using test_support::wait_until;
 namespace fs = std::filesystem;
@@ -43,13 +45,6 @@ namespace {
 
 constexpr const char* kSenderAudio = "PULSE_SINK=speaker PULSE_SOURCE=sender_ear.monitor ";
 constexpr const char* kRobotAudio = "PULSE_SINK=robot_speaker PULSE_SOURCE=robot_ear.monitor ";
-
-std::string read_file(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The secret half of a key file ("key <64 hex digits>").
 std::string secret_of(const fs::path& key_file) {

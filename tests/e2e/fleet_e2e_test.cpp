@@ -21,10 +21,12 @@
 #include "../db/temp_database.h"
 #include "support/free_port.h"
 #include "support/processes.h"
+#include "support/read_file.h"
 #include "support/wait_for.h"
 
 using namespace dtmf;
 using namespace std::chrono_literals;
+using test_support::read_file;
 using test_support::run_command;
 using test_support::wait_until;
 namespace fs = std::filesystem;
@@ -32,13 +34,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr int kRobots = 3;
-
-std::string read_file(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 class FleetE2E : public ::testing::Test {
  protected:

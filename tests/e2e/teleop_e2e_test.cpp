@@ -29,10 +29,12 @@
 #include "../db/temp_database.h"
 #include "support/free_port.h"
 #include "support/processes.h"
+#include "support/read_file.h"
 #include "support/wait_for.h"
 
 using namespace dtmf;
 using namespace std::chrono_literals;
+using test_support::read_file;
 using test_support::run_command;
 using test_support::wait_until;
 namespace fs = std::filesystem;
@@ -51,13 +53,6 @@ constexpr auto kStopMargin = 200ms;
 // (docs/simulation.md), and the lease runs from when the robot hears the frame start. The bound itself is
 // measured with a device's latency by dtmf-bench-teleop (docs/benchmarks.md).
 constexpr auto kBridgeDelay = 100ms;
-
-std::string read_file(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // One "sim: ..." line of the simulated TurtleBot3 (robot_agent/cmd_vel/sim_turtlebot.cpp).
 struct Pose {
