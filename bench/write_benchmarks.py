@@ -506,7 +506,7 @@ def main() -> int:
     rooms_round_trip = load_rooms(args.directory, profiles)
     round_trip_rooms_section(w, rooms_round_trip, profiles)
     teleop_section(w, data, profiles, ok)
-    fleet_section(w, data, profiles, ok)
+    fleet_section(w, data, profiles, ok, args.directory)
     robot_section(w, args.directory)
     targets_section(w, data, profiles, ok, decoder_factor)
     round_trip_targets_section(w, rooms_round_trip, profiles)

@@ -217,12 +217,8 @@ int run_agent(const AgentFlags& f) {
     if (f.realtime && offline)
       std::this_thread::sleep_until(started + std::chrono::duration<double, std::milli>(agent.audio_ms()));
   };
-  if (!offline) {
-    // This thread drains the microphone and decodes; starved, it would drop samples.
-    std::string how;
-    physical::raise_audio_thread_priority(&how);
-    spdlog::info("audio threads: {}", how);
-  }
+  // This thread decodes at normal priority: a device is drained by a thread of its own
+  // (physical/capture_thread.h), which only copies.
   const int exit_code = listen(agent, *source, offline, pace);
   if (g_stop)
     agent.stop_now("shutdown signal");

@@ -244,12 +244,9 @@ void Transmitter::shutdown() {
   if (listener_.joinable()) listener_.join();
 }
 
+// Decodes at normal priority: a device is drained by a thread of its own
+// (physical/capture_thread.h), which only copies.
 void Transmitter::listen() {
-  if (options_.realtime_audio) {
-    std::string how;
-    physical::raise_audio_thread_priority(&how);
-    spdlog::info("audio threads: {}", how);
-  }
   ReplyListeners& listener = *ears_;
   std::vector<float> block(static_cast<std::size_t>(listener.block_samples()));
   double audio_ms = 0;
@@ -310,7 +307,11 @@ void Transmitter::play(const link::TransmitFrame& frame, double start_ms) {
 }
 
 void Transmitter::run() {
-  if (options_.realtime_audio) physical::raise_audio_thread_priority();
+  if (options_.realtime_audio) {
+    std::string how;
+    physical::raise_audio_thread_priority(&how);
+    spdlog::info("loudspeaker thread: {}", how);
+  }
   while (true) {
     std::shared_ptr<Job> job;
     {

@@ -82,8 +82,9 @@ struct RobotStatus {
 
 struct TransmitterOptions {
   std::size_t max_queue = 32;
-  // Run the loudspeaker and microphone threads at real-time priority (physical/realtime_priority.h):
-  // the program does, in-process tests need not.
+  // Run the loudspeaker thread at real-time priority (physical/realtime_priority.h): the program
+  // does, in-process tests need not. The microphone's reader decodes, so it never is: a device
+  // is drained by a thread of its own (physical/capture_thread.h).
   bool realtime_audio = false;
   // With a key: commands may name a profile whose frames carry no MAC (the seed's), and be
   // confirmed by an untagged ACK (dtmf-server --allow-unauthenticated-commands). Stop still

@@ -7,10 +7,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
+
+#include "physical/capture_thread.h"
 
 namespace dtmf::physical {
 
@@ -176,16 +180,38 @@ class PortAudioSource : public AudioSource {
     const long frames = Pa_GetStreamReadAvailable(stream_.stream_);
     return frames > 0 ? 1000.0 * static_cast<double>(frames) / stream_.sample_rate_hz_ : 0.0;
   }
+  // PortAudio's own wait polls the PulseAudio plugin, and under load the plugin said
+  // "readable" while ALSA had no frame to give: PortAudio then polled in a loop at full CPU
+  // (bench/e2e/fleet_load.sh, 20 agents: two readers at 94 %, gdb in Pa_ReadStream's poll).
+  // So PortAudio is asked only for frames already captured, and the waiting is done here.
   std::size_t read(std::span<float> out) override {
-    const PaError error = Pa_ReadStream(stream_.stream_, out.data(), static_cast<unsigned long>(out.size()));
-    // An overflow lost samples to a busy machine; the stream itself goes on.
-    if (error == paInputOverflowed && ++overflows_ % 100 == 1) {
-      spdlog::warn("recording from {} lost samples ({} times so far): the machine is too busy to keep up",
-                   stream_.describe(), overflows_);
-    }
-    if (error != paNoError && error != paInputOverflowed) {
-      throw AudioError("recording from " + stream_.describe() + " failed: " + Pa_GetErrorText(error) +
-                       " (is the device still connected?)");
+    std::size_t done = 0;
+    auto last_frame = std::chrono::steady_clock::now();
+    while (done < out.size()) {
+      const long available = Pa_GetStreamReadAvailable(stream_.stream_);
+      if (available < 0) fail(static_cast<PaError>(available));
+      if (available == 0) {
+        if (std::chrono::steady_clock::now() - last_frame > kDeviceSilentLimit) {
+          throw AudioError("recording from " + stream_.describe() + " delivered no sample for " +
+                           std::to_string(kDeviceSilentLimit.count()) +
+                           " ms: the device or the sound server has stalled (is it still running?)");
+        }
+        // Until the samples still missing could have been captured, as a blocking read waits.
+        const auto missing = std::chrono::microseconds(
+            static_cast<long long>(1e6 * static_cast<double>(out.size() - done) / stream_.sample_rate_hz_));
+        std::this_thread::sleep_for(std::clamp(missing, kShortestLook, kLongestLook));
+        continue;
+      }
+      const auto n = std::min(static_cast<std::size_t>(available), out.size() - done);
+      const PaError error = Pa_ReadStream(stream_.stream_, out.data() + done, static_cast<unsigned long>(n));
+      // An overflow lost samples to a busy machine; the stream itself goes on.
+      if (error == paInputOverflowed && ++overflows_ % 100 == 1) {
+        spdlog::warn("recording from {} lost samples ({} times so far): the machine is too busy to keep up",
+                     stream_.describe(), overflows_);
+      }
+      if (error != paNoError && error != paInputOverflowed) fail(error);
+      done += n;
+      last_frame = std::chrono::steady_clock::now();
     }
     return out.size();
   }
@@ -193,6 +219,18 @@ class PortAudioSource : public AudioSource {
   std::string describe() const override { return stream_.describe(); }
 
  private:
+  // A microphone delivers samples while it runs, silence included: none for this long is a
+  // stall, not a quiet room (long enough for a loaded machine to set the stream up).
+  static constexpr std::chrono::milliseconds kDeviceSilentLimit{10000};
+  // Between looks at a device with nothing captured: the time the missing samples take, within
+  // these bounds (a long block is still read as soon as part of it is there).
+  static constexpr std::chrono::microseconds kShortestLook{1000}, kLongestLook{10000};
+
+  [[noreturn]] void fail(PaError error) const {
+    throw AudioError("recording from " + stream_.describe() + " failed: " + Pa_GetErrorText(error) +
+                     " (is the device still connected?)");
+  }
+
   PortAudioStream stream_;
   long overflows_ = 0;
 };
@@ -245,7 +283,7 @@ AudioDeviceInfo find_audio_device(const std::string& spec, Direction direction) 
 
 std::unique_ptr<AudioSource> open_input_device(const std::string& spec, int sample_rate_hz,
                                                const DeviceOptions& options) {
-  return std::make_unique<PortAudioSource>(spec, sample_rate_hz, options);
+  return std::make_unique<CaptureThread>(std::make_unique<PortAudioSource>(spec, sample_rate_hz, options));
 }
 
 std::unique_ptr<AudioSink> open_output_device(const std::string& spec, int sample_rate_hz,

@@ -2,9 +2,10 @@
 //
 // Devices are found by index, by exact name, or by a unique case-insensitive part of the
 // name ("pulse", "USB"); "default" is the host's default device. Streams are blocking,
-// mono, float, with the buffer depth the caller asks for. With no device at all the error
-// (NoAudioDevice) says how to get one; the program adds how it works with files instead.
-// PortAudio is initialised while any device object lives.
+// mono, float, with the buffer depth the caller asks for; a microphone is drained by a
+// thread of its own (capture_thread.h), and its reader decodes at normal priority. With no device at all
+// the error (NoAudioDevice) says how to get one; the program adds how it works with files instead. PortAudio is
+// initialised while any device object lives.
 #pragma once
 
 #include <memory>

@@ -1,0 +1,207 @@
+#!/usr/bin/env bash
+# The fleet's database under load (issue 37): AGENTS dtmf-agent and SERVERS dtmf-server
+# processes, all real, on one private PulseAudio air and one private PostgreSQL, for SECONDS,
+# the database stopped for OUTAGE seconds in the middle. Each server drives two robots
+# (addresses 2s-1 and 2s) with Drives at random from a dtmfctl loop; the agents take the
+# addresses in turn, so several agents hear and log each robot's frames. The servers share
+# the air unscheduled: their frames collide, and that is fine here, where what counts is the
+# rows, and the collisions are counted (frames that overlapped another sender's, and how many
+# of those and of the others went unanswered). Afterwards, every row any program wrote is in
+# the database once:
+#   - each agent's receptions: as many rows as frames it logged (its log's frame lines);
+#   - each server's commands: every command dtmfctl saw start (its command ids) has a row,
+#     finished (no 'queued' or 'transmitting' left), with at least one frame attempt;
+#   - no two receptions of one agent heard at the same moment with the same frame;
+#   - the per-robot reports of each sender's commands add up to the room's;
+# and every program did its part: each server answered health checks and confirmed commands,
+# each agent logged frames. The CPU each agent used is printed: a decoder that spins (as one
+# at real-time priority once did, physical/capture_thread.h) shows there.
+#
+#   bench/e2e/fleet_load.sh [--agents 20] [--servers 3] [--seconds 600] [--outage-s 10]
+#                           [--bin build/bin] [--json PATH]      (--outage-s 0: no restart)
+# Exit 0 when every check holds, 1 naming each that failed. scripts/bench runs it for 10
+# minutes; the suite (bench.FleetLoad) for 40 s with 6 agents and 2 servers.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+agents=20 servers=3 seconds=600 outage_s=10 bin=build/bin json=""
+while [ $# -gt 0 ]; do
+  case $1 in
+    --agents) agents=$2; shift ;;
+    --servers) servers=$2; shift ;;
+    --seconds) seconds=$2; shift ;;
+    --outage-s) outage_s=$2; shift ;;
+    --bin) bin=$2; shift ;;
+    --json) json=$2; shift ;;
+    *) echo "fleet_load: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+  shift
+done
+[ "$servers" -ge 1 ] && [ "$servers" -le 3 ] || { echo "fleet_load: 1 to 3 servers (two robots each, addresses 1-6)" >&2; exit 2; }
+[ "$agents" -ge "$((2 * servers))" ] || { echo "fleet_load: at least two agents a server (one per robot)" >&2; exit 2; }
+[ "$outage_s" -ge 0 ] && [ "$seconds" -gt "$((outage_s + 10))" ] || { echo "fleet_load: --seconds must exceed the outage by 10 s" >&2; exit 2; }
+bin=$(realpath "$bin")
+dir=$(mktemp -d /tmp/dtmf-fleet-load-XXXXXX)
+chmod o+x "$dir"  # PostgreSQL runs as postgres when this runs as root (scripts/pg)
+pids=()
+cleanup() {
+  local p
+  for p in "${pids[@]}"; do kill -TERM "$p" 2>/dev/null || true; done
+  for p in "${pids[@]}"; do wait "$p" 2>/dev/null || true; done
+  scripts/pg destroy "$dir/pg" >/dev/null 2>&1 || true
+  scripts/air stop "$dir/air" >/dev/null 2>&1 || true
+  rm -rf "$dir"
+}
+trap cleanup EXIT
+
+eval "$(scripts/air start "$dir/air")"
+pg_port=$((26000 + RANDOM % 4000))
+eval "$(scripts/pg start "$dir/pg" "$pg_port")"
+"$bin/dtmf-migrate" --db "$DTMF_DB_URL" >/dev/null
+
+agent_pids=()
+for a in $(seq "$agents"); do
+  address=$(( (a - 1) % (2 * servers) + 1 ))
+  "$bin/dtmf-agent" --audio default --ack-out default --profile fast --address "$address" --host "agent$a" \
+    --cmd-vel log --db "$DTMF_DB_URL" --spill-file "$dir/agent$a.spill" \
+    > /dev/null 2> "$dir/agent$a.log" &
+  pids+=($!) agent_pids+=($!)
+done
+ports=()
+for s in $(seq "$servers"); do
+  echo "[{\"name\": \"s${s}a\", \"address\": $((2 * s - 1))}, {\"name\": \"s${s}b\", \"address\": $((2 * s))}]" \
+    > "$dir/robots$s.json"
+  port=$((pg_port + 100 + s))
+  ports+=("$port")
+  "$bin/dtmf-server" --robots "$dir/robots$s.json" --host "sender$s" --port "$port" --audio-out default \
+    --audio-in default --db "$DTMF_DB_URL" --spill-file "$dir/server$s.spill" \
+    > /dev/null 2> "$dir/server$s.log" &
+  pids+=($!)
+done
+failures=()
+started_at=$(date +%s.%N)
+for s in $(seq "$servers"); do
+  up=no
+  for _ in $(seq 300); do
+    "$bin/dtmfctl" health --server "localhost:${ports[s - 1]}" >/dev/null 2>&1 && { up=yes; break; }
+    sleep 0.1
+  done
+  [ $up = yes ] || failures+=("sender$s did not answer health checks within 30 s: $(tail -1 "$dir/server$s.log")")
+done
+healthy_s=$(awk -v a="$started_at" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
+
+# Each server's driver: Drives at random to its two robots until told to stop.
+drive_loop() {
+  local s=$1 port=$2 robot
+  while [ ! -e "$dir/stop-driving" ]; do
+    robot=s${s}$( ((RANDOM % 2)) && echo a || echo b)
+    "$bin/dtmfctl" --server "localhost:$port" --robot "$robot" --json drive --speed $((10 + RANDOM % 80)) \
+      --duration 0.5 --on-unconfirmed continue < /dev/null >> "$dir/driver$s.jsonl" 2>> "$dir/driver$s.err" || true
+  done
+}
+drivers=()
+for s in $(seq "$servers"); do drive_loop "$s" "${ports[s - 1]}" & drivers+=($!); done
+
+ticks() { awk '{ print $14 + $15 }' "/proc/$1/stat" 2>/dev/null || echo 0; }
+declare -A cpu_before
+for p in "${agent_pids[@]}"; do cpu_before[$p]=$(ticks "$p"); done
+measured_from=$(date +%s.%N)
+half=$(( seconds / 2 ))
+sleep "$half"
+if [ "$outage_s" -gt 0 ]; then
+  echo "fleet_load: the database stops for ${outage_s} s"
+  scripts/pg stop "$dir/pg" >/dev/null
+  sleep "$outage_s"
+  eval "$(scripts/pg start "$dir/pg" "$pg_port")"
+fi
+sleep $(( seconds - half - outage_s ))
+touch "$dir/stop-driving"
+for d in "${drivers[@]}"; do wait "$d" || true; done
+# The CPU share each agent used while the servers drove (a spinning decoder shows here).
+elapsed=$(awk -v a="$measured_from" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
+hz=$(getconf CLK_TCK)
+cpu_pcts=()
+for p in "${agent_pids[@]}"; do
+  cpu_pcts+=("$(awk -v t="$(( $(ticks "$p") - ${cpu_before[$p]} ))" -v hz="$hz" -v s="$elapsed" \
+    'BEGIN { printf "%.1f", 100 * t / hz / s }')")
+done
+cpu_mean=$(printf '%s\n' "${cpu_pcts[@]}" | awk '{ s += $1 } END { printf "%.1f", s / NR }')
+cpu_max=$(printf '%s\n' "${cpu_pcts[@]}" | sort -n | tail -1)
+# Stopped with SIGTERM, as systemd stops them: each flushes what it holds.
+for p in "${pids[@]}"; do kill -TERM "$p" 2>/dev/null || true; done
+for p in "${pids[@]}"; do wait "$p" 2>/dev/null || true; done
+pids=()
+
+q() { psql "$DTMF_DB_URL" -XAtc "$1"; }
+logged_total=0 stored_total=0
+for a in $(seq "$agents"); do
+  logged=$(grep -cE 't=[0-9.]+s fast frame' "$dir/agent$a.log" || true)
+  stored=$(q "SELECT count(*) FROM receptions WHERE host = 'agent$a'")
+  logged_total=$((logged_total + logged)); stored_total=$((stored_total + stored))
+  [ "$logged" -gt 0 ] || failures+=("agent$a logged no frame: $(tail -1 "$dir/agent$a.log")")
+  [ "$logged" = "$stored" ] || failures+=("agent$a logged $logged frames, the database holds $stored")
+done
+dupes=$(q "SELECT count(*) FROM (SELECT host, heard_at, frame FROM receptions GROUP BY 1, 2, 3 HAVING count(*) > 1) d")
+[ "$dupes" = 0 ] || failures+=("$dupes receptions stored twice")
+commands_total=0 confirmed_total=0
+for s in $(seq "$servers"); do
+  started=$(grep -o '"command_id":"[0-9a-f-]*"' "$dir/driver$s.jsonl" 2>/dev/null | sort -u | wc -l)
+  stored=$(q "SELECT count(*) FROM commands WHERE host = 'sender$s'")
+  confirmed=$(q "SELECT count(*) FROM commands WHERE host = 'sender$s' AND outcome = 'confirmed'")
+  commands_total=$((commands_total + stored)) confirmed_total=$((confirmed_total + confirmed))
+  [ "$confirmed" -gt 0 ] || failures+=("sender$s confirmed no command: $(tail -1 "$dir/driver$s.err" 2>/dev/null)")
+  [ "$started" = "$stored" ] || failures+=("sender$s started $started commands, the database holds $stored")
+  unfinished=$(q "SELECT count(*) FROM commands WHERE host = 'sender$s' AND outcome IN ('queued', 'transmitting')")
+  [ "$unfinished" = 0 ] || failures+=("sender$s: $unfinished commands never finished in the database")
+  bare=$(q "SELECT count(*) FROM commands c WHERE host = 'sender$s' AND NOT EXISTS
+            (SELECT 1 FROM frame_attempts a WHERE a.command_id = c.id)")
+  [ "$bare" = 0 ] || failures+=("sender$s: $bare commands without a frame attempt")
+done
+# The reports: one run per sender over all its commands, whose robots must add up to it.
+q "INSERT INTO test_runs (id, label, profile, started_at, ended_at, host, revision)
+   SELECT gen_random_uuid(), 'load ' || host, 'fast', min(requested_at), max(finished_at), host, 1
+   FROM commands GROUP BY host" >/dev/null
+q "UPDATE commands c SET run_id = r.id FROM test_runs r WHERE r.host = c.host" >/dev/null
+q "UPDATE frame_attempts a SET run_id = c.run_id FROM commands c WHERE c.id = a.command_id" >/dev/null
+mismatch=$(q "SELECT count(*) FROM test_runs r, run_report(r.id) room
+              WHERE room.transmissions_sent <> (SELECT sum(x.transmissions_sent)
+                FROM (SELECT DISTINCT robot FROM commands WHERE run_id = r.id) n, LATERAL run_report(r.id, n.robot) x)
+                 OR room.successfully_matched <> (SELECT sum(x.successfully_matched)
+                FROM (SELECT DISTINCT robot FROM commands WHERE run_id = r.id) n, LATERAL run_report(r.id, n.robot) x)")
+[ "$mismatch" = 0 ] || failures+=("$mismatch senders whose robots' reports do not add up to the room's")
+# The air shared unscheduled: frames that overlapped another sender's, and what each kind lost.
+IFS='|' read -r attempts overlapped overlapped_lost clear_lost first_time < <(q "
+  WITH a AS (SELECT f.id, c.host, f.chord_started_at s, f.chord_ended_at e, f.answer FROM frame_attempts f
+             JOIN commands c ON c.id = f.command_id WHERE f.chord_ended_at IS NOT NULL),
+       x AS (SELECT a.*, EXISTS (SELECT 1 FROM a b WHERE b.host <> a.host AND b.s < a.e AND a.s < b.e) o FROM a)
+  SELECT count(*), count(*) FILTER (WHERE o), count(*) FILTER (WHERE o AND answer IS DISTINCT FROM 'ack'),
+         count(*) FILTER (WHERE NOT o AND answer IS DISTINCT FROM 'ack'),
+         (SELECT count(*) FROM commands c WHERE outcome = 'confirmed'
+            AND NOT EXISTS (SELECT 1 FROM frame_attempts f WHERE f.command_id = c.id AND f.attempt > 1))
+  FROM x")
+spilled=$(find "$dir" -maxdepth 1 -name '*.spill*' -exec cat {} + | wc -l)
+[ "$spilled" = 0 ] || failures+=("$spilled rows left in spill files after a clean stop")
+
+echo "fleet_load: $agents agents, $servers servers, ${seconds} s, the database down ${outage_s} s in the middle"
+echo "fleet_load: servers healthy after ${healthy_s} s; agents' CPU mean ${cpu_mean} %, most ${cpu_max} % of a core"
+echo "fleet_load: receptions logged $logged_total, stored $stored_total; commands stored $commands_total," \
+  "confirmed $confirmed_total ($first_time at the first try); spill lines left $spilled"
+echo "fleet_load: frames sent $attempts, $overlapped overlapped another sender's ($overlapped_lost of them" \
+  "unanswered); unanswered without an overlap $clear_lost"
+if [ -n "$json" ]; then
+  python3 - "$json" "${failures[@]}" <<EOF
+import json, sys
+json.dump({"agents": $agents, "servers": $servers, "seconds": $seconds, "outage_s": $outage_s,
+           "healthy_s": $healthy_s, "agent_cpu_mean_pct": $cpu_mean, "agent_cpu_max_pct": $cpu_max,
+           "receptions_logged": $logged_total, "receptions_stored": $stored_total, "commands": $commands_total,
+           "confirmed": $confirmed_total, "confirmed_first_try": $first_time, "duplicates": $dupes,
+           "spill_left": $spilled, "frames": $attempts, "frames_overlapped": $overlapped,
+           "frames_overlapped_unanswered": $overlapped_lost, "frames_clear_unanswered": $clear_lost,
+           "measured_utc": "$(date -u '+%Y-%m-%d %H:%M UTC')", "failures": sys.argv[2:]}, open(sys.argv[1], "w"))
+EOF
+fi
+if [ ${#failures[@]} -gt 0 ]; then
+  printf 'fleet_load: FAILED: %s\n' "${failures[@]}" >&2
+  exit 1
+fi
+echo "fleet_load: every row once, every report adds up"

@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""bench/fleet_section.py's fleet-database rows on made-up load runs: the full run with no
+failure meets the target, a failure or a shorter run does not and says why, a run that failed
+outright shows its error, and a missing run says "not run" (ctest: bench.fleet_section).
+
+    /usr/bin/python3 tests/bench/fleet_section_test.py
+"""
+
+import json
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
+import fleet_section  # noqa: E402
+
+
+def load(agents=20, servers=3, seconds=600, failures=(), confirmed=299):
+    return dict(agents=agents, servers=servers, seconds=seconds, outage_s=10, healthy_s=5.2, agent_cpu_mean_pct=5.1,
+                agent_cpu_max_pct=5.6, receptions_logged=900, receptions_stored=900, commands=300, confirmed=confirmed,
+                confirmed_first_try=280, duplicates=0, spill_left=0, frames=400, frames_overlapped=40,
+                frames_overlapped_unanswered=20, frames_clear_unanswered=3, measured_utc="2026-11-29 18:00 UTC",
+                failures=list(failures))
+
+
+def section(load_doc=None, error=None, two_senders=None):
+    with tempfile.TemporaryDirectory() as directory:
+        fleet = Path(directory) / "fleet"
+        fleet.mkdir()
+        if load_doc is not None:
+            (fleet / "load.json").write_text(json.dumps(load_doc))
+        if two_senders is not None:
+            (fleet / "two_senders.json").write_text(json.dumps(two_senders))
+        if error is not None:
+            (fleet / "load.error").write_text("starting\n" + error + "\n")
+        out = []
+        fleet_section.fleet_section(out.append, {"fast": {}}, ["fast"], lambda d: "error" not in d, directory)
+        return "\n".join(out)
+
+
+def target_row(text, start="| fleet database"):
+    return next(line for line in text.splitlines() if line.startswith(start))
+
+
+class FleetLoadRows(unittest.TestCase):
+    def test_the_full_run_without_failures_meets_the_target(self):
+        text = section(load())
+        self.assertTrue(target_row(text).endswith("| yes |"), target_row(text))
+        self.assertIn("| load | 20 | 3 | 600 s | 10 s | 5.2 s | 5.1 / 5.6 % | 900 / 900 | 300 (299; 280) | 0 | 0 | 400 "
+                      "| 40 (20) | 3 | 0 |", text)
+
+    def test_a_failure_misses_the_target_and_is_listed(self):
+        text = section(load(failures=["agent3 logged 12 frames, the database holds 11"]))
+        self.assertTrue(target_row(text).endswith("| no |"))
+        self.assertIn("- load: agent3 logged 12 frames, the database holds 11", text)
+
+    def test_a_shorter_run_does_not_meet_the_target_and_says_so(self):
+        row = target_row(section(load(agents=6, servers=2, seconds=40)))
+        self.assertIn("a shorter run than the target's", row)
+        self.assertTrue(row.endswith("| no |"))
+
+    def test_a_run_that_failed_shows_its_error(self):
+        text = section(error="fleet_load: FAILED: sender2 confirmed no command")
+        self.assertIn("| load | | | | | | | | | | | | | | failed: fleet_load: FAILED: sender2 confirmed no command", text)
+        self.assertIn("failed: fleet_load: FAILED: sender2 confirmed no command | no |", target_row(text))
+
+    def test_no_run_says_not_run(self):
+        self.assertIn("| not run | no |", target_row(section()))
+        self.assertIn("| not run | no |", target_row(section(), "| two senders, "))
+
+    def test_two_senders_report_the_confirmed_share_and_the_collisions(self):
+        row = target_row(section(two_senders=load(agents=4, servers=2)), "| two senders, ")
+        self.assertIn("99.67 % of 300 confirmed", row)
+        self.assertIn("10.0 % of frames overlapped the other sender's and 5.0 % were lost to it", row)
+        self.assertTrue(row.endswith("| the confirmed share: yes; wrong executions: not counted |"), row)
+        missed = target_row(section(two_senders=load(agents=4, servers=2, confirmed=290)), "| two senders, ")
+        self.assertTrue(missed.endswith("| no |"), missed)
+
+
+if __name__ == "__main__":
+    unittest.main()
