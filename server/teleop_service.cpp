@@ -84,6 +84,22 @@ grpc::Status outcome_status(Job& job) {
   }
 }
 
+// Runs `submit`, and answers a request the transmitter refused with the status every command
+// RPC gives it; nullopt when the command was accepted.
+template <class Submit>
+std::optional<grpc::Status> refusal_of(Submit&& submit) {
+  try {
+    submit();
+  } catch (const RequestError& e) {
+    return e.status();
+  } catch (const QueueFull& e) {
+    return grpc::Status{grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
+  } catch (const TransmitterUnavailable& e) {
+    return grpc::Status{grpc::StatusCode::UNAVAILABLE, e.what()};
+  }
+  return std::nullopt;
+}
+
 // Drive, Turn, Stop and Reset each stream their own response message around one Progress.
 template <typename Response>
 auto progress_to(grpc::ServerWriter<Response>* writer) {
@@ -118,49 +134,45 @@ template <class Write>
 grpc::Status TeleopService::run_command(grpc::ServerContext* context, const command::Command& command,
                                         const v1::CommandOptions& request_options, bool to_front, Write write) {
   std::shared_ptr<Job> job;
-  std::string profile = transmitter_.profile().name;
   std::string robot;
-  try {
+  const auto refused = refusal_of([&] {
     const CommandSettings settings = settings_of(request_options, std::holds_alternative<command::Stop>(command));
-    if (settings.profile) profile = settings.profile->name;
+    const std::string profile = settings.profile ? settings.profile->name : transmitter_.profile().name;
     robot = transmitter_.robot_name(settings.robot);
-    job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile,
-                              settings.robot);
-  } catch (const RequestError& e) {
-    return e.status();
-  } catch (const command::ParameterError& e) {
-    // The chosen profile's frames cannot carry the command (its fields, or its kind).
-    return {grpc::StatusCode::INVALID_ARGUMENT, "profile " + profile + ": " + e.what()};
-  } catch (const UnauthenticatedRefused& e) {
-    return {grpc::StatusCode::INVALID_ARGUMENT, std::string("options.profile: ") + e.what()};
-  } catch (const QueueFull& e) {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
-  } catch (const TransmitterUnavailable& e) {
-    return {grpc::StatusCode::UNAVAILABLE, e.what()};
-  }
+    try {
+      job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile,
+                                settings.robot);
+    } catch (const command::ParameterError& e) {
+      // The chosen profile's frames cannot carry the command (its fields, or its kind).
+      throw RequestError("profile " + profile + ": " + e.what());
+    } catch (const UnauthenticatedRefused& e) {
+      throw RequestError(std::string("options.profile: ") + e.what());
+    }
+  });
+  if (refused) return *refused;
   return follow(context, job, robot, write);
 }
 
 grpc::Status TeleopService::stop_every_robot(grpc::ServerContext* context, const v1::StopRequest& request,
                                              grpc::ServerWriter<v1::StopResponse>* writer) {
   std::shared_ptr<Job> job;
+  std::optional<grpc::Status> refused;
   try {
-    if (!request.options().robot().empty())
-      throw RequestError("options.robot: a stop for every robot names none (leave it empty, or drop all_robots)");
-    const LinkProfile* profile = command_settings(request.options(), options_.defaults).profile;
-    halt_every_teleop();
-    job = transmitter_.submit_every_robot_stop(profile);
-  } catch (const RequestError& e) {
-    return e.status();
+    refused = refusal_of([&] {
+      if (!request.options().robot().empty())
+        throw RequestError("options.robot: a stop for every robot names none (leave it empty, or drop all_robots)");
+      const LinkProfile* profile = command_settings(request.options(), options_.defaults).profile;
+      halt_every_teleop();  // before the submit, as Stop for one robot does (the proto says why)
+      try {
+        job = transmitter_.submit_every_robot_stop(profile);
+      } catch (const std::invalid_argument& e) {  // no profile that can send it
+        throw RequestError(std::string("options.profile: ") + e.what());
+      }
+    });
   } catch (const RoomKeyMissing& e) {
     return {grpc::StatusCode::FAILED_PRECONDITION, std::string("all_robots: ") + e.what()};
-  } catch (const std::invalid_argument& e) {
-    return {grpc::StatusCode::INVALID_ARGUMENT, std::string("options.profile: ") + e.what()};
-  } catch (const QueueFull& e) {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
-  } catch (const TransmitterUnavailable& e) {
-    return {grpc::StatusCode::UNAVAILABLE, e.what()};
   }
+  if (refused) return *refused;
   return follow(context, job, "", progress_to(writer));
 }
 

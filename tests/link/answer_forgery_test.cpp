@@ -19,15 +19,14 @@
 #include "security/link_key.h"
 #include "signal/hop_synthesizer.h"
 #include "sim/noise.h"
+#include "support/test_key.h"
 
 using namespace dtmf;
 
 TEST(AnswerForgery, TenMinutesOfForgedTagChordsConfirmNothingAndTheTrueAnswerIsStillHeard) {
   const LinkProfile& p = profile_by_name("fast");
-  std::array<unsigned char, security::kKeyBytes> bytes{};
-  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<unsigned char>(0x3c ^ (29 * i));
   link::LinkOptions options;
-  options.key = security::LinkKey::from_bytes(bytes);
+  options.key = test_support::test_key(0x3c);
   const auto sender = link::make_link(p, options);
   const auto robot = link::make_link(p, options);
   const auto ear = sender->answer_listener();

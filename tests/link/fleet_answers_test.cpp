@@ -17,6 +17,7 @@
 #include "profile/link_profile.h"
 #include "reliability/command_frame.h"
 #include "security/link_key.h"
+#include "support/test_key.h"
 
 using namespace dtmf;
 
@@ -24,11 +25,7 @@ namespace {
 
 const LinkProfile& p = profile_by_name("fast");
 
-std::shared_ptr<const security::LinkKey> key(unsigned char seed) {
-  std::array<unsigned char, security::kKeyBytes> bytes{};
-  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<unsigned char>(seed ^ (17 * i));
-  return security::LinkKey::from_bytes(bytes);
-}
+using test_support::test_key;
 
 link::LinkOptions options(std::uint8_t address, std::shared_ptr<const security::LinkKey> k) {
   link::LinkOptions o;
@@ -105,7 +102,7 @@ TEST(FleetAnswers, ANackEndsOnlyItsOwnRobotsFrame) {
 TEST(FleetAnswers, TaggedAcksWithTheSameCounterConfirmOnlyTheirOwnRobotsFrame) {
   // One key for the room (both robots hold it), then a key each.
   for (const bool room_key : {true, false}) {
-    TwoRobots t = room_key ? two_robots(key(0x5a), key(0x5a)) : two_robots(key(0x5a), key(0x33));
+    TwoRobots t = room_key ? two_robots(test_key(0x5a), test_key(0x5a)) : two_robots(test_key(0x5a), test_key(0x33));
     ASSERT_EQ(t.frame1.counter, t.frame2.counter) << "the test needs colliding counters";
     const auto ack1 = t.robot1->answer_audio(link::intact_reception(t.frame1));
     const auto ack2 = t.robot2->answer_audio(link::intact_reception(t.frame2));
@@ -118,9 +115,9 @@ TEST(FleetAnswers, TaggedAcksWithTheSameCounterConfirmOnlyTheirOwnRobotsFrame) {
 
 TEST(FleetAnswers, ARobotLeavesAFrameSealedUnderAnotherKeyUnansweredAndUnexecuted) {
   // Both robots left at the default address, each with its own key.
-  const auto sender = link::make_link(p, options(0, key(0x5a)));
-  const auto other_robot = link::make_link(p, options(0, key(0x33)));
-  const auto own_robot = link::make_link(p, options(0, key(0x5a)));
+  const auto sender = link::make_link(p, options(0, test_key(0x5a)));
+  const auto other_robot = link::make_link(p, options(0, test_key(0x33)));
+  const auto own_robot = link::make_link(p, options(0, test_key(0x5a)));
   const link::TransmitFrame frame = sender->plan(command::Stop{}).back();
   std::vector<float> track(static_cast<std::size_t>(p.samples_for_ms(100)), 0.0f);
   track.insert(track.end(), frame.audio.begin(), frame.audio.end());

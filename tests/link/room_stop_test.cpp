@@ -15,6 +15,7 @@
 #include "profile/link_profile.h"
 #include "security/counter_store.h"
 #include "security/link_key.h"
+#include "support/test_key.h"
 
 using namespace dtmf;
 
@@ -22,13 +23,9 @@ namespace {
 
 const LinkProfile& p = profile_by_name("fast");
 
-std::shared_ptr<const security::LinkKey> key(unsigned char seed) {
-  std::array<unsigned char, security::kKeyBytes> bytes{};
-  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<unsigned char>(seed ^ (29 * i));
-  return security::LinkKey::from_bytes(bytes);
-}
+using test_support::test_key;
 
-const auto kRoomKey = key(0x77);
+const auto kRoomKey = test_key(0x77);
 
 // The sender's room link: the room key, its counters from a clock's value.
 std::unique_ptr<link::Link> room_sender(std::shared_ptr<const security::LinkKey> room_key, std::uint64_t counter) {
@@ -79,7 +76,7 @@ TEST(RoomStop, EveryKeyedRobotExecutesTheRoomStopOnceAndNoneAnswers) {
   EXPECT_TRUE(frames[0].broadcast && frames[0].authenticated);
   EXPECT_NE(frames[0].counter, frames[1].counter) << "each copy its own counter";
   for (std::uint8_t address = 1; address <= 3; ++address) {
-    const auto r = robot(address, key(address), kRoomKey);
+    const auto r = robot(address, test_key(address), kRoomKey);
     Ear ear(*r);
     const auto first = ear.hear(frames[0].audio);
     ASSERT_EQ(first.size(), 1u) << "robot " << int(address);
@@ -102,7 +99,7 @@ TEST(RoomStop, EveryKeyedRobotExecutesTheRoomStopOnceAndNoneAnswers) {
 TEST(RoomStop, TwoSendersWhoseClocksDifferBothStopTheRobot) {
   const auto ahead = room_sender(kRoomKey, 900'000);
   const auto behind = room_sender(kRoomKey, 900'000 - 20 * 60);  // a clock a minute behind
-  const auto r = robot(2, key(2), kRoomKey);
+  const auto r = robot(2, test_key(2), kRoomKey);
   Ear ear(*r);
   const auto a = ear.hear(ahead->plan(command::Stop{true}).front().audio);
   const auto b = ear.hear(behind->plan(command::Stop{true}).front().audio);
@@ -122,10 +119,10 @@ TEST(RoomStop, OnlyTheRoomKeyMakesAStopForEveryRobot) {
   // Sealed under another key (robot 2's own), with every_robot set: robot 3 does not take it.
   link::LinkOptions o;
   o.address = 0;
-  o.key = key(2);
+  o.key = test_key(2);
   const auto wrong = link::make_link(p, o)->plan(command::Stop{true}).front();
   for (const std::uint8_t address : {0, 3}) {
-    const auto r = robot(address, key(3), kRoomKey);
+    const auto r = robot(address, test_key(3), kRoomKey);
     Ear ear(*r);
     for (const auto& heard : ear.hear(wrong.audio)) {
       EXPECT_FALSE(heard.command.has_value()) << "robot " << int(address) << ": " << heard.detail;
@@ -133,7 +130,7 @@ TEST(RoomStop, OnlyTheRoomKeyMakesAStopForEveryRobot) {
     }
   }
   // A keyed robot without the room key refuses the room's stop, and keeps quiet.
-  const auto r = robot(0, key(4), nullptr);
+  const auto r = robot(0, test_key(4), nullptr);
   Ear ear(*r);
   const auto heard = ear.hear(room_sender(kRoomKey, 10)->plan(command::Stop{true}).front().audio);
   ASSERT_EQ(heard.size(), 1u);
@@ -156,7 +153,7 @@ TEST(RoomStop, UnkeyedItIsPlainAndTakenOnlyByRobotsThatTakePlainFrames) {
   }
   // With a key of its own, or the room key, a robot takes no plain stop for every robot.
   for (const bool room : {false, true}) {
-    const auto r = room ? robot(1, nullptr, kRoomKey) : robot(1, key(1), nullptr);
+    const auto r = room ? robot(1, nullptr, kRoomKey) : robot(1, test_key(1), nullptr);
     Ear ear(*r);
     const auto heard = ear.hear(frames[0].audio);
     ASSERT_EQ(heard.size(), 1u);
@@ -170,16 +167,16 @@ TEST(RoomStop, UnkeyedItIsPlainAndTakenOnlyByRobotsThatTakePlainFrames) {
 TEST(RoomStop, RobotTwosFramesPlayedToRobotThreeMoveNothing) {
   link::LinkOptions o;
   o.address = 2;
-  o.key = key(2);
+  o.key = test_key(2);
   const auto sender = link::make_link(p, o);
   const auto drive = sender->plan(command::DriveForward{60});
-  const auto r3 = robot(3, key(3), kRoomKey);
+  const auto r3 = robot(3, test_key(3), kRoomKey);
   Ear ear(*r3);
   for (const auto& f : drive) {
     for (const auto& heard : ear.hear(f.audio)) EXPECT_FALSE(heard.command.has_value()) << heard.detail;
   }
   // Nor robot 3 left at robot 2's address by mistake: the MAC is robot 2's key's.
-  const auto misplaced = robot(2, key(3), kRoomKey);
+  const auto misplaced = robot(2, test_key(3), kRoomKey);
   Ear ear2(*misplaced);
   for (const auto& f : drive) {
     for (const auto& heard : ear2.hear(f.audio)) {
