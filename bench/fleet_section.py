@@ -87,10 +87,11 @@ def _load_rows(w, runs):
           f"({load.get('frames_overlapped_unanswered', '–')}) | {load.get('frames_clear_unanswered', '–')} "
           f"| {len(load['failures'])} | {load.get('measured_utc', '')} |")
     w("")
-    for title, load in runs.items():
-        for failure in load.get("failures", []):
-            w(f"- {title}: {failure}")
-    w("")
+    failures = [f"- {title}: {failure}" for title, load in runs.items() for failure in load.get("failures", [])]
+    for line in failures:
+        w(line)
+    if failures:
+        w("")
 
 
 def _two_senders_target(w, run):
