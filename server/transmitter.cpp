@@ -54,7 +54,7 @@ Transmitter::Transmitter(std::vector<RobotLinks> robots, const LinkProfile& prof
   if (robots.empty()) throw std::invalid_argument("a sender needs a robot to drive");
   std::vector<const link::Link*> every_link;
   for (RobotLinks& given : robots) {
-    Robot robot{std::move(given.name), std::move(given.model), std::move(given.links), {}, std::nullopt};
+    Robot robot{std::move(given.name), std::move(given.model), std::move(given.links), {}, std::nullopt, std::nullopt};
     for (const auto& l : robot.owned_links) {
       if (l->profile().sample_rate_hz == profile_.sample_rate_hz) robot.links.push_back(l.get());
     }
@@ -95,6 +95,11 @@ Transmitter::Transmitter(std::vector<RobotLinks> robots, const LinkProfile& prof
   // answers, heard while the ear caught up, came after their deadlines. Every robot's links
   // listen: each takes only its own robot's answers (link::Link::answers).
   ears_ = std::make_unique<ReplyListeners>(every_link);
+  if (options_.listen_before_talk) {
+    const auto seed = options_.backoff_seed.value_or(
+        static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count()));
+    air_.emplace(answer_silence_ms(), seed);
+  }
   worker_ = std::thread([this] { run(); });
   listener_ = std::thread([this] { listen(); });
 }
@@ -268,6 +273,11 @@ void Transmitter::listen() {
     if (got == 0) return;  // the input ended (a file, or a stopped simulated air)
     audio_ms += 1000.0 * static_cast<double>(got) / profile_.sample_rate_hz;
     const double now = now_ms();
+    const double level_dbfs = reliability::block_level_dbfs(std::span<const float>(block.data(), got));
+    {
+      std::lock_guard lock(mutex_);
+      carrier_.hear(level_dbfs, now);
+    }
     for (const HeardAnswer& heard : listener.feed(std::span<const float>(block.data(), got))) {
       std::lock_guard lock(mutex_);
       // The block just read ends now; the reply was heard a little earlier.

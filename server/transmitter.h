@@ -24,6 +24,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -36,6 +37,8 @@
 #include "physical/audio_io.h"
 #include "profile/link_profile.h"
 #include "progress_observer.h"
+#include "reliability/air_access.h"
+#include "reliability/carrier_sense.h"
 #include "reply_listeners.h"
 
 namespace dtmf::server {
@@ -90,6 +93,20 @@ struct TransmitterOptions {
   // confirmed by an untagged ACK (dtmf-server --allow-unauthenticated-commands). Stop still
   // goes authenticated.
   bool allow_unauthenticated = false;
+  // Listen before talk (reliability/air_access.h): defer to other senders' frames and answers
+  // heard on the microphone. Off only to measure what it saves (tests and benchmarks).
+  bool listen_before_talk = true;
+  // The seed of its random backoff; none: from the clock, so that two senders differ.
+  std::optional<std::uint64_t> backoff_seed = std::nullopt;
+};
+
+// How this sender shared the air (listen before talk), for tests and logs.
+struct AirShare {
+  std::uint64_t deferred = 0;     // frames that waited for another's sound
+  std::uint64_t yields = 0;       // pauses made to let the others in
+  std::uint64_t listens = 0;      // pauses made, alone, to hear whether others wait
+  std::uint64_t busy_blocks = 0;  // microphone blocks heard busy with another's sound
+  double quiet_ms = 0;            // the quiet it waits for after another's sound
 };
 
 class Transmitter {
@@ -141,6 +158,7 @@ class Transmitter {
   const std::string& robot_name(RobotIndex robot) const { return robots_.at(robot).name; }
   const command::RobotModel& model_of(RobotIndex robot) const { return robots_.at(robot).model; }
   std::vector<RobotStatus> robots() const;
+  AirShare air_share() const;
   // The profile a command asking for `requested` (nullptr: the default) goes out under: that
   // one, unless this transmitter has a key and it carries no MAC. Then a Stop goes under the
   // first profile that does, and any other command is refused (UnauthenticatedRefused)
@@ -174,6 +192,18 @@ class Transmitter {
   store::WallTime wall(double steady_ms) const;
   double now_ms() const;
   void play(const link::TransmitFrame& frame, double start_ms);
+  // Waits until the loudspeaker is free and the air is ours (listen before talk), then marks
+  // our exchange as begun; false if the job was cancelled or the transmitter stops meanwhile.
+  bool wait_for_air(Job& job);
+  // Our frame ended: the microphone listens while we wait for its answer.
+  void frame_ended();
+  // Our exchange (a frame and its answer's wait) is over; `answer`: when our robot's answer
+  // sounded (heard, or where its answers came lately), so that it is not taken for another's;
+  // `unconfirmed`: no ACK came (a loss, perhaps a collision).
+  void exchange_ended(std::optional<reliability::AirSpan> answer = std::nullopt, bool unconfirmed = false);
+  // The longest silence between a frame's end and its answer that any profile this sender
+  // knows allows (ack_timeout_ms − chord_ms): the quiet it waits for after another's sound.
+  double answer_silence_ms() const;
   // The first answer to `frame` of `link` heard after `since_ms`, or nothing by `until_ms`.
   std::optional<HeardReply> wait_reply(const link::Link& link, const link::TransmitFrame& frame, double since_ms,
                                        double until_ms);
@@ -189,6 +219,7 @@ class Transmitter {
     std::vector<std::unique_ptr<link::Link>> owned_links;
     std::vector<const link::Link*> links;    // what this transmitter can send it and hear from it
     std::optional<double> last_answered_ms;  // guarded by mutex_
+    std::optional<double> answer_delay_ms;   // its last answer began this long after the frame ended
   };
 
   const LinkProfile& profile_;
@@ -209,6 +240,8 @@ class Transmitter {
   std::string unavailable_;  // why the audio path failed, once it did
   bool stopping_ = false;
   double channel_free_ms_ = 0;
+  reliability::CarrierSense carrier_;  // fed by listen(), guarded by mutex_
+  std::optional<reliability::AirAccess> air_;
 
   std::unique_ptr<ReplyListeners> ears_;  // every link's answer ear, fed by listen() alone
   std::thread worker_;

@@ -66,6 +66,7 @@ void Transmitter::send_unanswered(Job& job) {
                          reliability::RetryController({0, job.profile().timing.ack_timeout_ms}), 0, std::nullopt};
     attempt.retry.start();
     if (!transmit(job, attempt)) return;
+    exchange_ended();  // no answer comes
   }
   end(job, Outcome::Sent,
       std::to_string(job.frame_count()) +
@@ -113,7 +114,9 @@ void Transmitter::send(Job& job) {
 }
 
 bool Transmitter::transmit(Job& job, FrameAttempt& attempt) {
-  if (job.cancelled()) {
+  // One chord on air at a time, with the profile's silence between chords, and none into
+  // another sender's exchange.
+  if (job.cancelled() || !wait_for_air(job)) {
     bool stopping;
     {
       std::lock_guard lock(mutex_);
@@ -125,10 +128,6 @@ bool Transmitter::transmit(Job& job, FrameAttempt& attempt) {
   }
   const link::TransmitFrame& frame = *attempt.frame;
   reliability::RetryController& retry = attempt.retry;
-  // One chord on air at a time, with the profile's silence between chords.
-  while (now_ms() < channel_free_ms_) {
-    std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(channel_free_ms_ - now_ms()));
-  }
   attempt.chord_start = now_ms();
   retry.on_transmit_started(attempt.chord_start);
   ProgressEvent sending = attempt.event(retry.attempt() == 1 ? Kind::Transmitting : Kind::Retransmitting, job);
@@ -151,9 +150,11 @@ bool Transmitter::transmit(Job& job, FrameAttempt& attempt) {
       unavailable_ = std::string("the loudspeaker failed: ") + e.what();
     }
     spdlog::error("{}", unavailable_);
+    exchange_ended();
     end(job, Outcome::Unavailable, unavailable_);
     return false;
   }
+  frame_ended();
   attempt.chord_end = wall(now_ms());
   channel_free_ms_ = attempt.chord_start + frame.next_frame_after_ms;
   return true;
@@ -164,6 +165,11 @@ void Transmitter::await_answer(Job& job, FrameAttempt& attempt) {
   const auto reply = wait_reply(job.link(), *attempt.frame, attempt.chord_start, *retry.deadline_ms());
   ProgressEvent answer = attempt.event(Kind::NoAnswer, job);
   answer.chord_ended_at = attempt.chord_end;
+  // Where our robot's answer sounded, or would have: what the microphone heard there is ours.
+  const double answer_ms = job.profile().timing.ack_ms;
+  const double frame_end_ms = attempt.chord_start + attempt.frame->tone_ms;
+  std::optional<reliability::AirSpan> answer_span;
+  std::optional<double>& answer_delay_ms = robots_[robot_of(job.link())].answer_delay_ms;
   if (reply) {
     const auto kind = reply->answer.answer.ack ? reliability::Answer::Ack : reliability::Answer::Nack;
     retry.on_answer(kind, reply->steady_ms);
@@ -175,9 +181,16 @@ void Transmitter::await_answer(Job& job, FrameAttempt& attempt) {
     }
     answer.response_time_ms = retry.response_time_ms();
     answer.answered_at = wall(reply->steady_ms);
+    answer_delay_ms = std::max(0.0, reply->steady_ms - answer_ms - frame_end_ms);
   } else {
     retry.on_tick(std::max(now_ms(), *retry.deadline_ms()));
   }
+  if (answer_delay_ms) {
+    const double from_ms = frame_end_ms + *answer_delay_ms;
+    answer_span =
+        reliability::AirSpan{from_ms - reliability::kOwnLatencyMs, from_ms + answer_ms + reliability::kOwnLatencyMs};
+  }
+  exchange_ended(answer_span, !reply || !reply->answer.answer.ack);
   emit(job, answer);
 }
 

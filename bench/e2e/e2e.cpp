@@ -64,6 +64,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1.0, 50.0));
   app.add_option("--seed", seed, "random seed (speeds and durations)")->capture_default_str();
+  bool no_listen_before_talk = false;
+  app.add_flag("--no-listen-before-talk", no_listen_before_talk,
+               "the sender does not listen before it talks (to measure what listening costs a robot alone)");
   if (const auto exit_code = program::parse(app, argc, argv)) return *exit_code;
   return program::run(
       [&] {
@@ -77,6 +80,7 @@ int main(int argc, char** argv) {
         options.air_block_ms = air_block_ms;
         options.rir_file = rir_file;
         options.default_policy = server::Policy::Fail;
+        options.listen_before_talk = !no_listen_before_talk;
         options.sender_key = options.robot_key = key;
         test_support::LiveSystem system(options);
         spdlog::set_level(spdlog::level::warn);  // again: loggers made while starting take the global level

@@ -116,7 +116,8 @@ LiveSystem::LiveSystem(LiveSystemOptions options)
   transmitter_ = std::make_unique<server::Transmitter>(
       link::make_links(sender_links), profile, std::move(sender.speaker), std::move(sender.microphone), *send_observer_,
       server::TransmitterOptions{.max_queue = options_.max_queue,
-                                 .allow_unauthenticated = options_.allow_unauthenticated});
+                                 .allow_unauthenticated = options_.allow_unauthenticated,
+                                 .listen_before_talk = options_.listen_before_talk});
   server::ServiceOptions service_options;
   service_options.database = options_.database;
   service_options.defaults.policy = options_.default_policy;

@@ -33,6 +33,7 @@ struct LiveSystemOptions {
   bool robot_answers = true;  // false: the robot's loudspeaker is dead (every ACK lost)
   std::string auth_token;
   std::size_t max_queue = 32;
+  bool listen_before_talk = true;               // the sender's (server::TransmitterOptions)
   store::DatabaseUrl database = std::string();  // none
   server::Policy default_policy = server::Policy::Fail;
   // Keys of the sender and of the robot (none: unauthenticated); each side keeps its

@@ -1,0 +1,104 @@
+// Reliability layer: listen before talk — when a sender may start its next frame on an air
+// other senders share.
+//
+// Rules, from what its carrier sense (carrier_sense.h) heard:
+// - Defer while another sounds, until the air has been heard quiet for `quiet_ms`: the
+//   longest a robot of any profile this sender knows can stay silent between a frame's end
+//   and its answer's start (ack_timeout_ms − chord_ms). So a frame never starts into an
+//   answer another sender still waits for: a frame and its answer are one busy stretch.
+//   Heard quiet: our own tail, which may hide another, must have fallen too.
+// - Then back off at random (kBackoffSlots slots of kSlotMs, drawn once per deferral), so
+//   that two senders that waited for the same quiet seldom start together. A slot is longer
+//   than the time a start takes to be heard (the capture latency and a block).
+// - Yield: once the room is known to be shared (another was heard within kSharedMemoryMs),
+//   a sender whose frames have held the air for kMaxHoldMs pauses until the air has been
+//   quiet for longer than the others' quiet hold and backoff, and then listens again like
+//   them.
+// - Listen: a sender that has heard nobody pauses after kListenEveryMs of its frames until
+//   the air has been quiet for kListenWindowMs. While it sends, its own sound hides the
+//   others (its microphone is beside its loudspeaker), so this is where it hears a sender
+//   that waits for it.
+// - A sender that has waited kMaxDeferMs for one frame (another that never heard it holds
+//   the air) waits only for kStarvedQuietMs of quiet and a backoff of kStarvedSlots: it
+//   starts in that sender's listening pause, after its exchange, so that it is heard there.
+// - After a frame of ours went unanswered in a shared room (a collision, often with a sender
+//   that started with us and will retransmit when we do), back off kLossSlots at random
+//   before sending again, so that the two retransmissions do not meet again.
+// - A stop goes first: it waits only while another sounds right now, with no quiet hold,
+//   backoff or pause, and never longer than kMaxStopWaitMs (a sound that never ends, a
+//   jammer, must not hold a stop back). It may fall on another's awaited answer (that sender
+//   retransmits); it does not fall on a frame that will have ended by then.
+// - A teleop renewal never pauses: a lease must not lapse while its operator holds a key.
+//   It still defers to another's sound.
+// A sender alone pays one listening pause (its tail's fall and kListenWindowMs) per
+// kListenEveryMs of frames sent back to back, and nothing when its frames leave gaps.
+//
+// Pure logic: the caller passes its clock reading; the random draws come from the seeded
+// generator it is given.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <random>
+
+#include "reliability/carrier_sense.h"
+
+namespace dtmf::reliability {
+
+inline constexpr double kSlotMs = 50;              // a start is heard within a slot
+inline constexpr int kBackoffSlots = 8;            // backoff: 0..7 slots
+inline constexpr double kMaxHoldMs = 2000;         // a run of our frames, in a shared room
+inline constexpr double kSharedMemoryMs = 60'000;  // another heard this recently: shared
+inline constexpr double kListenEveryMs = 20'000;   // a run of our frames, alone
+inline constexpr int kStarvedSlots = 3;            // a starved sender's backoff: 0..2 slots
+// A starved sender's quiet: longer than the capture latency during which a sender whose
+// exchange just ended cannot tell another's start from its own sound.
+inline constexpr double kStarvedQuietMs = kOwnLatencyMs + kSlotMs;
+// The listening pause's quiet outlasts a starved sender's quiet, backoff and start.
+inline constexpr double kListenWindowMs = kStarvedQuietMs + (kStarvedSlots + 1) * kSlotMs;
+inline constexpr double kMaxDeferMs = 4000;           // waited this long: starved
+inline constexpr double kBusyNowMs = kOwnLatencyMs;   // a stop waits while sound is this fresh
+inline constexpr double kMaxStopWaitMs = 400;         // ... at most this long: a frame and its answer
+inline constexpr int kLossSlots = 2 * kBackoffSlots;  // after a loss in a shared room: 0..15 slots
+
+// What a frame is, for the air's rules.
+enum class AirUse { Command, Renewal, Stop };
+
+class AirAccess {
+ public:
+  AirAccess(double quiet_ms, std::uint64_t seed) : quiet_ms_(quiet_ms), random_(seed) {}
+
+  // The earliest time from `now_ms` our next frame may start (`now_ms` itself: at once).
+  // Call again at that time: a sound heard meanwhile moves it.
+  double start_at(const CarrierSense& sense, double now_ms, AirUse use);
+  // Our frame starts at `at_ms` (after start_at said so).
+  void started(const CarrierSense& sense, double at_ms);
+  // Our frame's exchange ended at `at_ms` without the answer it asked for.
+  void unanswered(const CarrierSense& sense, double at_ms);
+
+  double quiet_ms() const { return quiet_ms_; }
+  // How many frames had to wait for another's sound, and how many pauses we made (to yield
+  // in a shared room, or to listen alone).
+  std::uint64_t deferred() const { return deferred_; }
+  std::uint64_t yields() const { return yields_; }
+  std::uint64_t listens() const { return listens_; }
+
+ private:
+  bool shared(const CarrierSense& sense, double now_ms) const;
+  double draw_backoff_ms(int slots);
+  // The pause our run owes from `now_ms`, if it owes one: the quiet still to be heard.
+  std::optional<double> pause_left_ms(const CarrierSense& sense, double now_ms, bool shared);
+
+  double quiet_ms_;
+  std::mt19937_64 random_;
+  std::optional<double> backoff_ms_;  // drawn for the deferral under way
+  std::optional<double> deferred_since_ms_;
+  bool starved_ = false;
+  std::optional<double> not_before_ms_;  // after an unanswered frame
+  std::optional<double> stop_asked_ms_;  // when the stop waiting for the air first asked
+  std::optional<double> run_start_ms_;
+  bool pausing_ = false;
+  std::uint64_t deferred_ = 0, yields_ = 0, listens_ = 0;
+};
+
+}  // namespace dtmf::reliability

@@ -1,0 +1,107 @@
+#include "reliability/carrier_sense.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dtmf::reliability {
+
+double block_level_dbfs(std::span<const float> samples) {
+  if (samples.empty()) return kSilenceDbfs;
+  double power = 0;
+  for (const float s : samples) power += static_cast<double>(s) * s;
+  power /= static_cast<double>(samples.size());
+  // A full-scale sine has a mean power of 1/2.
+  const double level = 10 * std::log10(2 * power);
+  return std::isfinite(level) ? std::max(level, kSilenceDbfs) : kSilenceDbfs;
+}
+
+void CarrierSense::own_begin(double) {
+  own_on_ = true;
+  waiting_ = false;
+  provisional_.clear();
+}
+
+void CarrierSense::tail_from(double at_ms) {
+  tail_from_ms_ = at_ms;
+  tail_min_dbfs_ = std::numeric_limits<double>::infinity();
+}
+
+void CarrierSense::frame_ended(double at_ms) {
+  if (!own_on_) return;
+  own_on_ = false;
+  waiting_ = true;
+  tail_from(at_ms);
+}
+
+void CarrierSense::own_end(double at_ms, std::optional<AirSpan> answer) {
+  if (!own_on_ && !waiting_) return;
+  if (own_on_) tail_from(at_ms);
+  own_on_ = waiting_ = false;
+  own_ended_ms_ = at_ms;
+  for (const double busy_ms : provisional_) {
+    if (answer && busy_ms >= answer->from_ms && busy_ms <= answer->to_ms) continue;  // our robot's
+    last_busy_ms_ = std::max(last_busy_ms_.value_or(busy_ms), busy_ms);
+    ++busy_blocks_;
+  }
+  provisional_.clear();
+  // Our answer's tail follows; the frame's, if no answer came, goes on.
+  if (answer) tail_from(at_ms);
+}
+
+bool CarrierSense::ours(double level_dbfs, double end_ms) {
+  if (own_on_) return true;
+  if (!tail_from_ms_) return false;
+  const double since_ms = end_ms - *tail_from_ms_;
+  if (since_ms >= kOwnTailMaxMs) return false;
+  if (since_ms < kOwnLatencyMs) {
+    tail_min_dbfs_ = std::min(tail_min_dbfs_, level_dbfs);
+    return true;
+  }
+  // A rise: someone else (or, while we wait, our robot's answer). The tail goes on under it.
+  if (level_dbfs >= tail_min_dbfs_ + kBusyOverFloorDb) return false;
+  tail_min_dbfs_ = std::min(tail_min_dbfs_, level_dbfs);
+  // Fallen into the noise: the tail is over, and the air as quiet as it gets. Well under the
+  // busy mark, so that a tail that flickers about it on its way down is not taken for another.
+  if (!waiting_ && level_dbfs < floor_dbfs_ + kBusyOverFloorDb - kTailEndMarginDb) {
+    tail_from_ms_.reset();
+    return false;
+  }
+  return true;
+}
+
+void CarrierSense::follow_floor(double level_dbfs, double end_ms) {
+  const double power = std::pow(10.0, level_dbfs / 10);
+  if (!smoothed_power_ || !last_end_ms_) {
+    smoothed_power_ = power;
+  } else {
+    const double step = 1 - std::exp(-std::max(0.0, end_ms - *last_end_ms_) / kFloorSmoothMs);
+    *smoothed_power_ += step * (power - *smoothed_power_);
+  }
+  last_end_ms_ = end_ms;
+  const double smoothed_dbfs = std::max(10 * std::log10(*smoothed_power_), kSilenceDbfs);
+  while (!minima_.empty() && minima_.back().second >= smoothed_dbfs) minima_.pop_back();
+  minima_.emplace_back(end_ms, smoothed_dbfs);
+  // A sender that sent for longer than the window heard nothing else: it keeps the last.
+  while (minima_.size() > 1 && minima_.front().first < end_ms - kFloorWindowMs) minima_.pop_front();
+  floor_dbfs_ = minima_.front().second;
+}
+
+void CarrierSense::hear(double level_dbfs, double end_ms) {
+  const bool ours_now = ours(level_dbfs, end_ms);
+  if (!ours_now) follow_floor(level_dbfs, end_ms);
+  busy_now_ = !ours_now && level_dbfs >= floor_dbfs_ + kBusyOverFloorDb;
+  if (ours_now || busy_now_)
+    quiet_since_ms_.reset();
+  else if (!quiet_since_ms_)
+    quiet_since_ms_ = end_ms;
+  if (!busy_now_) return;
+  if (waiting_) {
+    provisional_.push_back(end_ms);
+    return;
+  }
+  last_busy_ms_ = end_ms;
+  ++busy_blocks_;
+}
+
+}  // namespace dtmf::reliability

@@ -1,0 +1,104 @@
+// Reliability layer: a sender's carrier sense — whether anyone else sounds on the air.
+//
+// The sender's microphone hears its own loudspeaker, its robots' answers, and every other
+// sender and robot in the room. This keeps the level of each block the microphone gives
+// (dBFS, block_level_dbfs) against the room's noise floor, and calls a block *busy* when it
+// stands kBusyOverFloorDb over that floor and is not the sender's own sound:
+// - its frame, from its start until it ended (own_begin, frame_ended);
+// - that frame's reverberant tail, and after the exchange its answer's: blocks that do not
+//   rise kBusyOverFloorDb over the quietest block since, until one falls into the noise
+//   (kTailEndMarginDb under the floor's busy mark), for at most kOwnTailMaxMs. A tail only
+//   falls; another sender's frame begins with a rise;
+// - its robot's answer. The microphone keeps listening while the sender waits for it, so
+//   that a sender that is never silent between its exchanges still hears the others in its
+//   waits, but a block it hears busy there stays provisional until the exchange ends
+//   (own_end) and is dropped if it falls within the answer's sound, which only then is known.
+//
+// The floor is the quietest the air has been over the last kFloorWindowMs, our own sound
+// left out ("minimum statistics", R. Martin, IEEE Trans. Speech Audio Process. 9(5), 2001):
+// the lowest of the block levels smoothed over kFloorSmoothMs. Steady noise (a fan, a
+// simulated room's pink noise) becomes the floor; a block of digital silence among it (an
+// underrun) lowers the smoothed level by a decibel, not to silence; another's frames do not
+// lift it while the air falls quiet for kFloorSmoothMs once in kFloorWindowMs (two senders'
+// frames do at each handover: air_access.h). After a window of nothing but our own sound,
+// the floor stays where it was.
+// Pure logic: the caller says when each block ended (any monotonic millisecond clock) and
+// when its own exchanges began and ended. Thresholds follow the habit of spandsp's dtmf.c:
+// named, with their units.
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace dtmf::reliability {
+
+inline constexpr double kBusyOverFloorDb = 10;    // a block this far over the floor is a sound
+inline constexpr double kOwnTailMaxMs = 2000;     // a tail held longer than this is not ours (RT60 3 s)
+inline constexpr double kOwnLatencyMs = 100;      // capture latency: our sound may still arrive
+inline constexpr double kTailEndMarginDb = 6;     // our tail ends this far under the busy mark
+inline constexpr double kFloorWindowMs = 30'000;  // the floor: the quietest of the last 30 s
+inline constexpr double kFloorSmoothMs = 20;      // ... of levels smoothed over 20 ms
+inline constexpr double kSilenceDbfs = -120;      // digital silence reads as this level
+
+// The mean power of `samples` in dB relative to a full-scale sine's (a full-scale sine is
+// 0 dBFS); kSilenceDbfs for silence or no samples.
+double block_level_dbfs(std::span<const float> samples);
+
+// A stretch of time, in the caller's milliseconds.
+struct AirSpan {
+  double from_ms = 0, to_ms = 0;
+};
+
+class CarrierSense {
+ public:
+  // Our frame begins: what is heard is ours until frame_ended().
+  void own_begin(double at_ms);
+  // Our frame ended; we wait for its answer, and listen meanwhile.
+  void frame_ended(double at_ms);
+  // Our exchange ended (its answer came, or the wait for it ended); `answer`: when our
+  // robot's answer sounded, if it did (busy blocks heard within it were that answer).
+  void own_end(double at_ms, std::optional<AirSpan> answer = std::nullopt);
+  // One microphone block of `level_dbfs`, which ended at `end_ms`.
+  void hear(double level_dbfs, double end_ms);
+
+  // The last block heard busy (another's sound), if any; blocks of our wait count once it ended.
+  std::optional<double> last_busy_ms() const { return last_busy_ms_; }
+  // Whether the last block heard was busy.
+  bool busy_now() const { return busy_now_; }
+  // Since when the air has been quiet: no sound of ours, its tail fallen into the noise, and
+  // none of another's; nothing while it is not.
+  std::optional<double> quiet_since_ms() const { return quiet_since_ms_; }
+  // Whether our frame sounds, or we wait for its answer.
+  bool own_on() const { return own_on_ || waiting_; }
+  // When our last exchange ended; nothing before the first.
+  std::optional<double> own_ended_ms() const { return own_ended_ms_; }
+  double floor_dbfs() const { return floor_dbfs_; }
+  std::size_t busy_blocks() const { return busy_blocks_; }
+
+ private:
+  bool ours(double level_dbfs, double end_ms);
+  void follow_floor(double level_dbfs, double end_ms);
+  void tail_from(double at_ms);
+
+  bool own_on_ = false;   // our frame sounds
+  bool waiting_ = false;  // ... it ended, and we wait for its answer
+  std::optional<double> own_ended_ms_;
+  std::optional<double> tail_from_ms_;  // our last sound ended here
+  double tail_min_dbfs_ = 0;            // the quietest block since
+  std::vector<double> provisional_;     // busy blocks heard while we wait (their end_ms)
+  std::optional<double> last_busy_ms_;
+  bool busy_now_ = false;
+  std::optional<double> quiet_since_ms_;
+  std::size_t busy_blocks_ = 0;
+  std::optional<double> smoothed_power_;  // mean-square, relative to a full-scale sine's
+  std::optional<double> last_end_ms_;
+  // (end_ms, smoothed level) of the last 10 s, levels rising from front to back: the front
+  // is the floor (a monotonic queue, so each block costs O(1)).
+  std::deque<std::pair<double, double>> minima_;
+  double floor_dbfs_ = kSilenceDbfs;
+};
+
+}  // namespace dtmf::reliability

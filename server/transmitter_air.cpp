@@ -1,0 +1,73 @@
+// Transmitter: listen before talk. The microphone's reader (listen()) feeds every block's
+// level to the carrier sense; before each frame the loudspeaker's thread waits for the air
+// (reliability/air_access.h), and marks its exchange so that its own sound is not taken
+// for another's.
+#include <algorithm>
+#include <chrono>
+
+#include "transmitter.h"
+
+namespace dtmf::server {
+
+namespace {
+// How often a frame waiting for the air looks whether its command was cancelled.
+constexpr double kCancelCheckMs = 20;
+}  // namespace
+
+double Transmitter::answer_silence_ms() const {
+  double longest = 0;
+  const auto consider = [&longest](const link::Link& l) {
+    longest = std::max(longest, l.profile().timing.ack_timeout_ms - l.profile().timing.chord_ms);
+  };
+  for (const Robot& r : robots_)
+    for (const link::Link* l : r.links) consider(*l);
+  for (const auto& l : room_links_) consider(*l);
+  return longest;
+}
+
+bool Transmitter::wait_for_air(Job& job) {
+  using reliability::AirUse;
+  const AirUse use = std::holds_alternative<command::Stop>(job.command()) ? AirUse::Stop
+                     : job.policy() == Policy::Live                       ? AirUse::Renewal
+                                                                          : AirUse::Command;
+  std::unique_lock lock(mutex_);
+  while (true) {
+    const double now = now_ms();
+    double at = std::max(now, channel_free_ms_);
+    if (air_) at = std::max(at, air_->start_at(carrier_, now, use));
+    if (at <= now) {
+      if (air_) air_->started(carrier_, now);
+      carrier_.own_begin(now);
+      return true;
+    }
+    if (stopping_ || job.cancelled()) return false;
+    changed_.wait_for(lock, std::chrono::duration<double, std::milli>(std::min(at - now, kCancelCheckMs)));
+  }
+}
+
+void Transmitter::frame_ended() {
+  std::lock_guard lock(mutex_);
+  carrier_.frame_ended(now_ms());
+}
+
+void Transmitter::exchange_ended(std::optional<reliability::AirSpan> answer, bool unconfirmed) {
+  std::lock_guard lock(mutex_);
+  const double now = now_ms();
+  carrier_.own_end(now, answer);
+  if (air_ && unconfirmed) air_->unanswered(carrier_, now);
+}
+
+AirShare Transmitter::air_share() const {
+  std::lock_guard lock(mutex_);
+  AirShare share;
+  share.busy_blocks = carrier_.busy_blocks();
+  if (air_) {
+    share.deferred = air_->deferred();
+    share.yields = air_->yields();
+    share.listens = air_->listens();
+    share.quiet_ms = air_->quiet_ms();
+  }
+  return share;
+}
+
+}  // namespace dtmf::server

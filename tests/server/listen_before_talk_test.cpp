@@ -1,0 +1,230 @@
+// Two senders on one air, each driving its own keyed robot, in the seminar room (a measured
+// response, both ways). Each sends Drives back to back, so that both always want the air.
+// What the air shows: every frame's start, and each sender's exchanges (a frame from its
+// start until its answer was heard, or until the frame ended without one). A frame that
+// starts inside the other sender's exchange, when that exchange began while the sender was
+// listening (not under its own exchange) and more than kHeardWithinMs before, started into
+// an air it heard busy: with listen before talk there is none, so no frame starts into an
+// answer the other sender still waits for. Frames that started together, or into an exchange
+// that began under the sender's own (its microphone beside its loudspeaker cannot hear it),
+// are counted apart and printed. Without listening, the same run has many: the count can
+// fail.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <thread>
+
+#include "fleet_system.h"
+#include "transmitter.h"
+
+using namespace dtmf;
+using namespace std::chrono_literals;
+
+namespace {
+
+const LinkProfile& fast = profile_by_name("fast");
+// A start is heard within two backoff slots (the capture's latency, a block of the air and
+// one of the ear, and the threads' turns); two starts closer than that are a collision
+// neither sender could hear coming, counted apart.
+constexpr double kHeardWithinMs = 2 * reliability::kSlotMs;
+// Sender a starts alone; b joins kJoinAfter later, hears a, and waits for a's first listening
+// pause (reliability::kListenEveryMs) to be heard in turn.
+constexpr auto kJoinAfter = 1s;
+constexpr auto kRunFor = 34s;  // kListenEveryMs and 14 s more
+// By then both have heard each other, and share the air.
+constexpr auto kLast = 10s;
+
+using Clock = store::WallClock;
+double ms_between(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double, std::milli>(to - from).count();
+}
+
+struct Exchange {
+  Clock::time_point start, end;
+};
+
+// Keeps each sender's frame starts and exchanges.
+class AirRecord : public server::ProgressObserver {
+ public:
+  void observe(const server::Job&, const server::ProgressEvent& e) override {
+    using Kind = server::ProgressEvent::Kind;
+    std::lock_guard lock(mutex_);
+    if (e.kind == Kind::Transmitting || e.kind == Kind::Retransmitting) {
+      started_ = e.time;
+      starts_.push_back(e.time);
+    } else if (e.kind == Kind::Ack || e.kind == Kind::Nack || e.kind == Kind::NoAnswer) {
+      exchanges_.push_back({started_, e.answered_at.value_or(e.chord_ended_at.value_or(started_))});
+    }
+  }
+  std::vector<Clock::time_point> starts() {
+    std::lock_guard lock(mutex_);
+    return starts_;
+  }
+  std::vector<Exchange> exchanges() {
+    std::lock_guard lock(mutex_);
+    return exchanges_;
+  }
+
+ private:
+  std::mutex mutex_;
+  Clock::time_point started_;
+  std::vector<Clock::time_point> starts_;
+  std::vector<Exchange> exchanges_;
+};
+
+struct Sender {
+  AirRecord record;
+  std::unique_ptr<server::Transmitter> transmitter;
+  int submitted = 0, confirmed = 0;
+};
+
+link::LinkOptions keyed(std::uint8_t address) {
+  link::LinkOptions o;
+  o.address = address;
+  o.key = test_support::fleet_key(address);
+  return o;
+}
+
+struct AirFigures {
+  int frames = 0;
+  int into_exchange = 0;  // started inside the other's exchange, which began while it listened
+  int together = 0;       // ... which began within kHeardWithinMs before it
+  int masked = 0;         // ... which began under its own exchange (it could not hear that start)
+};
+
+bool within(Clock::time_point t, const std::vector<Exchange>& exchanges, double after_ms) {
+  for (const Exchange& x : exchanges) {
+    if (t >= x.start && ms_between(x.end, t) <= after_ms) return true;
+  }
+  return false;
+}
+
+// Frames of a sender (`starts`, `own` its exchanges) that started inside an exchange of
+// `other`.
+void count(const std::vector<Clock::time_point>& starts, const std::vector<Exchange>& own,
+           const std::vector<Exchange>& other, AirFigures& f) {
+  for (const auto& s : starts) {
+    ++f.frames;
+    for (const Exchange& x : other) {
+      if (s < x.start || s >= x.end) continue;
+      std::printf("  a frame started %.0f ms into the other's exchange of %.0f ms, %.0f ms into the run\n",
+                  ms_between(x.start, s), ms_between(x.start, x.end), ms_between(starts.front(), s));
+      if (ms_between(x.start, s) < kHeardWithinMs)
+        ++f.together;
+      else if (within(x.start, own, reliability::kOwnLatencyMs))
+        ++f.masked;
+      else
+        ++f.into_exchange;
+      break;
+    }
+  }
+}
+
+struct TwoSenders {
+  AirFigures air;
+  std::array<int, 2> frames{}, confirmed{}, submitted{};
+  std::array<int, 2> last_frames{};  // started in the run's last kLastMs
+  std::array<server::AirShare, 2> share{};
+};
+
+TwoSenders run_two_senders(bool listen_before_talk, std::chrono::seconds run_for) {
+  sim::ChannelConfig config;
+  config.noise = sim::parse_noise("pink", -50);
+  config.room.rir_file = std::string(DTMF_RIR_DIR) + "/seminar_room_clap.wav";
+  sim::SimulatedAir air(fast.sample_rate_hz, config, 10);
+  auto station_a = air.add_station("sender-a", 0.0);
+  auto robot_a = air.add_station("robot-a", 1.5);
+  auto station_b = air.add_station("sender-b", 3.0);
+  auto robot_b = air.add_station("robot-b", 4.5);
+  air.start();
+  std::vector<std::unique_ptr<test_support::FleetRobot>> robots;
+  robots.push_back(std::make_unique<test_support::FleetRobot>(std::move(robot_a), keyed(1), command::burger()));
+  robots.push_back(std::make_unique<test_support::FleetRobot>(std::move(robot_b), keyed(2), command::burger()));
+
+  std::array<Sender, 2> senders;
+  std::array<sim::SimulatedAir::Station*, 2> stations{&station_a, &station_b};
+  for (std::size_t k = 0; k < 2; ++k) {
+    std::vector<server::RobotLinks> driven(1);
+    driven[0].name = k == 0 ? "a" : "b";
+    driven[0].links = link::make_links(keyed(static_cast<std::uint8_t>(k + 1)));
+    server::TransmitterOptions options;
+    options.listen_before_talk = listen_before_talk;
+    options.backoff_seed = 11 + k;
+    senders[k].transmitter =
+        std::make_unique<server::Transmitter>(std::move(driven), fast, std::move(stations[k]->speaker),
+                                              std::move(stations[k]->microphone), senders[k].record, options);
+  }
+  std::atomic<bool> running = true;
+  std::array<std::thread, 2> loops;
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (k == 1) std::this_thread::sleep_for(kJoinAfter);
+    loops[k] = std::thread([&, k] {
+      Sender& s = senders[k];
+      while (running) {
+        auto job = s.transmitter->submit(command::DriveForDuration{30, 0.5}, server::Policy::Fail, 1s);
+        ++s.submitted;
+        while (!job->finished_and_drained()) job->next_event(100ms);
+        if (job->outcome() == server::Outcome::Confirmed) ++s.confirmed;
+      }
+    });
+  }
+  std::this_thread::sleep_for(run_for);
+  running = false;
+  const Clock::time_point ended = Clock::now();
+  for (auto& l : loops) l.join();
+
+  TwoSenders result;
+  for (std::size_t k = 0; k < 2; ++k) {
+    count(senders[k].record.starts(), senders[k].record.exchanges(), senders[1 - k].record.exchanges(), result.air);
+    result.frames[k] = static_cast<int>(senders[k].record.starts().size());
+    for (const auto& start : senders[k].record.starts()) result.last_frames[k] += start > ended - kLast ? 1 : 0;
+    result.confirmed[k] = senders[k].confirmed;
+    result.submitted[k] = senders[k].submitted;
+    result.share[k] = senders[k].transmitter->air_share();
+    senders[k].transmitter->shutdown();
+  }
+  air.stop();
+  robots.clear();
+  return result;
+}
+
+void print(const char* what, const TwoSenders& r) {
+  std::printf(
+      "%s: %d frames (%d + %d), %d started into the other's exchange after it was heard, %d within %.0f ms of its "
+      "start, %d into one that began under its own; in the last 10 s %d + %d; confirmed %d/%d and %d/%d; deferred %llu "
+      "and %llu, yields %llu and %llu, listening pauses %llu and "
+      "%llu\n",
+      what, r.air.frames, r.frames[0], r.frames[1], r.air.into_exchange, r.air.together, kHeardWithinMs, r.air.masked,
+      r.last_frames[0], r.last_frames[1], r.confirmed[0], r.submitted[0], r.confirmed[1], r.submitted[1],
+      static_cast<unsigned long long>(r.share[0].deferred), static_cast<unsigned long long>(r.share[1].deferred),
+      static_cast<unsigned long long>(r.share[0].yields), static_cast<unsigned long long>(r.share[1].yields),
+      static_cast<unsigned long long>(r.share[0].listens), static_cast<unsigned long long>(r.share[1].listens));
+}
+
+}  // namespace
+
+TEST(ListenBeforeTalk, TwoSendersInOneRoomNeverStartIntoTheOthersExchange) {
+  const TwoSenders with = run_two_senders(true, kRunFor);
+  print("listen before talk", with);
+  EXPECT_EQ(with.air.into_exchange, 0);
+  // Both had the air once a had heard b (in its first listening pause): in the last 10 s,
+  // each sent a fifth of the frames at least (a run of kMaxHoldMs). And each deferred to the
+  // other.
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_GE(with.last_frames[k] * 5, with.last_frames[0] + with.last_frames[1]) << "sender " << k << " was starved";
+    EXPECT_GT(with.share[k].deferred, 0u) << "sender " << k << " never heard the other";
+    EXPECT_GE(with.confirmed[k], with.submitted[k] - 2) << "sender " << k;  // its last may be cut by the end
+  }
+  EXPECT_GT(with.share[0].yields + with.share[1].yields, 0u);
+  EXPECT_GT(with.share[0].busy_blocks, 0u);
+}
+
+TEST(ListenBeforeTalk, WithoutItTheSameRunStartsFramesIntoTheOthersExchange) {
+  const TwoSenders without = run_two_senders(false, 8s);
+  print("without listen before talk", without);
+  EXPECT_GT(without.air.into_exchange, 0);
+  EXPECT_GE(5 * (without.air.into_exchange + without.air.together + without.air.masked), without.air.frames);
+  EXPECT_EQ(without.share[0].deferred + without.share[1].deferred, 0u);
+}
