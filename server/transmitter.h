@@ -19,7 +19,8 @@
 // robot's address and key), all through its one loudspeaker: a command names its robot,
 // and only that robot's answer confirms its frames (link/fast_link.h). A stop for every robot
 // goes on links of its own, keyed with the room key (transmitter_room.cpp), and no robot
-// answers it.
+// answers it. Before each frame it listens before it talks (transmitter_air.cpp): the
+// microphone's levels tell it whether another sender's frame or answer is on the air.
 #pragma once
 
 #include <atomic>
@@ -106,7 +107,6 @@ struct AirShare {
   std::uint64_t yields = 0;       // pauses made to let the others in
   std::uint64_t listens = 0;      // pauses made, alone, to hear whether others wait
   std::uint64_t busy_blocks = 0;  // microphone blocks heard busy with another's sound
-  double quiet_ms = 0;            // the quiet it waits for after another's sound
 };
 
 class Transmitter {
@@ -219,7 +219,7 @@ class Transmitter {
     std::vector<std::unique_ptr<link::Link>> owned_links;
     std::vector<const link::Link*> links;    // what this transmitter can send it and hear from it
     std::optional<double> last_answered_ms;  // guarded by mutex_
-    std::optional<double> answer_delay_ms;   // its last answer began this long after the frame ended
+    std::optional<double> answer_delay_ms;   // its last answer began this long after the frame ended (worker only)
   };
 
   const LinkProfile& profile_;

@@ -65,7 +65,6 @@ AirShare Transmitter::air_share() const {
     share.deferred = air_->deferred();
     share.yields = air_->yields();
     share.listens = air_->listens();
-    share.quiet_ms = air_->quiet_ms();
   }
   return share;
 }

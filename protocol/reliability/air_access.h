@@ -76,7 +76,6 @@ class AirAccess {
   // Our frame's exchange ended at `at_ms` without the answer it asked for.
   void unanswered(const CarrierSense& sense, double at_ms);
 
-  double quiet_ms() const { return quiet_ms_; }
   // How many frames had to wait for another's sound, and how many pauses we made (to yield
   // in a shared room, or to listen alone).
   std::uint64_t deferred() const { return deferred_; }
