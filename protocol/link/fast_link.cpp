@@ -14,6 +14,7 @@
 #include "link/hop_frame_path.h"
 #include "link/reply_lane.h"
 #include "reliability/command_frame.h"
+#include "reliability/renewal_frame.h"
 #include "reliability/reply_code.h"
 #include "reliability/sealed_frame.h"
 #include "security/frame_mac.h"
@@ -142,7 +143,55 @@ std::vector<TransmitFrame> FastLink::plan(const command::Command& command) {
     counter = counters.next_counter();
   }
   frames.push_back(sealed_frame(payload, false, counter));
+  velocity_counter_.reset();
+  if (std::holds_alternative<command::Velocity>(command)) velocity_counter_ = counter;
   return frames;
+}
+
+std::optional<Link::PlannedRenewal> FastLink::plan_renewal(std::span<Link* const> robots) {
+  // The robots that can be renewed: keyed links of this profile whose last frame was a velocity.
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < robots.size() && candidates.size() < reliability::kRenewalSlots; ++i) {
+    const auto* link = dynamic_cast<const FastLink*>(robots[i]);
+    if (link && &link->profile() == &profile() && link->keyed() && link->velocity_counter_) candidates.push_back(i);
+  }
+  if (candidates.empty()) return std::nullopt;
+  // One counter, new to every one of them.
+  std::uint64_t counter = 0;
+  for (const std::size_t i : candidates) counter = std::max(counter, robots[i]->options().counters->next_counter());
+  PlannedRenewal planned;
+  reliability::RenewalFrame renewal;
+  renewal.counter_low = security::counter_low_bits(counter);
+  for (const std::size_t i : candidates) {
+    auto& link = static_cast<FastLink&>(*robots[i]);
+    security::CounterStore& counters = *link.options().counters;
+    counters.next_counter_from(counter);  // used here, whether or not its robot can take it
+    // A robot that may not complete the low bits is left out: its next frame synchronises.
+    if (!security::completable(counters.last_confirmed(), counter)) continue;
+    const std::uint8_t address = link.options().address;
+    const std::uint32_t mac = security::frame_mac(
+        *link.options().key, security::renewal_mac_input(address, counter, *link.velocity_counter_));
+    renewal.slots[planned.renewed.size()] = {address, mac >> (32 - reliability::kRenewalMacBits)};
+    planned.renewed.push_back(i);
+  }
+  if (planned.renewed.empty()) return std::nullopt;
+  // Slots nobody fills repeat the first: a robot checks the same slot twice, no other robot's.
+  for (std::size_t slot = planned.renewed.size(); slot < renewal.slots.size(); ++slot)
+    renewal.slots[slot] = renewal.slots[0];
+  TransmitFrame& f = planned.frame;
+  f.bits = reliability::renewal_frame_pack(renewal);
+  f.bit_count = reliability::kSealedFrameBits;
+  f.check_bit_count = reliability::kSealedCheckBits;
+  f.address = renewal.slots[0].address;
+  f.authenticated = true;
+  f.renewal = true;
+  f.counter = counter;
+  const auto symbols = reliability::sealed_frame_symbols(f.bits);
+  f.tones_hz = signal::frame_tones_hz(profile(), symbols);
+  f.audio = signal::synthesize_hopped_frame(profile(), symbols);
+  f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
+  f.next_frame_after_ms = f.tone_ms + profile().timing.gap_ms;  // no answer to wait for
+  return planned;
 }
 
 std::size_t FastLink::frame_count(const command::Command& command) const {

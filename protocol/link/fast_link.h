@@ -20,6 +20,7 @@ class FastLink final : public Link {
   TransmitFrame random_frame(std::uint64_t seed) override;
   double frame_start_ms(std::size_t index) const override;
   void confirmed(const TransmitFrame& frame) override;
+  std::optional<PlannedRenewal> plan_renewal(std::span<Link* const> robots) override;
   std::unique_ptr<FrameReceiver> receiver() const override;
   std::vector<float> answer_audio(const Reception& reception) const override;
   int receiver_block_samples() const override;
@@ -35,6 +36,9 @@ class FastLink final : public Link {
   std::vector<TransmitFrame> broadcast_frames(std::uint32_t payload);
 
   std::uint8_t next_sequence_;
+  // Keyed: the counter of the last frame planned, when it was a velocity (what a joint
+  // renewal renews).
+  std::optional<std::uint64_t> velocity_counter_;
 };
 
 }  // namespace dtmf::link

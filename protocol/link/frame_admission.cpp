@@ -2,6 +2,7 @@
 
 #include "command/command_payload.h"
 #include "reliability/command_frame.h"
+#include "reliability/renewal_frame.h"
 #include "reliability/sealed_frame.h"
 #include "security/frame_mac.h"
 #include "security/freshness.h"
@@ -95,6 +96,8 @@ std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
   }
   // Every robot's, whatever its address.
   if (sealed ? admit_sealed_room_stop(r) : admit_plain_room_stop(r)) return r;
+  // Up to three robots', whatever the address its first bits read as.
+  if (sealed && admit_renewal(r)) return r;
   const std::uint8_t address = sealed ? reliability::sealed_frame_unpack(heard.bits)->address
                                       : reliability::command_frame_unpack(heard.bits.low64())->address;
   if (address != options_.address) return std::nullopt;  // another robot's frame: not ours to answer either
@@ -176,9 +179,54 @@ bool FrameAdmission::admit_sealed_room_stop(Reception& r) {
   return true;
 }
 
+std::optional<std::uint64_t> FrameAdmission::renewal_counter(const reliability::FrameBits& bits) const {
+  if (!options_.key || !renewable_) return std::nullopt;
+  const auto renewal = reliability::renewal_frame_unpack(bits);
+  if (!renewal) return std::nullopt;
+  const std::uint64_t counter = security::complete_counter(options_.counters->last_accepted(), renewal->counter_low);
+  const std::uint32_t mac =
+      security::frame_mac(*options_.key, security::renewal_mac_input(options_.address, counter, renewable_->counter)) >>
+      (32 - reliability::kRenewalMacBits);
+  for (const reliability::RenewalSlot& slot : renewal->slots) {
+    if (slot.address == options_.address && slot.mac == mac) return counter;
+  }
+  return std::nullopt;
+}
+
+bool FrameAdmission::admit_renewal(Reception& r) {
+  const auto counter = renewal_counter(r.bits);
+  if (!counter) return false;
+  r.answered = false;  // up to three robots heard it: answers would sound together
+  r.counter = *counter;
+  r.authenticated = true;
+  switch (security::freshness_of(options_.counters->last_accepted(), *counter)) {
+    case security::Freshness::Stale:
+      r.authenticated = false;
+      refuse(r, RefusalReason::Authentication,
+             "a renewal with counter " + std::to_string(*counter) +
+                 ", not newer than the last accepted: a frame "
+                 "captured and played again");
+      return true;
+    case security::Freshness::Repeat:  // its echo, or played again: renewed already
+      r.event = ReceptionEvent::Repeat;
+      r.detail = "repeat of renewal counter " + std::to_string(*counter) + ", not executed again";
+      return true;
+    case security::Freshness::New:
+      break;
+  }
+  options_.counters->accept(*counter);  // kept before the renewal acts
+  echoes_.remember(r.bits, r.heard_ms);
+  r.command = renewable_->velocity;
+  r.event = ReceptionEvent::Renewed;
+  r.detail = "renewal of the velocity of counter " + std::to_string(renewable_->counter) + ": " +
+             command::describe(*r.command);
+  return true;
+}
+
 bool FrameAdmission::authentic(const reliability::FrameBits& bits) const {
   const auto frame = reliability::sealed_frame_unpack(bits);
   if (frame && room_authentic(*frame)) return true;
+  if (renewal_counter(bits)) return true;
   if (!frame || !options_.key) return false;
   const std::uint64_t counter = completed_counter(*frame, options_.counters->last_accepted());
   return security::frame_mac(*options_.key, mac_input(*frame, counter)) == frame->mac;
@@ -227,9 +275,12 @@ void FrameAdmission::admit_sealed(Reception& r) {
     return;
   }
   take_command(r, *decoded.command);
+  if (const auto* velocity = std::get_if<command::Velocity>(&*decoded.command))
+    renewable_ = Renewable{counter, *velocity};
 }
 
 void FrameAdmission::take_command(Reception& r, const command::Command& command) {
+  renewable_.reset();  // a renewal renews the velocity taken last, and only while nothing came after it
   echoes_.remember(r.bits, r.heard_ms);
   r.command = command;
   r.event = ReceptionEvent::Command;

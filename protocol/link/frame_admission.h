@@ -17,6 +17,10 @@
 // A stop for every robot is taken whatever its address and never answered: with a room key
 // only sealed under it, in synchronisation form with its whole counter, fresh by the room's
 // window (security/room_freshness.h); without one, plain, where the robot takes plain frames.
+// A joint renewal (reliability/renewal_frame.h) is taken from whichever slot names this
+// robot and whose MAC holds under its key for the renewal's counter and the counter of the
+// velocity frame it took last: that velocity again, its lease from the renewal's start,
+// never answered; a renewal of any other frame, or after another command, fails its MAC.
 // Pure logic, but for the counter stores it is given.
 #pragma once
 
@@ -51,6 +55,20 @@ class FrameAdmission {
   // Whether `frame` is sealed under the room key: a stop for every robot.
   bool room_authentic(const reliability::SealedFrame& frame) const;
   void take_command(Reception& r, const command::Command& command);
+  // Whether the frame is a joint renewal of this robot's velocity; if so, `r` says what
+  // became of it.
+  bool admit_renewal(Reception& r);
+  // The counter `bits` renews this robot's velocity with, if it is a renewal whose slot for
+  // this robot holds.
+  std::optional<std::uint64_t> renewal_counter(const reliability::FrameBits& bits) const;
+
+  // The sealed velocity frame taken last, while no other command has been taken since: what
+  // a renewal renews.
+  struct Renewable {
+    std::uint64_t counter = 0;
+    command::Velocity velocity;
+  };
+  std::optional<Renewable> renewable_;
 
   const LinkProfile& profile_;
   LinkOptions options_;

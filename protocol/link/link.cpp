@@ -26,6 +26,8 @@ std::string_view event_name(ReceptionEvent event) {
       return "sync";
     case ReceptionEvent::Refused:
       return "refused";
+    case ReceptionEvent::Renewed:
+      return "renewal";
   }
   return "";
 }
@@ -53,6 +55,8 @@ Link::Link(const LinkProfile& profile, LinkOptions options) : profile_(profile),
 std::optional<TransmitFrame> Link::plan_payload_word(std::uint32_t) const { return std::nullopt; }
 
 void Link::confirmed(const TransmitFrame&) {}
+
+std::optional<Link::PlannedRenewal> Link::plan_renewal(std::span<Link* const>) { return std::nullopt; }
 
 std::vector<float> Link::render(std::span<const TransmitFrame> frames) const {
   std::vector<float> audio(static_cast<std::size_t>(profile_.samples_for_ms(frame_start_ms(frames.size()))), 0.0f);

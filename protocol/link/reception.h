@@ -26,13 +26,15 @@ enum class ReceptionEvent {
   Repeat,        // the frame executed last, again (a retransmission after a lost ACK): answered, not executed
   Synchronised,  // a counter synchronisation (authenticated frames): answered, no command
   Refused,       // intact, but not executed: answered NACK (see RefusalReason)
+  Renewed,       // a joint renewal (reliability/renewal_frame.h): the velocity last taken, its lease
+                 // counted again from this frame's start; never answered
 };
 enum class RefusalReason {
   None,
   Authentication,  // no MAC where the robot has a key, a MAC that fails, a counter not newer, no key to check
   Payload,         // a payload no sender makes (a kind this robot does not know)
 };
-// "broken", "reset", "mode_selected", "command", "ignored", "repeat", "sync", "refused": the
+// "broken", "reset", "mode_selected", "command", "ignored", "repeat", "sync", "refused", "renewal": the
 // receptions table's `event` ("" for broken, as the table has always held).
 std::string_view event_name(ReceptionEvent event);
 // "", "authentication", "payload": the receptions table's `reason`.

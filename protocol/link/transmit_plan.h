@@ -22,6 +22,7 @@ struct TransmitFrame {
   bool authenticated = false;                 // carries a MAC (sealed frames)
   bool synchronisation = false;               // a counter synchronisation, no command
   bool broadcast = false;                     // for every robot (a stop), which none answers
+  bool renewal = false;                       // a joint renewal of several robots' velocities, which none answers
   std::optional<std::uint64_t> counter;       // authenticated frames: the freshness counter
   reliability::TagChordSymbols answer_tag{};  // authenticated frames: the tag its ACK must spell
   reliability::BandValueSet sent_tones{};     // ... and the tones the frame sent in each band, set aside there

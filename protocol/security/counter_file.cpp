@@ -259,9 +259,12 @@ void FileCounterStore::write_sender() {
   confirmed_unwritten_ = false;
 }
 
-std::uint64_t FileCounterStore::next_counter() {
+std::uint64_t FileCounterStore::next_counter() { return next_counter_from(0); }
+
+std::uint64_t FileCounterStore::next_counter_from(std::uint64_t at_least) {
   std::lock_guard lock(mutex_);
   require(Role::Sender, "next_counter");
+  next_ = std::max(next_, at_least);
   if (pace_ == CounterPace::Clock) next_ = std::max(next_, clock_counter_floor(clock_()));
   if (next_ >= reserved_) {
     if (next_ + kSenderBlock >= kCounterLimit) {

@@ -84,6 +84,7 @@ class FileCounterStore final : public CounterStore {
 
   // Each role's own; the other role's throw std::logic_error.
   std::uint64_t next_counter() override;
+  std::uint64_t next_counter_from(std::uint64_t at_least) override;
   std::optional<std::uint64_t> last_confirmed() const override;
   void confirmed(std::uint64_t counter) override;
   std::uint64_t last_accepted() const override;

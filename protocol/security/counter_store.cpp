@@ -7,8 +7,11 @@
 
 namespace dtmf::security {
 
-std::uint64_t MemoryCounterStore::next_counter() {
+std::uint64_t MemoryCounterStore::next_counter() { return next_counter_from(0); }
+
+std::uint64_t MemoryCounterStore::next_counter_from(std::uint64_t at_least) {
   std::lock_guard lock(mutex_);
+  next_ = std::max(next_, at_least);
   if (next_ >= kCounterLimit) throw std::runtime_error("the freshness counter is used up: rotate the key");
   return next_++;
 }

@@ -22,6 +22,9 @@ class CounterStore {
   // A counter never handed out before by this store (and, for a file, by any process that
   // used it). Throws std::runtime_error when the counter space is used up (rotate the key).
   virtual std::uint64_t next_counter() = 0;
+  // The same, and at least `at_least`: the counters below it that were never handed out
+  // never will be (a joint renewal gives several robots' links one counter).
+  virtual std::uint64_t next_counter_from(std::uint64_t at_least) = 0;
   virtual std::optional<std::uint64_t> last_confirmed() const = 0;
   // The robot confirmed the frame with `counter` (an ACK whose tag held).
   virtual void confirmed(std::uint64_t counter) = 0;
@@ -38,6 +41,7 @@ class MemoryCounterStore final : public CounterStore {
   explicit MemoryCounterStore(std::uint64_t first_counter = 1, std::uint64_t last_accepted = 0)
       : next_(first_counter), last_accepted_(last_accepted) {}
   std::uint64_t next_counter() override;
+  std::uint64_t next_counter_from(std::uint64_t at_least) override;
   std::optional<std::uint64_t> last_confirmed() const override;
   void confirmed(std::uint64_t counter) override;
   std::uint64_t last_accepted() const override;

@@ -31,6 +31,15 @@ struct FrameMacInput {
 
 std::uint32_t frame_mac(const LinkKey& key, const FrameMacInput& input);
 
+// A joint renewal's slot (reliability/renewal_frame.h) is a MAC under the renewed robot's own
+// key over form 2 (a frame's forms are 0 and 1, so no slot is ever a frame's MAC), the
+// renewal's full counter and, as the body, the low 32 bits of the counter of the velocity
+// frame it renews: it renews that velocity and no other. The frame carries its leading bits.
+inline constexpr std::uint8_t kRenewalForm = 2;
+inline FrameMacInput renewal_mac_input(std::uint8_t address, std::uint64_t counter, std::uint64_t renewed_counter) {
+  return {address, kRenewalForm, counter, static_cast<std::uint32_t>(renewed_counter)};
+}
+
 inline constexpr std::size_t kAnswerTagBytes = 16;
 using AnswerTag = std::array<std::uint8_t, kAnswerTagBytes>;
 
