@@ -3,6 +3,11 @@
 // profile in its options; the server's default stays the seed's.
 #include <gtest/gtest.h>
 
+#include "support/wait_for.h"
+
+using namespace std::chrono_literals;
+using dtmf::test_support::wait_until;
+
 #include <algorithm>
 
 #include "command/command_payload.h"
@@ -61,7 +66,9 @@ TEST(ServerFast, ADriveIsOneNamedFrameConfirmedAndExecutedWhole) {
   EXPECT_TRUE(sequence.has_value());
   EXPECT_EQ(system.commands_executed(), std::vector<std::string>{expected});
   EXPECT_TRUE(system.words_heard().empty()) << "no seed word went on air";
-  EXPECT_DOUBLE_EQ(system.last_velocity().linear_mps, 0.11);
+  // cmd_vel is published on the agent's next tick (50 ms), which may follow its ACK.
+  EXPECT_TRUE(wait_until([&] { return system.last_velocity().linear_mps == 0.11; }, 1s))
+      << system.last_velocity().linear_mps;
 }
 
 // A profile the server, the agent and the client have never heard of, registered as a

@@ -5,6 +5,8 @@
 // loudspeaker beside the sender's microphone playing the seed profile's ACK again and again.
 #include <gtest/gtest.h>
 
+#include "support/wait_for.h"
+
 #include <atomic>
 #include <thread>
 
@@ -13,6 +15,7 @@
 
 using namespace dtmf;
 using namespace std::chrono_literals;
+using dtmf::test_support::wait_until;
 using test_support::LiveSystem;
 using test_support::LiveSystemOptions;
 using test_support::read_stream;
@@ -84,7 +87,8 @@ TEST(KeyedSender, AProfileLessStopGoesAuthenticatedAndStopsTheKeyedRobotWhileASe
       read_stream<v1::DriveResponse>([&](grpc::ClientContext& c) { return client->Drive(&c, drive_forward(50)); });
   ASSERT_TRUE(drive.status.ok()) << drive.status.error_message();
   EXPECT_EQ(drive.responses.back().progress().profile(), "fast") << "with a key the default carries a MAC";
-  ASSERT_GT(system.last_velocity().linear_mps, 0) << "the keyed robot drives";
+  // cmd_vel is published on the agent's next tick (50 ms), which may follow its ACK.
+  ASSERT_TRUE(wait_until([&] { return system.last_velocity().linear_mps > 0; }, 1s)) << "the keyed robot drives";
 
   SeedAckForger forger(system);
   for (const std::string profile : {"", "seed"}) {
@@ -101,7 +105,7 @@ TEST(KeyedSender, AProfileLessStopGoesAuthenticatedAndStopsTheKeyedRobotWhileASe
     EXPECT_TRUE(last.answer_authenticated()) << "confirmed by the robot's tag, not the forger's chord";
     EXPECT_EQ(last.detail(), "");
   }
-  EXPECT_EQ(system.last_velocity(), agent::Velocity{}) << "the keyed robot stopped";
+  EXPECT_TRUE(wait_until([&] { return system.last_velocity() == agent::Velocity{}; }, 1s)) << "the keyed robot stopped";
   EXPECT_EQ(system.refused_frames_heard(), 0) << "no frame without a MAC reached the robot";
 }
 
@@ -166,5 +170,5 @@ TEST(KeyedSender, AllowedUnauthenticatedCommandsAreReportedAsSuchAndStopStillGoe
   ASSERT_TRUE(stop.status.ok()) << stop.status.error_message();
   EXPECT_EQ(stop.responses.back().progress().profile(), "fast");
   EXPECT_TRUE(stop.responses.back().progress().answer_authenticated());
-  EXPECT_EQ(system.last_velocity(), agent::Velocity{});
+  EXPECT_TRUE(wait_until([&] { return system.last_velocity() == agent::Velocity{}; }, 1s));
 }

@@ -2,6 +2,11 @@
 // robot agent's code, which answers with ACK / NACK: every command RPC end to end.
 #include <gtest/gtest.h>
 
+#include "support/wait_for.h"
+
+using namespace std::chrono_literals;
+using dtmf::test_support::wait_until;
+
 #include <cmath>
 #include <future>
 #include <limits>
@@ -60,7 +65,9 @@ TEST(Server, DriveStreamsEveryFrameAndEndsConfirmedWithTheRobotMoving) {
   EXPECT_EQ(transmitted, 3);
   EXPECT_EQ(acked, 3);
   EXPECT_EQ(system.words_heard(), (std::vector<int>{0, 2, *command::parameter_word(command::DriveForDuration{50, 3})}));
-  EXPECT_DOUBLE_EQ(system.last_velocity().linear_mps, 0.11);
+  // cmd_vel is published on the agent's next tick (50 ms), which may follow its ACK.
+  EXPECT_TRUE(wait_until([&] { return system.last_velocity().linear_mps == 0.11; }, 1s))
+      << system.last_velocity().linear_mps;
 }
 
 TEST(Server, BadRequestsAreInvalidArgumentNamingTheFieldAndNeverReachTheAir) {
