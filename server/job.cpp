@@ -31,7 +31,19 @@ Job::Job(link::Link& link, command::Command command, Policy policy, std::chrono:
       decision_timeout_(decision_timeout),
       run_id_(std::move(run_id)) {}
 
+Job::Job(link::Link& link, link::TransmitFrame renewal, std::vector<Renewed> robots, std::optional<std::string> run_id)
+    : link_(link),
+      command_(command::Velocity{0, 0, 1.0}),
+      command_frames_(1),
+      policy_(Policy::Unanswered),
+      decision_timeout_(0),
+      run_id_(std::move(run_id)),
+      renewed_(std::move(robots)) {
+  frames_.push_back(std::make_shared<const link::TransmitFrame>(std::move(renewal)));
+}
+
 void Job::plan() {
+  if (renewal()) return;  // planned when made
   for (link::TransmitFrame& f : link_.plan(command_))
     frames_.push_back(std::make_shared<const link::TransmitFrame>(std::move(f)));
 }
@@ -39,7 +51,12 @@ void Job::plan() {
 int Job::frame_count() const { return static_cast<int>(frames_.empty() ? command_frames_ : frames_.size()); }
 
 // What the robot will execute: the command as its parameter fields carry it.
-std::string Job::description() const { return command::describe(link_.as_received(command_)); }
+std::string Job::description() const {
+  if (!renewal()) return command::describe(link_.as_received(command_));
+  std::string names;
+  for (const Renewed& r : renewed_) names += (names.empty() ? "" : ", ") + r.robot;
+  return "renewal of " + names;
+}
 
 std::optional<ProgressEvent> Job::next_event(std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);

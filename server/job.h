@@ -67,6 +67,18 @@ class Job {
   // Throws command::ParameterError for a command the link cannot carry.
   Job(link::Link& link, command::Command command, Policy policy, std::chrono::milliseconds decision_timeout,
       std::optional<std::string> run_id);
+  // A joint renewal (link::Link::plan_renewal), unanswered: its one frame, planned already, on
+  // `link` (the first renewed robot's), for the robots named at their addresses. It carries no
+  // command: each robot renews the velocity it took last (command() is a zero velocity).
+  struct Renewed {
+    std::size_t index = 0;  // its place among the sender's robots (RobotIndex)
+    std::string robot;
+    std::uint8_t address = 0;
+  };
+  Job(link::Link& link, link::TransmitFrame renewal, std::vector<Renewed> robots, std::optional<std::string> run_id);
+  // The robots a joint renewal renews; empty for a command.
+  const std::vector<Renewed>& renewed() const { return renewed_; }
+  bool renewal() const { return !renewed_.empty(); }
 
   const std::string& id() const { return id_; }
   const command::Command& command() const { return command_; }
@@ -114,6 +126,7 @@ class Job {
   std::chrono::milliseconds decision_timeout_;
   std::optional<std::string> run_id_;
   std::string robot_;
+  std::vector<Renewed> renewed_;
 
   std::mutex mutex_;
   std::condition_variable changed_;

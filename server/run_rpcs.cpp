@@ -58,6 +58,8 @@ void fill_report(v1::GetReportResponse& response, const store::RunReport& report
   response.set_robot(report.robot.value_or(""));
   response.set_every_robot_stops_sent(report.every_robot_stops_sent);
   response.set_every_robot_stops_executed(report.every_robot_stops_executed);
+  response.set_renewals_sent(report.renewals_sent);
+  response.set_renewals_executed(report.renewals_executed);
   using R = v1::GetReportResponse;
   const auto measure = [&](const std::optional<double>& value, void (R::*setter)(double)) {
     if (value) (response.*setter)(*value);

@@ -14,6 +14,20 @@ store::CommandRow command_row(const Job& job, const std::string& host, store::Wa
   row.kind = command::kind_name(job.command());
   row.parameters = nlohmann::json::object();
   auto& p = row.parameters;
+  row.profile = job.profile().name;
+  row.frame_count = job.frame_count();
+  row.requested_at = requested_at;
+  row.host = host;
+  if (job.renewal()) {  // several robots' (migration 011): named in its parameters, not in `robot`
+    row.kind = "renewal";
+    p["robots"] = nlohmann::json::array();
+    p["addresses"] = nlohmann::json::array();
+    for (const Job::Renewed& r : job.renewed()) {
+      p["robots"].push_back(r.robot);
+      p["addresses"].push_back(r.address);
+    }
+    return row;
+  }
   // Every alternative named: a new command that is not stored is a compile error here.
   std::visit(command::Overloaded{[](const command::Reset&) {}, [](const command::Stop&) {},
                                  [&](const command::DriveForDuration& c) {
@@ -32,10 +46,6 @@ store::CommandRow command_row(const Job& job, const std::string& host, store::Wa
                                    p["lease_s"] = c.lease_s;
                                  }},
              job.command());
-  row.profile = job.profile().name;
-  row.frame_count = job.frame_count();
-  row.requested_at = requested_at;
-  row.host = host;
   row.every_robot = command::every_robot(job.command());
   if (!row.every_robot) {
     row.robot = job.robot();

@@ -32,17 +32,32 @@ void TeleopSession::halt(const std::string& why) {
   changed_.notify_all();
 }
 
-std::optional<command::Velocity> TeleopSession::frame_due(double now_s) {
+std::optional<command::Velocity> TeleopSession::frame_due(double now_s, bool renewed_jointly) {
   std::lock_guard lock(mutex_);
   if (in_flight_ || !target_ || ended_ || halted_ || now_s - heard_at_s_ > kClientSilence_s) return std::nullopt;
   const bool changed = !last_sent_ || *last_sent_ != *target_;
-  const bool renewal_due = last_sent_ && now_s - sent_at_s_ >= last_sent_->lease_s / 2;
-  if (!changed && !renewal_due && last_confirmed_) return std::nullopt;
+  const double renewed_s = std::max(sent_at_s_, renewed_at_s_.value_or(sent_at_s_));
+  const bool renewal_due =
+      last_sent_ && now_s - renewed_s >= last_sent_->lease_s * (renewed_jointly ? kJointRenewalLate : 0.5);
+  const bool check_due = renewed_at_s_ && now_s - sent_at_s_ >= kCheckEvery_s;
+  if (!changed && !renewal_due && !check_due && last_confirmed_) return std::nullopt;
   last_sent_ = target_;
   last_confirmed_ = false;
   in_flight_ = true;
   sent_at_s_ = now_s;
+  renewed_at_s_.reset();
   return target_;
+}
+
+bool TeleopSession::renewable(double now_s) {
+  std::lock_guard lock(mutex_);
+  const bool live = target_ && !ended_ && !halted_ && now_s - heard_at_s_ <= kClientSilence_s;
+  return live && last_sent_ && (last_sent_->linear_fraction != 0 || last_sent_->angular_fraction != 0);
+}
+
+void TeleopSession::renewed(double at_s) {
+  std::lock_guard lock(mutex_);
+  if (at_s > sent_at_s_) renewed_at_s_ = std::max(renewed_at_s_.value_or(at_s), at_s);
 }
 
 void TeleopSession::frame_ended(double now_s, bool answered, std::optional<command::Velocity> confirmed,
@@ -81,7 +96,10 @@ TeleopStatus TeleopSession::status(double now_s) {
   s.link_quality = window_.empty() ? 0.0 : static_cast<double>(answered) / static_cast<double>(window_.size());
   // The robot heard the confirmed frame a little before its ACK came back: the lease left
   // is at most this.
-  if (confirmed_) s.lease_left_s = std::max(0.0, confirmed_->lease_s - (now_s - confirmed_at_s_));
+  // A joint renewal since renews it (unconfirmed: renewals are not answered).
+  const double held_from_s =
+      renewed_at_s_ && last_confirmed_ ? std::max(confirmed_at_s_, *renewed_at_s_) : confirmed_at_s_;
+  if (confirmed_) s.lease_left_s = std::max(0.0, confirmed_->lease_s - (now_s - held_from_s));
   return s;
 }
 

@@ -9,6 +9,11 @@
 // survives a lost renewal, and a stale target is never sent again: only the newest is.
 // Nothing is sent once the client has been silent for kClientSilence_s, has ended the
 // stream, or a Stop overtook it; the lease then lapses on the robot.
+// Joint renewals (keyed robots: Transmitter::keep_renewed) renew the lease between frames
+// while the stream is renewable(); a renewal counts as a frame sent for the half-lease rule,
+// so the stream's own frames then go out when the target changes, when the last was not
+// confirmed, and every kCheckEvery_s: renewals are not answered, and only an answer shows
+// that the robot still holds the velocity they renew (a restarted robot does not).
 #pragma once
 
 #include <condition_variable>
@@ -27,6 +32,11 @@ namespace dtmf::server {
 inline constexpr double kClientSilence_s = 1.0;
 // Link quality is counted over this much of the recent past.
 inline constexpr double kLinkWindow_s = 3.0;
+// While renewed jointly, a frame of the stream's own (answered) goes out at least this often.
+inline constexpr double kCheckEvery_s = 5.0;
+// A joint renewal is late when none began for this share of the lease: the stream renews the
+// lease itself (a joint renewal starts at most 715 ms after the last: teleop_stream.cpp).
+inline constexpr double kJointRenewalLate = 0.75;
 
 // Velocities in the robot's units, the target's and the confirmed one's alike.
 struct TeleopStatus {
@@ -54,8 +64,15 @@ class TeleopSession {
   // Another RPC: a Stop overtook the stream.
   void halt(const std::string& why);
 
-  // The next frame to send now, if one is due (and marks it sent).
-  std::optional<command::Velocity> frame_due(double now_s);
+  // The next frame to send now, if one is due (and marks it sent). `renewed_jointly`: the
+  // transmitter keeps the robot renewed (Transmitter::keep_renewed), so a lease is renewed by
+  // a frame of the stream's own only when no renewal came for kJointRenewalLate of it.
+  std::optional<command::Velocity> frame_due(double now_s, bool renewed_jointly = false);
+  // Whether joint renewals should keep the robot's lease now: the stream is live and the
+  // velocity last sent moves the robot (one at rest needs no lease).
+  bool renewable(double now_s);
+  // A joint renewal that renewed this robot began at `at_s`.
+  void renewed(double at_s);
   // A frame sent ended: answered (ACK or NACK heard) or not; confirmed: the ACK, with the
   // velocity as the robot executes it, `response_time_ms` after its chord started.
   void frame_ended(double now_s, bool answered, std::optional<command::Velocity> confirmed, double response_time_ms);
@@ -78,6 +95,7 @@ class TeleopSession {
   double heard_at_s_ = 0;
   std::optional<command::Velocity> last_sent_;
   double sent_at_s_ = 0;
+  std::optional<double> renewed_at_s_;  // the last joint renewal's start, after sent_at_s_
   bool last_confirmed_ = false;
   bool in_flight_ = false;  // sent, and not yet ended
   std::optional<command::Velocity> confirmed_;

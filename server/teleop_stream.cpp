@@ -9,7 +9,14 @@ namespace dtmf::server {
 
 namespace {
 
-double steady_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double steady_s(std::chrono::steady_clock::time_point at = std::chrono::steady_clock::now()) {
+  return std::chrono::duration<double>(at.time_since_epoch()).count();
+}
+
+// A lease is renewed more than twice a second, and twice within it: a lost renewal costs none.
+// A renewal due may wait 100 ms for the queue and a frame on air (215 ms at most) before it
+// starts: 715 ms at worst, before the session's own renewal (kJointRenewalLate) takes over.
+double renewal_every_ms(double lease_s) { return std::min(400.0, 400.0 * lease_s); }
 
 // A client silent this long holds the slot no more (its lease lapsed long ago).
 constexpr double kClientGone_s = 10.0;
@@ -50,6 +57,7 @@ TeleopStream::TeleopStream(grpc::ServerContext& context, Stream& stream, std::sh
 }
 
 TeleopStream::~TeleopStream() {
+  if (renewing_) transmitter_.stop_renewing(setup_.robot);
   if (job_) job_->cancel();  // a chord on air completes; nothing more is sent for this stream
   // The reader stops at the client's next message or the stream's end; a client silent for
   // longer than that has gone, and cancelling the call ends its Read.
@@ -110,12 +118,26 @@ grpc::Status TeleopStream::drive_frames() {
               "the client sent nothing for " + std::to_string(static_cast<int>(kClientGone_s)) +
                   " s: the stream is closed (the robot stopped when its lease ended)"};
     }
-    const auto due = session_->frame_due(steady_s());
+    follow_renewals();
+    const auto due = session_->frame_due(steady_s(), renewing_);
     if (!due) {
       session_->wait(kLook_s);
       continue;
     }
     if (auto ended = send_frame(*due)) return *ended;
+  }
+}
+
+void TeleopStream::follow_renewals() {
+  const bool renewable = session_->renewable(steady_s());
+  if (renewable && !renewing_) {
+    renewing_ = transmitter_.keep_renewed(setup_.robot, *setup_.profile, renewal_every_ms(setup_.carried_lease_s));
+  } else if (!renewable && renewing_) {
+    transmitter_.stop_renewing(setup_.robot);
+    renewing_ = false;
+  }
+  if (renewing_) {
+    if (const auto at = transmitter_.last_renewed(setup_.robot)) session_->renewed(steady_s(*at));
   }
 }
 

@@ -70,6 +70,9 @@ class TeleopStream {
  private:
   void read_targets();
   grpc::Status drive_frames();
+  // Keeps the robot renewed jointly while the session is renewable (keyed links), and tells
+  // the session when a renewal renewed it.
+  void follow_renewals();
   // Sends one frame and streams its events; a status if the stream must end.
   std::optional<grpc::Status> send_frame(const command::Velocity& velocity);
   bool write_status(const v1::Progress* progress);
@@ -81,6 +84,7 @@ class TeleopStream {
   Transmitter& transmitter_;
   TeleopStreamSetup setup_;
   std::shared_ptr<Job> job_;  // the frame on air, if any
+  bool renewing_ = false;     // kept renewed by the transmitter (Transmitter::keep_renewed)
   std::mutex refused_mutex_;
   std::optional<grpc::Status> refused_;  // a bad target mid-stream, or the reader's failure
   std::promise<void> reader_done_;

@@ -54,7 +54,15 @@ Transmitter::Transmitter(std::vector<RobotLinks> robots, const LinkProfile& prof
   if (robots.empty()) throw std::invalid_argument("a sender needs a robot to drive");
   std::vector<const link::Link*> every_link;
   for (RobotLinks& given : robots) {
-    Robot robot{std::move(given.name), std::move(given.model), std::move(given.links), {}, std::nullopt, std::nullopt};
+    Robot robot{std::move(given.name),
+                std::move(given.model),
+                std::move(given.links),
+                {},
+                std::nullopt,
+                std::nullopt,
+                nullptr,
+                std::nullopt,
+                std::nullopt};
     for (const auto& l : robot.owned_links) {
       if (l->profile().sample_rate_hz == profile_.sample_rate_hz) robot.links.push_back(l.get());
     }
@@ -209,6 +217,15 @@ std::shared_ptr<Job> Transmitter::enqueue(link::Link& link, const command::Comma
       throw QueueFull("the transmit queue is full (" + std::to_string(options_.max_queue) +
                       " commands wait); retry later, or send Stop, which goes first");
     }
+    // A stop ends what it stops: no renewal of a lease goes out for it after the stop.
+    if (std::holds_alternative<command::Stop>(command)) {
+      for (RobotIndex r = 0; r < robots_.size(); ++r) {
+        if (command::every_robot(command) || robot_of(link) == r) {
+          renewals_.drop(r);
+          robots_[r].renewal_link = nullptr;
+        }
+      }
+    }
     // Queued is emitted before the worker can see the job, so that it comes first.
     ProgressEvent queued{Kind::Queued};
     queued.frame_count = job->frame_count();
@@ -324,17 +341,30 @@ void Transmitter::run() {
   }
   while (true) {
     std::shared_ptr<Job> job;
+    std::vector<RobotIndex> renew;
     {
       std::unique_lock lock(mutex_);
-      changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      while (!stopping_ && queue_.empty() && (renew = renewals_due()).empty()) {
+        if (const auto next = renewals_.next_due_ms())
+          changed_.wait_for(lock, std::chrono::duration<double, std::milli>(std::max(0.0, *next - now_ms())));
+        else
+          changed_.wait(lock);
+      }
       if (stopping_) {
         for (auto& waiting : queue_) end(*waiting, Outcome::Unavailable, "the server is shutting down");
         queue_.clear();
         return;
       }
-      job = queue_.front();
-      queue_.pop_front();
-      on_air_ = job;
+      if (renew.empty()) renew = renewals_due();
+      if (renew.empty()) {
+        job = queue_.front();
+        queue_.pop_front();
+        on_air_ = job;
+      }
+    }
+    if (!renew.empty()) {
+      send_renewal(renew);
+      continue;
     }
     try {
       job->plan();  // numbered now, in the order of the air

@@ -20,7 +20,9 @@
 // and only that robot's answer confirms its frames (link/fast_link.h). A stop for every robot
 // goes on links of its own, keyed with the room key (transmitter_room.cpp), and no robot
 // answers it. Before each frame it listens before it talks (transmitter_air.cpp): the
-// microphone's levels tell it whether another sender's frame or answer is on the air.
+// microphone's levels tell it whether another sender's frame or answer is on the air. While
+// Teleop streams drive keyed robots, it renews their velocity leases together, one frame for
+// up to three robots, ahead of the queue (transmitter_renewal.cpp).
 #pragma once
 
 #include <atomic>
@@ -40,6 +42,7 @@
 #include "progress_observer.h"
 #include "reliability/air_access.h"
 #include "reliability/carrier_sense.h"
+#include "renewal_schedule.h"
 #include "reply_listeners.h"
 
 namespace dtmf::server {
@@ -138,6 +141,14 @@ class Transmitter {
   // has a key and the room links none; std::invalid_argument for a profile that names no
   // robot; and what submit() throws.
   std::shared_ptr<Job> submit_every_robot_stop(const LinkProfile* profile = nullptr);
+  // Teleop: keeps `robot`'s velocity lease renewed every `every_ms` by joint renewals under
+  // `profile` (link::Link::plan_renewal: one unanswered frame for up to three robots), sent
+  // ahead of the queue (a Stop still goes first), until stop_renewing(). False where that link
+  // cannot renew so (no key): the caller renews with velocity frames of its own.
+  bool keep_renewed(RobotIndex robot, const LinkProfile& profile, double every_ms);
+  void stop_renewing(RobotIndex robot);
+  // When the last joint renewal that renewed `robot` began, if one did.
+  std::optional<std::chrono::steady_clock::time_point> last_renewed(RobotIndex robot) const;
   // Whether the stop for every robot goes authenticated (the room links have a key).
   bool room_keyed() const { return room_links_.front()->keyed(); }
   // Answers the job awaiting a decision; false if no such job waits.
@@ -179,6 +190,10 @@ class Transmitter {
   void send(Job& job);
   // A frame no robot answers: played, and the command goes on.
   void send_unanswered(Job& job);
+  // A joint renewal of `robots` (kept by keep_renewed), planned and played now.
+  void send_renewal(const std::vector<RobotIndex>& robots);
+  // Under mutex_: the robots whose renewal goes before the queue now (none while a Stop waits).
+  std::vector<RobotIndex> renewals_due() const;
   // One frame of `job` through the retry controller, `attempt` its state (seed Fig. 8).
   struct FrameAttempt;
   // Each false when the command ended there (cancelled, the loudspeaker failed, no decision).
@@ -217,9 +232,12 @@ class Transmitter {
     std::string name;
     command::RobotModel model;
     std::vector<std::unique_ptr<link::Link>> owned_links;
-    std::vector<const link::Link*> links;    // what this transmitter can send it and hear from it
-    std::optional<double> last_answered_ms;  // guarded by mutex_
-    std::optional<double> answer_delay_ms;   // its last answer began this long after the frame ended (worker only)
+    std::vector<const link::Link*> links;      // what this transmitter can send it and hear from it
+    std::optional<double> last_answered_ms;    // guarded by mutex_
+    std::optional<double> answer_delay_ms;     // its last answer began this long after the frame ended (worker only)
+    const link::Link* renewal_link = nullptr;  // kept renewed with it (keep_renewed); guarded by mutex_
+    std::optional<double> renewed_ms;          // its last joint renewal's start; guarded by mutex_
+    std::optional<double> frame_started_ms;    // its last frame's start, a renewal's too; guarded by mutex_
   };
 
   const LinkProfile& profile_;
@@ -242,6 +260,7 @@ class Transmitter {
   double channel_free_ms_ = 0;
   reliability::CarrierSense carrier_;  // fed by listen(), guarded by mutex_
   std::optional<reliability::AirAccess> air_;
+  RenewalSchedule renewals_;  // guarded by mutex_
 
   std::unique_ptr<ReplyListeners> ears_;  // every link's answer ear, fed by listen() alone
   std::thread worker_;

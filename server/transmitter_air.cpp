@@ -28,7 +28,7 @@ double Transmitter::answer_silence_ms() const {
 bool Transmitter::wait_for_air(Job& job) {
   using reliability::AirUse;
   const AirUse use = std::holds_alternative<command::Stop>(job.command()) ? AirUse::Stop
-                     : job.policy() == Policy::Live                       ? AirUse::Renewal
+                     : job.policy() == Policy::Live || job.renewal()      ? AirUse::Renewal
                                                                           : AirUse::Command;
   std::unique_lock lock(mutex_);
   while (true) {

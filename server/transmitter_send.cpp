@@ -69,9 +69,9 @@ void Transmitter::send_unanswered(Job& job) {
     exchange_ended();  // no answer comes
   }
   end(job, Outcome::Sent,
-      std::to_string(job.frame_count()) +
-          " copies played; no robot answers a stop for every robot, each that heard "
-          "one stopped");
+      job.renewal() ? "played; no robot answers a joint renewal, each that heard it holds its velocity for a lease more"
+                    : std::to_string(job.frame_count()) +
+                          " copies played; no robot answers a stop for every robot, each that heard one stopped");
 }
 
 void Transmitter::send(Job& job) {
@@ -130,6 +130,20 @@ bool Transmitter::transmit(Job& job, FrameAttempt& attempt) {
   reliability::RetryController& retry = attempt.retry;
   attempt.chord_start = now_ms();
   retry.on_transmit_started(attempt.chord_start);
+  if (!frame.broadcast) {  // every frame for a robot renews its lease
+    std::lock_guard lock(mutex_);
+    if (job.renewal()) {
+      for (const Job::Renewed& r : job.renewed()) {
+        renewals_.frame_started(r.index, attempt.chord_start);
+        robots_[r.index].renewed_ms = attempt.chord_start;
+        robots_[r.index].frame_started_ms = attempt.chord_start;
+      }
+    } else {
+      const RobotIndex robot = robot_of(job.link());
+      renewals_.frame_started(robot, attempt.chord_start);
+      robots_[robot].frame_started_ms = attempt.chord_start;
+    }
+  }
   ProgressEvent sending = attempt.event(retry.attempt() == 1 ? Kind::Transmitting : Kind::Retransmitting, job);
   sending.time = wall(attempt.chord_start);
   emit(job, sending);

@@ -71,6 +71,8 @@ nlohmann::ordered_json report_json(const v1::GetReportResponse& r) {
   fields["robot"] = r.robot().empty() ? nlohmann::json(nullptr) : nlohmann::json(r.robot());
   fields["every_robot_stops_sent"] = r.every_robot_stops_sent();
   fields["every_robot_stops_executed"] = r.every_robot_stops_executed();
+  fields["renewals_sent"] = r.renewals_sent();
+  fields["renewals_executed"] = r.renewals_executed();
   return fields;
 }
 
@@ -102,6 +104,8 @@ void print_table(const v1::GetReportResponse& r) {
   if (r.every_robot_stops_sent() > 0)
     row("Stops for every robot sent", n(r.every_robot_stops_sent()), "Executed by robots",
         n(r.every_robot_stops_executed()));
+  if (r.renewals_sent() > 0)
+    row("Joint renewals sent", n(r.renewals_sent()), "Taken by robots", n(r.renewals_executed()));
   std::printf("\n");
   row("Average response time", ms(r.has_response_time_avg_ms(), r.response_time_avg_ms()), "Average latency",
       ms(r.has_latency_avg_ms(), r.latency_avg_ms()));

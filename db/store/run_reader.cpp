@@ -84,6 +84,8 @@ void fill_figures(RunReport& report, const pqxx::row& r) {
   report.robot = optional_field<std::string>(r["robot"]);
   report.every_robot_stops_sent = count("every_robot_stops_sent");
   report.every_robot_stops_executed = count("every_robot_stops_executed");
+  report.renewals_sent = count("renewals_sent");
+  report.renewals_executed = count("renewals_executed");
 }
 
 // pqxx's own errors become DatabaseError, which says what to do.

@@ -58,6 +58,8 @@ struct RunReport {
   std::vector<FrameRecord> frames;   // with include_frames only
   std::optional<std::string> robot;  // the robot reported; none: the whole room (migration 010)
   std::int64_t every_robot_stops_sent = 0, every_robot_stops_executed = 0;
+  // Joint renewals (migration 011): sent naming this robot (all, for the room), and taken.
+  std::int64_t renewals_sent = 0, renewals_executed = 0;
 };
 
 // Which run: the newest (monostate), by id, or by number.

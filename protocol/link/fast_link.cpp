@@ -166,8 +166,9 @@ std::optional<Link::PlannedRenewal> FastLink::plan_renewal(std::span<Link* const
     auto& link = static_cast<FastLink&>(*robots[i]);
     security::CounterStore& counters = *link.options().counters;
     counters.next_counter_from(counter);  // used here, whether or not its robot can take it
-    // A robot that may not complete the low bits is left out: its next frame synchronises.
-    if (!security::completable(counters.last_confirmed(), counter)) continue;
+    // The robot completes the low bits from its velocity frame's counter: one that could not
+    // is left out, and its next frame, numbered after this one, is in step again.
+    if (counter - *link.velocity_counter_ >= security::kCounterWindow) continue;
     const std::uint8_t address = link.options().address;
     const std::uint32_t mac = security::frame_mac(
         *link.options().key, security::renewal_mac_input(address, counter, *link.velocity_counter_));

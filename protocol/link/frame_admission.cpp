@@ -96,10 +96,13 @@ std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
   }
   // Every robot's, whatever its address.
   if (sealed ? admit_sealed_room_stop(r) : admit_plain_room_stop(r)) return r;
-  // Up to three robots', whatever the address its first bits read as.
-  if (sealed && admit_renewal(r)) return r;
   const std::uint8_t address = sealed ? reliability::sealed_frame_unpack(heard.bits)->address
                                       : reliability::command_frame_unpack(heard.bits.low64())->address;
+  // Up to three robots', whatever the address its first bits read as; but a frame whose
+  // 32-bit MAC holds as this robot's command is that command (one in 2^18 would pass a slot's
+  // MAC by chance: a stop taken for a renewal would be neither executed nor answered).
+  const bool my_command = sealed && address == options_.address && command_authentic(heard.bits);
+  if (sealed && !my_command && admit_renewal(r)) return r;
   if (address != options_.address) return std::nullopt;  // another robot's frame: not ours to answer either
   if (sealed)
     admit_sealed(r);
@@ -183,7 +186,7 @@ std::optional<std::uint64_t> FrameAdmission::renewal_counter(const reliability::
   if (!options_.key || !renewable_) return std::nullopt;
   const auto renewal = reliability::renewal_frame_unpack(bits);
   if (!renewal) return std::nullopt;
-  const std::uint64_t counter = security::complete_counter(options_.counters->last_accepted(), renewal->counter_low);
+  const std::uint64_t counter = security::complete_counter(renewable_->counter, renewal->counter_low);
   const std::uint32_t mac =
       security::frame_mac(*options_.key, security::renewal_mac_input(options_.address, counter, renewable_->counter)) >>
       (32 - reliability::kRenewalMacBits);
@@ -198,23 +201,20 @@ bool FrameAdmission::admit_renewal(Reception& r) {
   if (!counter) return false;
   r.answered = false;  // up to three robots heard it: answers would sound together
   r.counter = *counter;
-  r.authenticated = true;
-  switch (security::freshness_of(options_.counters->last_accepted(), *counter)) {
-    case security::Freshness::Stale:
-      r.authenticated = false;
-      refuse(r, RefusalReason::Authentication,
-             "a renewal with counter " + std::to_string(*counter) +
-                 ", not newer than the last accepted: a frame "
-                 "captured and played again");
-      return true;
-    case security::Freshness::Repeat:  // its echo, or played again: renewed already
-      r.event = ReceptionEvent::Repeat;
-      r.detail = "repeat of renewal counter " + std::to_string(*counter) + ", not executed again";
-      return true;
-    case security::Freshness::New:
-      break;
+  if (*counter == renewable_->counter || r.start_ms - renewable_->start_ms > kRenewalHorizonMs) {
+    refuse(r, RefusalReason::Authentication,
+           "a renewal of the velocity of counter " + std::to_string(renewable_->counter) + " from " +
+               std::to_string(static_cast<int>((r.start_ms - renewable_->start_ms) / 1000)) + " s after it, past the " +
+               std::to_string(static_cast<int>(kRenewalHorizonMs / 1000)) +
+               " s a velocity is renewed for: renewals captured and played later");
+    return true;
   }
-  options_.counters->accept(*counter);  // kept before the renewal acts
+  r.authenticated = true;
+  if (!renewable_->renewed.insert(*counter).second) {  // its echo, or played again: renewed already
+    r.event = ReceptionEvent::Repeat;
+    r.detail = "repeat of renewal counter " + std::to_string(*counter) + ", not executed again";
+    return true;
+  }
   echoes_.remember(r.bits, r.heard_ms);
   r.command = renewable_->velocity;
   r.event = ReceptionEvent::Renewed;
@@ -223,13 +223,17 @@ bool FrameAdmission::admit_renewal(Reception& r) {
   return true;
 }
 
-bool FrameAdmission::authentic(const reliability::FrameBits& bits) const {
+bool FrameAdmission::command_authentic(const reliability::FrameBits& bits) const {
   const auto frame = reliability::sealed_frame_unpack(bits);
-  if (frame && room_authentic(*frame)) return true;
-  if (renewal_counter(bits)) return true;
   if (!frame || !options_.key) return false;
   const std::uint64_t counter = completed_counter(*frame, options_.counters->last_accepted());
   return security::frame_mac(*options_.key, mac_input(*frame, counter)) == frame->mac;
+}
+
+bool FrameAdmission::authentic(const reliability::FrameBits& bits) const {
+  const auto frame = reliability::sealed_frame_unpack(bits);
+  if (frame && room_authentic(*frame)) return true;
+  return command_authentic(bits) || renewal_counter(bits);
 }
 
 void FrameAdmission::admit_sealed(Reception& r) {
@@ -276,7 +280,7 @@ void FrameAdmission::admit_sealed(Reception& r) {
   }
   take_command(r, *decoded.command);
   if (const auto* velocity = std::get_if<command::Velocity>(&*decoded.command))
-    renewable_ = Renewable{counter, *velocity};
+    renewable_ = Renewable{counter, *velocity, r.start_ms, {}};
 }
 
 void FrameAdmission::take_command(Reception& r, const command::Command& command) {

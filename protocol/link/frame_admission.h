@@ -21,10 +21,17 @@
 // robot and whose MAC holds under its key for the renewal's counter and the counter of the
 // velocity frame it took last: that velocity again, its lease from the renewal's start,
 // never answered; a renewal of any other frame, or after another command, fails its MAC.
+// Its counter is completed from the velocity frame's, not from the last accepted, and is
+// kept apart from the commands' (each taken once, as IPsec's window keeps them): so a forged
+// renewal that got through cannot make the sender's next frames stale. A velocity is renewed
+// for at most kRenewalHorizonMs after its own frame began: the sender sends the velocity
+// again, answered, every 5 s (server/teleop_session.h), and a recording of renewals the
+// robot missed cannot hold it longer than that.
 // Pure logic, but for the counter stores it is given.
 #pragma once
 
 #include <optional>
+#include <set>
 
 #include "link/hop_frame_path.h"
 #include "link/link.h"
@@ -34,6 +41,9 @@
 #include "security/room_freshness.h"
 
 namespace dtmf::link {
+
+// How long after a velocity frame began renewals may still renew it.
+inline constexpr double kRenewalHorizonMs = 6000;
 
 class FrameAdmission {
  public:
@@ -52,6 +62,8 @@ class FrameAdmission {
   // Whether the frame is a stop for every robot; if so, `r` says what became of it.
   bool admit_plain_room_stop(Reception& r);
   bool admit_sealed_room_stop(Reception& r);
+  // Whether the 80-bit frame `bits` is a command or synchronisation under this robot's key.
+  bool command_authentic(const reliability::FrameBits& bits) const;
   // Whether `frame` is sealed under the room key: a stop for every robot.
   bool room_authentic(const reliability::SealedFrame& frame) const;
   void take_command(Reception& r, const command::Command& command);
@@ -67,6 +79,8 @@ class FrameAdmission {
   struct Renewable {
     std::uint64_t counter = 0;
     command::Velocity velocity;
+    double start_ms = 0;              // when its frame began
+    std::set<std::uint64_t> renewed;  // the renewals' counters taken
   };
   std::optional<Renewable> renewable_;
 

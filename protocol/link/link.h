@@ -137,7 +137,7 @@ class Link {
   // this profile, one per robot, this one among them) was sent last (fast, keyed:
   // reliability/renewal_frame.h), and which of them it renews: at most three, in order; left
   // out are robots whose last frame was no velocity and robots that could not complete the
-  // renewal's counter (their next frame carries a synchronisation). Nothing where the format
+  // renewal's counter from that frame's (their next frame is in step). Nothing where the format
   // has no such frame or none can be renewed.
   struct PlannedRenewal {
     TransmitFrame frame;

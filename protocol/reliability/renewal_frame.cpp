@@ -6,7 +6,6 @@ namespace dtmf::reliability {
 
 namespace {
 constexpr int kSlotBits = kAddressBits + kRenewalMacBits;  // 21
-constexpr int kCheckedBits = kSealedFrameBits - kSealedCheckBits;
 constexpr WideBits mask(int bits) { return (WideBits{1} << bits) - 1; }
 static_assert(kRenewalSlots * kSlotBits + kSealedCounterLowBits + kSealedCheckBits == kSealedFrameBits);
 }  // namespace
@@ -18,14 +17,13 @@ FrameBits renewal_frame_pack(const RenewalFrame& f) {
     body = body << kRenewalMacBits | (slot.mac & mask(kRenewalMacBits));
   }
   body = body << kSealedCounterLowBits | (f.counter_low & mask(kSealedCounterLowBits));
-  return FrameBits::wide(body << kSealedCheckBits | crc8_autosar(body, kCheckedBits));
+  return sealed_with_check(body);
 }
 
 std::optional<RenewalFrame> renewal_frame_unpack(FrameBits bits) {
-  const WideBits v = bits.value();
-  if (v >> kSealedFrameBits) return std::nullopt;
-  const WideBits body = v >> kSealedCheckBits;
-  if (crc8_autosar(body, kCheckedBits) != static_cast<std::uint8_t>(v & 0xFF)) return std::nullopt;
+  const auto checked = sealed_checked_body(bits);
+  if (!checked) return std::nullopt;
+  const WideBits body = *checked;
   RenewalFrame f;
   f.counter_low = static_cast<std::uint32_t>(body & mask(kSealedCounterLowBits));
   WideBits slots = body >> kSealedCounterLowBits;

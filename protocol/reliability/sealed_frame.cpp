@@ -32,14 +32,25 @@ FrameBits sealed_frame_pack(const SealedFrame& f) {
     body = body << kSealedSyncCounterBits | (f.counter & mask(kSealedSyncCounterBits));
   }
   body = body << kSealedMacBits | f.mac;
+  return sealed_with_check(body);
+}
+
+FrameBits sealed_with_check(WideBits body) {
   return FrameBits::wide(body << kSealedCheckBits | crc8_autosar(body, kCheckedBits));
 }
 
-std::optional<SealedFrame> sealed_frame_unpack(FrameBits bits) {
+std::optional<WideBits> sealed_checked_body(FrameBits bits) {
   const WideBits v = bits.value();
   if (v >> kSealedFrameBits) return std::nullopt;
   const WideBits body = v >> kSealedCheckBits;
   if (crc8_autosar(body, kCheckedBits) != static_cast<std::uint8_t>(v & 0xFF)) return std::nullopt;
+  return body;
+}
+
+std::optional<SealedFrame> sealed_frame_unpack(FrameBits bits) {
+  const auto checked = sealed_checked_body(bits);
+  if (!checked) return std::nullopt;
+  const WideBits body = *checked;
   SealedFrame f;
   f.mac = static_cast<std::uint32_t>(body & mask(kSealedMacBits));
   const WideBits head = body >> kSealedMacBits;  // 40 bits: address, form, counter [, payload]

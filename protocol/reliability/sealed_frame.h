@@ -62,6 +62,11 @@ using SealedSymbols = std::array<std::uint8_t, kSealedSymbols>;
 std::uint8_t crc8_autosar(WideBits bits, int width);
 
 FrameBits sealed_frame_pack(const SealedFrame& frame);
+// Bits 79..8 of an 80-bit frame, when its CRC-8 holds (every layout in these 80 bits:
+// this frame's, and a joint renewal's, renewal_frame.h).
+std::optional<WideBits> sealed_checked_body(FrameBits bits);
+// `body` (bits 79..8) with its CRC-8 appended.
+FrameBits sealed_with_check(WideBits body);
 // The frame in `bits` when its CRC holds.
 std::optional<SealedFrame> sealed_frame_unpack(FrameBits bits);
 

@@ -1,6 +1,6 @@
-// Database: one run of a sender driving two robots (migration 010). run_report(run) covers
-// the whole room, run_report(run, robot) one robot; a stop for every robot is counted apart
-// (no robot answers it); a robot of another sender in the same room, at another address, is
+// Database: one run of a sender driving two robots (migrations 010, 011). run_report(run)
+// covers the whole room, run_report(run, robot) one robot; a stop for every robot and a joint
+// renewal are counted apart (no robot answers them); a robot of another sender in the same room, at another address, is
 // no false positive of this run; RunReader and the runs view name the run's robots.
 #include <gtest/gtest.h>
 
@@ -63,6 +63,29 @@ struct FleetRun {
     ++slot;
   }
 
+  // A joint renewal of alpha and beta (migration 011): no answer, taken by both.
+  void renewal(Store& store) {
+    CommandRow c;
+    c.run_id = run.id;
+    c.kind = "renewal";
+    c.profile = "fast";
+    c.requested_at = t0 + milliseconds(slot * kSlotMs);
+    c.outcome = "sent";
+    c.parameters = {{"robots", {"alpha", "beta"}}, {"addresses", {1, 2}}};
+    c.host = "sender-a";
+    store.write(c);
+    FrameAttemptRow a = attempt(c.id, 0, c.requested_at, "");
+    a.answer.reset();
+    store.write(a);
+    for (const auto& [robot, address] : {std::pair{"alpha", 1}, std::pair{"beta", 2}}) {
+      ReceptionRow r = reception(robot, address, c.requested_at + milliseconds(150), "velocity", a.frame);
+      r.event = "renewal";
+      r.reply.reset();
+      store.write(r);
+    }
+    ++slot;
+  }
+
   FrameAttemptRow attempt(const std::string& command_id, int position, WallTime start, const std::string& answer) {
     FrameAttemptRow a;
     a.run_id = run.id;
@@ -115,6 +138,8 @@ TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
     for (int i = 0; i < 4; ++i) f.command(store, "alpha", 1, false);
     for (int i = 0; i < 3; ++i) f.command(store, "beta", 2, i == 1);  // beta missed one frame
     f.stop_every_robot(store);
+    f.renewal(store);
+    f.renewal(store);
     // Another sender's robot in the same room took its own frame meanwhile: not this run's.
     store.write(f.reception("gamma", 5, f.t0 + milliseconds(3 * kSlotMs + 50), "turn", "777777"));
     ASSERT_TRUE(store.flush(std::chrono::seconds(30)));
@@ -136,19 +161,23 @@ TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
   EXPECT_EQ(room["sender_confirmed"].as<int>(), 7);
   EXPECT_EQ(room["every_robot_stops_sent"].as<int>(), 1);
   EXPECT_EQ(room["every_robot_stops_executed"].as<int>(), 4) << "two copies, each executed by both robots";
+  EXPECT_EQ(room["renewals_sent"].as<int>(), 2) << "joint renewals are no transmissions either";
+  EXPECT_EQ(room["renewals_executed"].as<int>(), 4) << "two renewals, each taken by both robots";
 
   const pqxx::row alpha = report("alpha"), beta = report("beta");
   EXPECT_EQ(alpha["robot"].as<std::string>(), "alpha");
   EXPECT_EQ(alpha["transmissions_sent"].as<int>(), 4);
   EXPECT_EQ(alpha["successfully_matched"].as<int>(), 4);
   EXPECT_EQ(alpha["every_robot_stops_executed"].as<int>(), 2);
+  EXPECT_EQ(alpha["renewals_sent"].as<int>(), 2) << "both renewals named alpha";
+  EXPECT_EQ(alpha["renewals_executed"].as<int>(), 2);
   EXPECT_EQ(beta["transmissions_sent"].as<int>(), 3);
   EXPECT_EQ(beta["successfully_matched"].as<int>(), 2);
   EXPECT_EQ(beta["dropped"].as<int>(), 1);
   EXPECT_EQ(beta["false_positives"].as<int>(), 0);
   // The robots add up to the room.
   for (const char* column : {"transmissions_sent", "transmissions_received", "successfully_matched", "dropped",
-                             "sender_confirmed", "every_robot_stops_executed"}) {
+                             "sender_confirmed", "every_robot_stops_executed", "renewals_executed"}) {
     EXPECT_EQ(alpha[column].as<int>() + beta[column].as<int>(), room[column].as<int>()) << column;
   }
   EXPECT_EQ(report("gamma")["transmissions_sent"].as<int>(), 0) << "no command of this run named gamma";
@@ -165,4 +194,6 @@ TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
   EXPECT_EQ(read->transmissions_sent, 3);
   EXPECT_EQ(read->frames.size(), 3u) << "beta's frames only";
   EXPECT_EQ(reader.report(f.run.id, false)->every_robot_stops_sent, 1);
+  EXPECT_EQ(reader.report(f.run.id, false)->renewals_sent, 2);
+  EXPECT_EQ(read->renewals_executed, 2);
 }

@@ -9,9 +9,15 @@
 #include <vector>
 
 #include "command/command.h"
+#include "command/command_payload.h"
+#include "link/frame_admission.h"
 #include "link/link.h"
 #include "profile/link_profile.h"
+#include "reliability/renewal_frame.h"
+#include "reliability/sealed_frame.h"
 #include "security/counter_store.h"
+#include "security/frame_mac.h"
+#include "security/freshness.h"
 #include "support/test_key.h"
 
 using namespace dtmf;
@@ -118,13 +124,56 @@ TEST(JointRenewal, PlayedAgainItRenewsNothing) {
   EXPECT_FALSE(again[0].command) << "the same renewal executed twice";
   EXPECT_FALSE(again[0].answered);
   ASSERT_EQ(hear(robots[0], second->frame.audio)[0].event, link::ReceptionEvent::Renewed);
-  // The first, captured and played after the second: its counter completes to a newer one, and
-  // its MAC fails there. It is then read as a frame for robot 2 whose MAC fails: refused, unanswered.
+  // The first, captured and played after the second: taken already.
   const auto late = hear(robots[0], first->frame.audio);
   ASSERT_EQ(late.size(), 1u);
   EXPECT_FALSE(late[0].command);
-  EXPECT_EQ(late[0].event, link::ReceptionEvent::Refused);
+  EXPECT_EQ(late[0].event, link::ReceptionEvent::Repeat);
   EXPECT_FALSE(late[0].answered);
+}
+
+TEST(JointRenewal, AVelocityIsRenewedForSixSecondsAfterItsFrameAtMost) {
+  std::vector<Pair> robots;
+  robots.push_back(pair(1));
+  drive(robots[0], kAhead);
+  const auto links = senders(robots);
+  const auto early = robots[0].sender->plan_renewal(links);
+  const auto late = robots[0].sender->plan_renewal(links);
+  ASSERT_TRUE(early && late);
+  EXPECT_EQ(hear(robots[0], early->frame.audio)[0].event, link::ReceptionEvent::Renewed);
+  // A renewal recorded (the robot did not hear it then) and played 6 s after the velocity's frame.
+  hear(robots[0], std::vector<float>(static_cast<std::size_t>(p.samples_for_ms(link::kRenewalHorizonMs)), 0.0f));
+  const auto played = hear(robots[0], late->frame.audio);
+  ASSERT_EQ(played.size(), 1u);
+  EXPECT_FALSE(played[0].command) << played[0].detail;
+  EXPECT_EQ(played[0].event, link::ReceptionEvent::Refused);
+  EXPECT_FALSE(played[0].answered);
+  // The velocity sent again renews anew.
+  drive(robots[0], kAhead);
+  const auto again = robots[0].sender->plan_renewal(links);
+  ASSERT_TRUE(again);
+  EXPECT_EQ(hear(robots[0], again->frame.audio)[0].event, link::ReceptionEvent::Renewed);
+}
+
+TEST(JointRenewal, RenewalsLeaveTheCommandsCountersAlone) {
+  // A renewal's counter is kept apart from the commands': a frame numbered before a renewal
+  // but heard after it is still new to the robot, so a forged renewal that got through could
+  // not make the sender's frames stale. (A second link on the same key and counter store
+  // numbers that frame, as a second sender process on the same counter file would.)
+  std::vector<Pair> robots;
+  robots.push_back(pair(3));
+  drive(robots[0], kAhead);
+  const auto second = link::make_link(p, robots[0].sender->options());
+  const auto earlier = second->plan(kBack);
+  const auto renewal = robots[0].sender->plan_renewal(senders(robots));
+  ASSERT_TRUE(renewal);
+  ASSERT_EQ(earlier.size(), 1u);
+  ASSERT_LT(earlier[0].counter, renewal->frame.counter);
+  ASSERT_EQ(hear(robots[0], renewal->frame.audio)[0].event, link::ReceptionEvent::Renewed);
+  const auto got = hear(robots[0], earlier[0].audio);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].event, link::ReceptionEvent::Command) << got[0].detail;
+  EXPECT_FALSE(robots[0].sender->plan_renewal(std::vector<link::Link*>{})) << "no robot: nothing";
 }
 
 TEST(JointRenewal, RenewsOnlyTheVelocityTheRobotTookLast) {
@@ -173,8 +222,69 @@ TEST(JointRenewal, ARobotThatCannotCompleteTheCounterIsLeftOutAndSynchronisesNex
   ASSERT_TRUE(planned);
   EXPECT_EQ(planned->renewed, (std::vector<std::size_t>{1}));
   for (const auto& r : hear(robots[0], planned->frame.audio)) EXPECT_FALSE(r.command) << r.detail;
-  // Robot 1's counter moved on with the renewal: its next frame carries all of it first.
+  // Robot 1's counter moved on with the renewal: its next frame carries all of it first, and
+  // from then on it is in step with robot 2.
   const auto next = robots[0].sender->plan(kBack);
   ASSERT_EQ(next.size(), 2u);
   EXPECT_TRUE(next[0].synchronisation);
+  for (const auto& f : next) {
+    ASSERT_TRUE(hear(robots[0], f.audio)[0].acknowledged());
+    robots[0].sender->confirmed(f);
+  }
+  const auto both = robots[0].sender->plan_renewal(links);
+  ASSERT_TRUE(both);
+  EXPECT_EQ(both->renewed, (std::vector<std::size_t>{0, 1}));
+  EXPECT_TRUE(
+      renewed(hear(robots[0], both->frame.audio), std::get<command::Velocity>(robots[0].robot->as_received(kBack))));
+}
+
+// A command whose bits also pass this robot's renewal slot by chance (one frame in about
+// 2^18): found by search, it is still executed as the command (its 32-bit MAC holds), not
+// taken for a renewal, which would leave it unexecuted and unanswered.
+TEST(JointRenewal, ACommandThatAlsoReadsAsARenewalIsTheCommand) {
+  const std::uint8_t address = 2;
+  link::LinkOptions o;
+  o.address = address;
+  o.key = test_key(address);
+  o.counters = std::make_shared<security::MemoryCounterStore>(1, 0);
+  link::FrameAdmission robot(p, o);
+  const auto seal = [&](std::uint64_t counter, const command::Command& c) {
+    const std::uint32_t payload = command::encode_payload(c);
+    reliability::SealedFrame f{address, reliability::SealedForm::Command, security::counter_low_bits(counter), payload,
+                               security::frame_mac(*o.key, {address, 0, counter, payload})};
+    return reliability::sealed_frame_pack(f);
+  };
+  const auto hear_bits = [&](reliability::FrameBits bits, double at_ms) {
+    link::HeardHopFrame h;
+    h.start_ms = at_ms;
+    h.heard_ms = at_ms + 150;
+    h.chords = 3;
+    h.intact = true;
+    h.bits = bits;
+    return robot.admit(h);
+  };
+  const std::uint64_t velocity_counter = 1;
+  ASSERT_EQ(hear_bits(seal(velocity_counter, kAhead), 0)->event, link::ReceptionEvent::Command);
+  // Search the velocities the sender might send next (counter 2) for one whose bits pass a slot.
+  std::optional<reliability::FrameBits> both;
+  for (int linear = -2047; linear <= 2047 && !both; ++linear) {
+    for (int angular = -127; angular <= 127 && !both; ++angular) {
+      const command::Velocity v{linear / 2047.0, angular / 127.0, 1.0};
+      const auto bits = seal(2, v);
+      const auto renewal = reliability::renewal_frame_unpack(bits);
+      const std::uint64_t counter = security::complete_counter(velocity_counter, renewal->counter_low);
+      const std::uint32_t mac =
+          security::frame_mac(*o.key, security::renewal_mac_input(address, counter, velocity_counter)) >>
+          (32 - reliability::kRenewalMacBits);
+      for (const auto& slot : renewal->slots) {
+        if (counter != velocity_counter && slot.address == address && slot.mac == mac) both = bits;
+      }
+    }
+  }
+  ASSERT_TRUE(both) << "no velocity frame reads as a renewal too: search wider";
+  const auto r = hear_bits(*both, 500);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->event, link::ReceptionEvent::Command) << r->detail;
+  EXPECT_TRUE(r->answered);
+  EXPECT_EQ(r->counter, 2u);
 }

@@ -58,6 +58,7 @@ FleetRobot::FleetRobot(sim::SimulatedAir::Station station, link::LinkOptions lin
   options.on_frame_heard = [this](const agent::HeardFrame& frame) {
     if (!frame.executed) return;
     std::lock_guard lock(mutex_);
+    if (frame.reception.event == link::ReceptionEvent::Renewed) ++renewals_;
     executed_.emplace_back(std::chrono::steady_clock::now(), *frame.executed);
   };
   agent_ =
@@ -93,6 +94,11 @@ std::optional<std::chrono::steady_clock::time_point> FleetRobot::standing_since(
 std::vector<std::pair<std::chrono::steady_clock::time_point, command::Command>> FleetRobot::executed() {
   std::lock_guard lock(mutex_);
   return executed_;
+}
+
+int FleetRobot::renewals() {
+  std::lock_guard lock(mutex_);
+  return renewals_;
 }
 
 std::vector<VelocitySample> FleetRobot::samples(std::size_t from) {

@@ -55,6 +55,8 @@ class FleetRobot : public agent::CmdVelOutput {
   std::vector<VelocitySample> samples(std::size_t from = 0);
   // When the agent executed each command it took (a Velocity's renewal counts), and what.
   std::vector<std::pair<std::chrono::steady_clock::time_point, command::Command>> executed();
+  // How many of those were joint renewals (link::ReceptionEvent::Renewed).
+  int renewals();
 
  private:
   std::unique_ptr<physical::AudioSource> microphone_;
@@ -65,6 +67,7 @@ class FleetRobot : public agent::CmdVelOutput {
   std::thread thread_;
   std::mutex mutex_;
   bool moved_ = false, moving_ = false;
+  int renewals_ = 0;
   std::optional<std::chrono::steady_clock::time_point> stopped_at_;
   std::vector<VelocitySample> samples_;
   std::vector<std::pair<std::chrono::steady_clock::time_point, command::Command>> executed_;

@@ -150,3 +150,32 @@ TEST(StoreRecorder, AnAnswerWithoutAChordWritesNothing) {
   record.on_event(*job, event(Kind::Queued));
   EXPECT_TRUE(record.on_event(*job, event(Kind::Ack, 0, 1)).empty());
 }
+
+TEST(StoreRecorder, AJointRenewalIsOneRowNamingItsRobotsInItsParametersAndEndsSent) {
+  link::TransmitFrame frame;
+  frame.bits = 12345;
+  frame.bit_count = 80;
+  frame.renewal = true;
+  frame.authenticated = true;
+  const Job job(link_of(profile_by_name("fast")), frame, {{0, "robot1", 1}, {2, "robot3", 3}}, "run-1");
+  ASSERT_TRUE(job.renewal());
+  EXPECT_EQ(job.description(), "renewal of robot1, robot3");
+  TransmissionRecord record("sender-pc");
+  const auto queued = record.on_event(job, event(Kind::Queued));
+  ASSERT_EQ(queued.size(), 1u);
+  const store::CommandRow& row = command_in(queued[0]);
+  EXPECT_EQ(row.kind, "renewal");
+  EXPECT_FALSE(row.robot) << "several robots'";
+  EXPECT_FALSE(row.robot_address);
+  EXPECT_FALSE(row.every_robot);
+  EXPECT_EQ(row.parameters["robots"], nlohmann::json({"robot1", "robot3"}));
+  EXPECT_EQ(row.parameters["addresses"], nlohmann::json({1, 3}));
+  const auto on_air = record.on_event(job, event(Kind::Transmitting, 0, 1, &job));
+  ASSERT_EQ(on_air.size(), 2u);
+  EXPECT_EQ(attempt_in(on_air[1]).frame, "12345");
+  ProgressEvent sent = event(Kind::Sent, 0, 1, &job);
+  sent.outcome = Outcome::Sent;
+  const auto ended = record.on_event(job, sent);
+  ASSERT_EQ(ended.size(), 1u);
+  EXPECT_EQ(command_in(ended[0]).outcome, "sent");
+}

@@ -88,3 +88,53 @@ TEST(TeleopSession, StatusReportsConfirmedVelocityLeaseLeftAndLinkQualityOverThe
   EXPECT_EQ(status.frames_in_window, 0);
   EXPECT_EQ(status.lease_left_s, 0.0);
 }
+
+TEST(TeleopSession, RenewedJointlyItSendsChangesChecksAndOnlyLateRenewalsOfItsOwn) {
+  TeleopSession s(command::burger());
+  EXPECT_FALSE(s.renewable(0.0)) << "nothing sent yet: nothing to renew";
+  s.set_target(v(0.5, 1.0), 0.0);
+  ASSERT_TRUE(s.frame_due(0.0, true));
+  s.frame_ended(0.2, true, v(0.5, 1.0), 150);
+  EXPECT_TRUE(s.renewable(0.2));
+  // Joint renewals every 0.4 s: none of its own frames, past half the lease and well after.
+  double t = 0.0;
+  for (int i = 1; i <= 11; ++i) {
+    t = 0.4 * i;
+    s.renewed(t);
+    s.set_target(v(0.5, 1.0), t);  // the client repeats its target
+    EXPECT_FALSE(s.frame_due(t + 0.1, true)) << "at " << t + 0.1 << " s";
+  }
+  // ... until a frame of its own checks the link (kCheckEvery_s after its last).
+  s.set_target(v(0.5, 1.0), 5.0);
+  EXPECT_TRUE(s.frame_due(5.0, true)) << "no answer for 5 s: whether the robot still holds it is unknown";
+  s.frame_ended(5.2, true, v(0.5, 1.0), 150);
+  // Renewals stop coming (its robot left out of them): its own renewal once one is late.
+  s.set_target(v(0.5, 1.0), 5.5);
+  EXPECT_FALSE(s.frame_due(5.5, true)) << "half the lease: a joint renewal may still come";
+  s.set_target(v(0.5, 1.0), 5.75);
+  EXPECT_TRUE(s.frame_due(5.75, true)) << "three quarters of the lease without a renewal";
+  s.frame_ended(5.9, true, v(0.5, 1.0), 150);
+  // A key press goes out at once, renewed or not.
+  s.set_target(v(0.6, 1.0), 6.0);
+  EXPECT_TRUE(s.frame_due(6.0, true));
+}
+
+TEST(TeleopSession, OnlyALiveStreamThatMovesItsRobotIsRenewable) {
+  TeleopSession at_rest(command::burger());
+  at_rest.set_target(v(0.0), 0.0);
+  ASSERT_TRUE(at_rest.frame_due(0.0, true));
+  EXPECT_FALSE(at_rest.renewable(0.1)) << "a robot at rest needs no lease";
+  TeleopSession silent(command::burger());
+  silent.set_target(v(0.3), 0.0);
+  ASSERT_TRUE(silent.frame_due(0.0, true));
+  EXPECT_TRUE(silent.renewable(0.9));
+  EXPECT_FALSE(silent.renewable(1.1)) << "a client silent for a second has gone";
+  silent.set_target(v(0.3), 1.2);
+  silent.halt("a Stop overtook it");
+  EXPECT_FALSE(silent.renewable(1.2));
+  TeleopSession ended(command::burger());
+  ended.set_target(v(0.3), 0.0);
+  ASSERT_TRUE(ended.frame_due(0.0, true));
+  ended.end_stream();
+  EXPECT_FALSE(ended.renewable(0.1));
+}

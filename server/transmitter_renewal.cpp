@@ -1,0 +1,97 @@
+// Transmitter: joint renewals (docs/protocol.md §10, "Renewing leases together"). Teleop
+// streams keep their robots renewed; the loudspeaker's thread renews every kept robot in one
+// frame whenever one of them is due (renewal_schedule.h), before the queue's next command.
+#include <spdlog/spdlog.h>
+
+#include "reliability/renewal_frame.h"
+#include "transmitter.h"
+
+namespace dtmf::server {
+
+namespace {
+// How long a renewal that is due waits for the commands queued before it: a renewal is due
+// at most 400 ms after the last (teleop_stream.cpp), well within a lease of 1 s, and a key
+// press's frame is worth more now.
+constexpr double kRenewalSlackMs = 100;
+}  // namespace
+
+bool Transmitter::keep_renewed(RobotIndex robot, const LinkProfile& profile, double every_ms) {
+  const link::Link& renewing = link_for(profile, robot);
+  if (!renewing.keyed()) return false;
+  {
+    std::lock_guard lock(mutex_);
+    Robot& r = robots_.at(robot);
+    r.renewal_link = &renewing;
+    renewals_.keep(robot, every_ms, r.frame_started_ms.value_or(now_ms()));
+  }
+  changed_.notify_all();
+  return true;
+}
+
+void Transmitter::stop_renewing(RobotIndex robot) {
+  std::lock_guard lock(mutex_);
+  renewals_.drop(robot);
+  robots_.at(robot).renewal_link = nullptr;
+}
+
+std::optional<std::chrono::steady_clock::time_point> Transmitter::last_renewed(RobotIndex robot) const {
+  std::lock_guard lock(mutex_);
+  const auto& at_ms = robots_.at(robot).renewed_ms;
+  if (!at_ms) return std::nullopt;
+  return epoch_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double, std::milli>(*at_ms));
+}
+
+std::vector<RobotIndex> Transmitter::renewals_due() const {
+  if (queue_.empty()) return renewals_.due(now_ms(), reliability::kRenewalSlots);
+  if (std::holds_alternative<command::Stop>(queue_.front()->command())) return {};
+  // A command waiting goes first (a key press: a new target) while the renewal can wait.
+  return renewals_.due(now_ms() - kRenewalSlackMs, reliability::kRenewalSlots);
+}
+
+void Transmitter::send_renewal(const std::vector<RobotIndex>& robots) {
+  std::vector<link::Link*> links;
+  {
+    std::lock_guard lock(mutex_);
+    for (const RobotIndex r : robots) {
+      // Kept under one profile each; links of another profile than the first's are left out.
+      if (const link::Link* l = robots_[r].renewal_link) links.push_back(const_cast<link::Link*>(l));
+    }
+  }
+  std::optional<link::Link::PlannedRenewal> planned;
+  try {
+    if (!links.empty()) planned = links.front()->plan_renewal(links);
+  } catch (const std::exception& e) {  // the counter's store failed: no frame can be numbered
+    spdlog::error("a joint renewal cannot number its frame: {}", e.what());
+  }
+  std::vector<Job::Renewed> renewed;
+  if (planned) {
+    for (const std::size_t i : planned->renewed) {
+      const RobotIndex r = robot_of(*links[i]);
+      renewed.push_back({r, robots_[r].name, links[i]->options().address});
+    }
+  }
+  {
+    // Those left out (nothing to renew, a counter they could not complete) are not due again
+    // until their period has passed once more: their streams renew them with frames of their own.
+    std::lock_guard lock(mutex_);
+    const double now = now_ms();
+    for (const RobotIndex r : robots) renewals_.frame_started(r, now);
+  }
+  if (renewed.empty()) return;
+  link::Link& first = *links[planned->renewed.front()];
+  std::shared_ptr<Job> job;
+  {
+    std::lock_guard lock(mutex_);
+    job = std::make_shared<Job>(first, std::move(planned->frame), std::move(renewed), run_id_);
+    ProgressEvent queued{ProgressEvent::Kind::Queued};
+    queued.frame_count = 1;
+    emit(*job, queued);
+    on_air_ = job;
+  }
+  send_unanswered(*job);
+  std::lock_guard lock(mutex_);
+  on_air_.reset();
+}
+
+}  // namespace dtmf::server
