@@ -94,6 +94,14 @@ def _load_rows(w, runs):
         w("")
 
 
+def _air_share(profile, robots, _first):
+    """The share of the air one sender used for its robots' Teleop streams (all of them)."""
+    own_ms = 215.0 if profile.endswith("+key") else 153.75
+    own = sum(r["renewals_per_s"] - r.get("joint_renewals_per_s", 0.0) for r in robots)
+    joint = max(r.get("joint_renewals_per_s", 0.0) for r in robots)
+    return f"{(own * own_ms + joint * 153.75) / 10:.0f} % ({own:.1f} own, {joint:.1f} joint a second)"
+
+
 def _two_senders_target(w, run):
     target = ("two senders, 2 robots each, one air, Drives at random for 10 min: confirmed without a manual retry "
               f"| ≥ {TWO_SENDERS_CONFIRMED_PCT:.0f} %, the share lost to collisions reported, 0 wrong executions")
@@ -155,22 +163,28 @@ def fleet_section(w, data, profiles, ok, directory):
     if teleop_shown:
         w("`dtmf-bench-fleet-teleop`: one sender drives robot1..robot3 (addresses 1–3, 1, 2 and 3 m from its "
           "loudspeaker) through the seminar room both ways, one Teleop stream each, as `dtmfctl teleop` drives, in "
-          "real time; a key press (±0.01 m/s) every second on average, the robots in turn. *Renewals*: VELOCITY "
-          "frames each robot executed per second; *lapses*: standstills while its stream held a non-zero target; "
-          "*wrong*: velocities a robot executed from another robot's range.")
+          "real time; a key press (±0.01 m/s) every second on average, the robots in turn. *Renewals*: velocities "
+          "each robot executed per second, each renewing its lease: its stream's VELOCITY frames and, keyed, the "
+          "joint renewals (one unanswered frame for all three: docs/protocol.md §10, \"Renewing leases together\"), "
+          "which *joint* counts apart; *lapses*: standstills while its stream held a non-zero target; "
+          "*wrong*: velocities a robot executed from another robot's range. *Air*: the share of the air the sender "
+          "used, its own frames at 215 ms each (a keyed frame and its tag chord; 153.75 ms unkeyed with its "
+          "answer under it) and the joint renewals at 153.75 ms.")
         w("")
         when = sorted({data[p]["fleet_teleop"].get("measured_utc", "at an unknown time") for p in teleop_shown})
         w(f"Measured {', '.join(when)}, {data[teleop_shown[0]]['fleet_teleop']['seconds']:.0f} s each.")
         w("")
-        w("| profile | robot | renewals a second | press → cmd_vel (median / p95 / max) | presses reached "
-          "| lapses | wrong |")
-        w("|---|---|---|---|---|---|---|")
+        w("| profile | robot | renewals a second (joint) | press → cmd_vel (median / p95 / max) | presses reached "
+          "| lapses | wrong | air |")
+        w("|---|---|---|---|---|---|---|---|")
         for p in teleop_shown:
-            for r in data[p]["fleet_teleop"]["robots"]:
+            robots = data[p]["fleet_teleop"]["robots"]
+            for r in robots:
                 ms = r["press_to_cmd_vel_ms"]
-                w(f"| `{p}` | {r['robot']} | {r['renewals_per_s']:.2f} | {ms['median']:.0f} / {ms['p95']:.0f} / "
-                  f"{ms['max']:.0f} ms | {r['presses'] - r['missed']} of {r['presses']} | {r['lapses']} "
-                  f"| {r['wrong']} |")
+                joint = r.get("joint_renewals_per_s", 0.0)
+                w(f"| `{p}` | {r['robot']} | {r['renewals_per_s']:.2f} ({joint:.2f}) | {ms['median']:.0f} / "
+                  f"{ms['p95']:.0f} / {ms['max']:.0f} ms | {r['presses'] - r['missed']} of {r['presses']} "
+                  f"| {r['lapses']} | {r['wrong']} | {_air_share(p, robots, r) if r is robots[0] else ''} |")
         w("")
     load = load_fleet_load(directory)
     two_senders = load_fleet_load(directory, "two_senders")

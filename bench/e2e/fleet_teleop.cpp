@@ -10,7 +10,8 @@
 // to 0.04 more), so a velocity a robot executes outside its range is another robot's frame.
 // For `--seconds`, a key press every `--press-every-s` on average (exponential gaps), each on
 // a robot taken in turn: ±0.01 m/s within its range. Measured per robot:
-//   renewals  VELOCITY frames it executed per second (each a renewal of its lease);
+//   renewals  velocities it executed per second (each a renewal of its lease): VELOCITY frames
+//             of its stream, and (keyed) joint renewals, counted also apart;
 //   presses   from the new target sent on its stream to the first cmd_vel sample at it;
 //   lapses    standstills on cmd_vel while its operator held a non-zero target (a lease ran out);
 //   wrong     velocities it executed outside its range (another robot's frames).
@@ -58,7 +59,7 @@ double as_carried(const command::RobotModel& model, double linear, double lease_
 
 struct RobotFigures {
   std::vector<double> press_ms;
-  int presses = 0, missed = 0, lapses = 0, wrong = 0, renewals = 0;
+  int presses = 0, missed = 0, lapses = 0, wrong = 0, renewals = 0, joint = 0;
 };
 
 nlohmann::json summary(const std::vector<double>& ms) {
@@ -112,7 +113,11 @@ int main(int argc, char** argv) {
         const auto model_of = [&](std::size_t k) -> const command::RobotModel& { return k == 1 ? waffle : burger; };
         std::array<RobotFigures, kRobots> figures;
         std::array<std::size_t, kRobots> executed_before{};
-        for (std::size_t k = 0; k < kRobots; ++k) executed_before[k] = fleet.robot(k).executed().size();
+        std::array<int, kRobots> joint_before{};
+        for (std::size_t k = 0; k < kRobots; ++k) {
+          executed_before[k] = fleet.robot(k).executed().size();
+          joint_before[k] = fleet.robot(k).renewals();
+        }
         std::array<std::size_t, kRobots> seen{};
         for (std::size_t k = 0; k < kRobots; ++k) seen[k] = fleet.robot(k).samples().size();
         std::mt19937_64 rng(seed);
@@ -154,6 +159,7 @@ int main(int argc, char** argv) {
             if (s.at >= started && was_moving && !moving) ++figures[k].lapses;
             was_moving = moving;
           }
+          figures[k].joint = fleet.robot(k).renewals() - joint_before[k];
           const auto executed = fleet.robot(k).executed();
           for (std::size_t i = executed_before[k]; i < executed.size(); ++i) {
             const auto* v = std::get_if<command::Velocity>(&executed[i].second);
@@ -167,16 +173,18 @@ int main(int argc, char** argv) {
         nlohmann::json robots = nlohmann::json::array();
         std::printf("dtmf-bench-fleet-teleop: %zu robots, %s, lease %.2f s, %.0f s driven through %s\n", kRobots,
                     authenticated ? "keyed (own keys and the room key)" : "unkeyed", lease_s, driven_s, rir.c_str());
-        std::printf("%-8s %12s %9s %22s %7s %6s\n", "robot", "renewals/s", "presses", "press->cmd_vel med/p95/max",
-                    "lapses", "wrong");
+        std::printf("%-8s %12s %8s %9s %22s %7s %6s\n", "robot", "renewals/s", "joint/s", "presses",
+                    "press->cmd_vel med/p95/max", "lapses", "wrong");
         for (std::size_t k = 0; k < kRobots; ++k) {
           const RobotFigures& f = figures[k];
           const double per_s = f.renewals / driven_s;
-          std::printf("%-8s %12.2f %4d (%d missed) %6.0f/%4.0f/%4.0f ms %7d %6d\n", fleet.name(k).c_str(), per_s,
-                      f.presses, f.missed, percentile(f.press_ms, 0.5), percentile(f.press_ms, 0.95),
-                      percentile(f.press_ms, 1.0), f.lapses, f.wrong);
-          nlohmann::json r = {{"robot", fleet.name(k)}, {"renewals_per_s", per_s}, {"presses", f.presses},
-                              {"missed", f.missed},     {"lapses", f.lapses},      {"wrong", f.wrong}};
+          const double joint_per_s = f.joint / driven_s;
+          std::printf("%-8s %12.2f %8.2f %4d (%d missed) %6.0f/%4.0f/%4.0f ms %7d %6d\n", fleet.name(k).c_str(),
+                      per_s, joint_per_s, f.presses, f.missed, percentile(f.press_ms, 0.5),
+                      percentile(f.press_ms, 0.95), percentile(f.press_ms, 1.0), f.lapses, f.wrong);
+          nlohmann::json r = {{"robot", fleet.name(k)}, {"renewals_per_s", per_s}, {"joint_renewals_per_s", joint_per_s},
+                              {"presses", f.presses},   {"missed", f.missed},       {"lapses", f.lapses},
+                              {"wrong", f.wrong}};
           r["press_to_cmd_vel_ms"] = summary(f.press_ms);
           robots.push_back(r);
         }
