@@ -179,12 +179,13 @@ int main(int argc, char** argv) {
           const RobotFigures& f = figures[k];
           const double per_s = f.renewals / driven_s;
           const double joint_per_s = f.joint / driven_s;
-          std::printf("%-8s %12.2f %8.2f %4d (%d missed) %6.0f/%4.0f/%4.0f ms %7d %6d\n", fleet.name(k).c_str(),
-                      per_s, joint_per_s, f.presses, f.missed, percentile(f.press_ms, 0.5),
-                      percentile(f.press_ms, 0.95), percentile(f.press_ms, 1.0), f.lapses, f.wrong);
-          nlohmann::json r = {{"robot", fleet.name(k)}, {"renewals_per_s", per_s}, {"joint_renewals_per_s", joint_per_s},
-                              {"presses", f.presses},   {"missed", f.missed},       {"lapses", f.lapses},
-                              {"wrong", f.wrong}};
+          std::printf("%-8s %12.2f %8.2f %4d (%d missed) %6.0f/%4.0f/%4.0f ms %7d %6d\n", fleet.name(k).c_str(), per_s,
+                      joint_per_s, f.presses, f.missed, percentile(f.press_ms, 0.5), percentile(f.press_ms, 0.95),
+                      percentile(f.press_ms, 1.0), f.lapses, f.wrong);
+          nlohmann::json r = {
+              {"robot", fleet.name(k)}, {"renewals_per_s", per_s}, {"joint_renewals_per_s", joint_per_s},
+              {"presses", f.presses},   {"missed", f.missed},      {"lapses", f.lapses},
+              {"wrong", f.wrong}};
           r["press_to_cmd_vel_ms"] = summary(f.press_ms);
           robots.push_back(r);
         }
