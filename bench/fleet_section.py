@@ -67,17 +67,20 @@ def _load_rows(w, runs):
       "command a client saw start must be a row, finished, with its frame attempts; each sender's per-robot "
       "reports must add up to its room's; nothing may be left in a spill file. *Agent CPU*: each agent's share of "
       "a core while the servers drove (a reader spinning in the sound library shows here: docs/protocol.md §7, "
-      "scheduling). *Overlapped*: frames that were on air while another sender's frame was (the senders do not "
-      "listen before they talk yet), and how many of them went unanswered, next to the unanswered frames that "
-      "overlapped nothing.")
+      "scheduling). *Overlapped*: frames that were on air while another sender's frame was, and how many of them "
+      "went unanswered, next to the unanswered frames that overlapped nothing; *into an exchange*: frames started "
+      "while another sender's exchange (its frame's start until its answer, or its 500 ms wait) that had begun "
+      "100 ms or more before was under way, which listening before talking should prevent (runs from before "
+      "2026-11-30 did not count them, and their senders did not listen).")
     w("")
     w("| run | agents | servers | time | database down | servers up after | agent CPU (mean / most) "
       "| receptions logged / stored | commands stored (confirmed; at the first try) | stored twice "
-      "| left in spill files | frames sent | overlapped (unanswered) | unanswered, no overlap | failures | measured |")
-    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+      "| left in spill files | frames sent | overlapped (unanswered) | unanswered, no overlap | into an exchange "
+      "| failures | measured |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for title, load in runs.items():
         if "error" in load:
-            w(f"| {title} | | | | | | | | | | | | | | failed: {load['error']} | |")
+            w(f"| {title} | | | | | | | | | | | | | | | failed: {load['error']} | |")
             continue
         w(f"| {title} | {load['agents']} | {load['servers']} | {load['seconds']} s | {load['outage_s']} s "
           f"| {load['healthy_s']:.1f} s | {load['agent_cpu_mean_pct']:.1f} / {load['agent_cpu_max_pct']:.1f} % "
@@ -85,7 +88,7 @@ def _load_rows(w, runs):
           f"{load.get('confirmed_first_try', '–')}) | {load['duplicates']} | {load['spill_left']} "
           f"| {load.get('frames', '–')} | {load.get('frames_overlapped', '–')} "
           f"({load.get('frames_overlapped_unanswered', '–')}) | {load.get('frames_clear_unanswered', '–')} "
-          f"| {len(load['failures'])} | {load.get('measured_utc', '')} |")
+          f"| {load.get('frames_into_exchange', '–')} | {len(load['failures'])} | {load.get('measured_utc', '')} |")
     w("")
     failures = [f"- {title}: {failure}" for title, load in runs.items() for failure in load.get("failures", [])]
     for line in failures:
@@ -114,8 +117,9 @@ def _two_senders_target(w, run):
     full = run["servers"] == 2 and run["seconds"] >= 600
     met = full and confirmed >= TWO_SENDERS_CONFIRMED_PCT and not run["failures"]
     w(f"| {target} | {confirmed:.2f} % of {run['commands']} confirmed (the sender's own retransmissions "
-      f"included); {overlapped:.1f} % of frames overlapped the other sender's and {lost:.1f} % were lost to it "
-      f"(nothing listens before it talks yet); wrong executions are not counted in this run "
+      f"included); {overlapped:.1f} % of frames overlapped the other sender's and {lost:.1f} % were lost to it"
+      f"{'; ' + str(run['frames_into_exchange']) + ' started into an exchange of the other' if 'frames_into_exchange' in run else ' (before the senders listened)'}"
+      f"; wrong executions are not counted in this run "
       f"(dtmf-bench-fleet-teleop and the FleetE2E test count them: 0){'' if full else '; a shorter run'} | "
       f"{'the confirmed share: yes; wrong executions: not counted' if met else 'no'} |")
 

@@ -4,9 +4,9 @@
 # the database stopped for OUTAGE seconds in the middle. Each server drives two robots
 # (addresses 2s-1 and 2s) with Drives at random from a dtmfctl loop; the agents take the
 # addresses in turn, so several agents hear and log each robot's frames. The servers share
-# the air unscheduled: their frames collide, and that is fine here, where what counts is the
-# rows, and the collisions are counted (frames that overlapped another sender's, and how many
-# of those and of the others went unanswered). Afterwards, every row any program wrote is in
+# the air, listening before they talk; what collisions remain are counted (frames that
+# overlapped another sender's, how many of those and of the others went unanswered, and
+# frames started into another sender's exchange it could have heard begin). Afterwards, every row any program wrote is in
 # the database once:
 #   - each agent's receptions: as many rows as frames it logged (its log's frame lines);
 #   - each server's commands: every command dtmfctl saw start (its command ids) has a row,
@@ -169,15 +169,22 @@ mismatch=$(q "SELECT count(*) FROM test_runs r, run_report(r.id) room
                  OR room.successfully_matched <> (SELECT sum(x.successfully_matched)
                 FROM (SELECT DISTINCT robot FROM commands WHERE run_id = r.id) n, LATERAL run_report(r.id, n.robot) x)")
 [ "$mismatch" = 0 ] || failures+=("$mismatch senders whose robots' reports do not add up to the room's")
-# The air shared unscheduled: frames that overlapped another sender's, and what each kind lost.
-IFS='|' read -r attempts overlapped overlapped_lost clear_lost first_time < <(q "
-  WITH a AS (SELECT f.id, c.host, f.chord_started_at s, f.chord_ended_at e, f.answer FROM frame_attempts f
-             JOIN commands c ON c.id = f.command_id WHERE f.chord_ended_at IS NOT NULL),
-       x AS (SELECT a.*, EXISTS (SELECT 1 FROM a b WHERE b.host <> a.host AND b.s < a.e AND a.s < b.e) o FROM a)
+# The air shared: frames that overlapped another sender's, and what each kind lost; and frames
+# started into another sender's exchange (its frame's start until its answer, or its 500 ms
+# wait) that had begun at least 100 ms before, which listening before talking should prevent
+# (a start heard within a slot): tests/server/listen_before_talk_test.cpp counts the same.
+IFS='|' read -r attempts overlapped overlapped_lost clear_lost first_time into_exchange < <(q "
+  WITH a AS (SELECT f.id, c.host, f.chord_started_at s, f.chord_ended_at e, f.answer,
+                    coalesce(f.answered_at, f.chord_started_at + interval '500 milliseconds') x_end
+             FROM frame_attempts f JOIN commands c ON c.id = f.command_id WHERE f.chord_ended_at IS NOT NULL),
+       x AS (SELECT a.*, EXISTS (SELECT 1 FROM a b WHERE b.host <> a.host AND b.s < a.e AND a.s < b.e) o,
+                    EXISTS (SELECT 1 FROM a b WHERE b.host <> a.host AND b.s <= a.s - interval '100 milliseconds'
+                                                AND a.s < b.x_end) i FROM a)
   SELECT count(*), count(*) FILTER (WHERE o), count(*) FILTER (WHERE o AND answer IS DISTINCT FROM 'ack'),
          count(*) FILTER (WHERE NOT o AND answer IS DISTINCT FROM 'ack'),
          (SELECT count(*) FROM commands c WHERE outcome = 'confirmed'
-            AND NOT EXISTS (SELECT 1 FROM frame_attempts f WHERE f.command_id = c.id AND f.attempt > 1))
+            AND NOT EXISTS (SELECT 1 FROM frame_attempts f WHERE f.command_id = c.id AND f.attempt > 1)),
+         count(*) FILTER (WHERE i)
   FROM x")
 spilled=$(find "$dir" -maxdepth 1 -name '*.spill*' -exec cat {} + | wc -l)
 [ "$spilled" = 0 ] || failures+=("$spilled rows left in spill files after a clean stop")
@@ -187,7 +194,7 @@ echo "fleet_load: servers healthy after ${healthy_s} s; agents' CPU mean ${cpu_m
 echo "fleet_load: receptions logged $logged_total, stored $stored_total; commands stored $commands_total," \
   "confirmed $confirmed_total ($first_time at the first try); spill lines left $spilled"
 echo "fleet_load: frames sent $attempts, $overlapped overlapped another sender's ($overlapped_lost of them" \
-  "unanswered); unanswered without an overlap $clear_lost"
+  "unanswered); unanswered without an overlap $clear_lost; started into another's exchange $into_exchange"
 if [ -n "$json" ]; then
   python3 - "$json" "${failures[@]}" <<EOF
 import json, sys
@@ -197,6 +204,7 @@ json.dump({"agents": $agents, "servers": $servers, "seconds": $seconds, "outage_
            "confirmed": $confirmed_total, "confirmed_first_try": $first_time, "duplicates": $dupes,
            "spill_left": $spilled, "frames": $attempts, "frames_overlapped": $overlapped,
            "frames_overlapped_unanswered": $overlapped_lost, "frames_clear_unanswered": $clear_lost,
+           "frames_into_exchange": $into_exchange,
            "measured_utc": "$(date -u '+%Y-%m-%d %H:%M UTC')", "failures": sys.argv[2:]}, open(sys.argv[1], "w"))
 EOF
 fi

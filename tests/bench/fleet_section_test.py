@@ -16,8 +16,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
 import fleet_section  # noqa: E402
 
 
-def load(agents=20, servers=3, seconds=600, failures=(), confirmed=299):
-    return dict(agents=agents, servers=servers, seconds=seconds, outage_s=10, healthy_s=5.2, agent_cpu_mean_pct=5.1,
+def load(agents=20, servers=3, seconds=600, failures=(), confirmed=299, into_exchange=None):
+    extra = {} if into_exchange is None else {"frames_into_exchange": into_exchange}
+    return dict(**extra,agents=agents, servers=servers, seconds=seconds, outage_s=10, healthy_s=5.2, agent_cpu_mean_pct=5.1,
                 agent_cpu_max_pct=5.6, receptions_logged=900, receptions_stored=900, commands=300, confirmed=confirmed,
                 confirmed_first_try=280, duplicates=0, spill_left=0, frames=400, frames_overlapped=40,
                 frames_overlapped_unanswered=20, frames_clear_unanswered=3, measured_utc="2026-11-29 18:00 UTC",
@@ -48,7 +49,8 @@ class FleetLoadRows(unittest.TestCase):
         text = section(load())
         self.assertTrue(target_row(text).endswith("| yes |"), target_row(text))
         self.assertIn("| load | 20 | 3 | 600 s | 10 s | 5.2 s | 5.1 / 5.6 % | 900 / 900 | 300 (299; 280) | 0 | 0 | 400 "
-                      "| 40 (20) | 3 | 0 |", text)
+                      "| 40 (20) | 3 | – | 0 |", text)
+        self.assertIn("| 40 (20) | 3 | 2 | 0 |", section(load(into_exchange=2)))
 
     def test_a_failure_misses_the_target_and_is_listed(self):
         text = section(load(failures=["agent3 logged 12 frames, the database holds 11"]))
@@ -62,7 +64,7 @@ class FleetLoadRows(unittest.TestCase):
 
     def test_a_run_that_failed_shows_its_error(self):
         text = section(error="fleet_load: FAILED: sender2 confirmed no command")
-        self.assertIn("| load | | | | | | | | | | | | | | failed: fleet_load: FAILED: sender2 confirmed no command", text)
+        self.assertIn("| load | | | | | | | | | | | | | | | failed: fleet_load: FAILED: sender2 confirmed no command", text)
         self.assertIn("failed: fleet_load: FAILED: sender2 confirmed no command | no |", target_row(text))
 
     def test_no_run_says_not_run(self):
@@ -72,10 +74,30 @@ class FleetLoadRows(unittest.TestCase):
     def test_two_senders_report_the_confirmed_share_and_the_collisions(self):
         row = target_row(section(two_senders=load(agents=4, servers=2)), "| two senders, ")
         self.assertIn("99.67 % of 300 confirmed", row)
-        self.assertIn("10.0 % of frames overlapped the other sender's and 5.0 % were lost to it", row)
+        self.assertIn("10.0 % of frames overlapped the other sender's and 5.0 % were lost to it (before the senders "
+                      "listened)", row)
+        listening = target_row(section(two_senders=load(agents=4, servers=2, into_exchange=0)), "| two senders, ")
+        self.assertIn("5.0 % were lost to it; 0 started into an exchange of the other", listening)
         self.assertTrue(row.endswith("| the confirmed share: yes; wrong executions: not counted |"), row)
         missed = target_row(section(two_senders=load(agents=4, servers=2, confirmed=290)), "| two senders, ")
         self.assertTrue(missed.endswith("| no |"), missed)
+
+
+class FleetTeleopRows(unittest.TestCase):
+    def test_joint_renewals_and_the_senders_share_of_the_air(self):
+        robots = [dict(robot=f"robot{k}", renewals_per_s=2.7, joint_renewals_per_s=2.4, presses=10, missed=0, lapses=0,
+                       wrong=0, press_to_cmd_vel_ms=dict(median=160, p95=300, max=400, count=10)) for k in (1, 2, 3)]
+        teleop = dict(robots=robots, seconds=120, press_to_cmd_vel_ms=dict(median=165, p95=310, max=400, count=30),
+                      measured_utc="2026-11-30 00:17 UTC")
+        out = []
+        fleet_section.fleet_section(out.append, {"fast+key": {"fleet_teleop": teleop}}, ["fast+key"],
+                                    lambda d: "error" not in d, tempfile.gettempdir() + "/no-such-bench-dir")
+        text = "\n".join(out)
+        # 3 × 0.3 own frames a second at 215 ms and 2.4 joint renewals at 153.75 ms: 19 + 37 = 56 %.
+        self.assertIn("| `fast+key` | robot1 | 2.70 (2.40) | 160 / 300 / 400 ms | 10 of 10 | 0 | 0 | 56 % (0.9 own, "
+                      "2.4 joint a second) |", text)
+        self.assertIn("| slowest robot 2.70 a second | yes |", text)
+        self.assertIn("| 165 / 310 ms | yes |", text)
 
 
 if __name__ == "__main__":
