@@ -201,7 +201,12 @@ bool FrameAdmission::admit_renewal(Reception& r) {
   if (!counter) return false;
   r.answered = false;  // up to three robots heard it: answers would sound together
   r.counter = *counter;
-  if (*counter == renewable_->counter || r.start_ms - renewable_->start_ms > kRenewalHorizonMs) {
+  if (*counter == renewable_->counter) {  // a sender numbers a renewal after the velocity it renews
+    refuse(r, RefusalReason::Authentication,
+           "a renewal numbered as the velocity it renews (counter " + std::to_string(*counter) + "): forged");
+    return true;
+  }
+  if (r.start_ms - renewable_->start_ms > kRenewalHorizonMs) {
     refuse(r, RefusalReason::Authentication,
            "a renewal of the velocity of counter " + std::to_string(renewable_->counter) + " from " +
                std::to_string(static_cast<int>((r.start_ms - renewable_->start_ms) / 1000)) + " s after it, past the " +
