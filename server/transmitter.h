@@ -190,6 +190,8 @@ class Transmitter {
   void send(Job& job);
   // A frame no robot answers: played, and the command goes on.
   void send_unanswered(Job& job);
+  // The renewals due now, played before the next frame of `job` (not its first).
+  void renew_between_frames(const Job& job);
   // A joint renewal of `robots` (kept by keep_renewed), planned and played now.
   void send_renewal(const std::vector<RobotIndex>& robots);
   // Under mutex_: the robots whose renewal goes before the queue now (none while a Stop waits).

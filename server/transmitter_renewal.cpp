@@ -1,7 +1,10 @@
 // Transmitter: joint renewals (docs/protocol.md §10, "Renewing leases together"). Teleop
 // streams keep their robots renewed; the loudspeaker's thread renews every kept robot in one
-// frame whenever one of them is due (renewal_schedule.h), before the queue's next command.
+// frame whenever one of them is due (renewal_schedule.h), before the queue's next command,
+// or between the frames (and retransmissions) of the command on air.
 #include <spdlog/spdlog.h>
+
+#include <utility>
 
 #include "reliability/renewal_frame.h"
 #include "transmitter.h"
@@ -49,6 +52,17 @@ std::vector<RobotIndex> Transmitter::renewals_due() const {
   return renewals_.due(now_ms() - kRenewalSlackMs, reliability::kRenewalSlots);
 }
 
+void Transmitter::renew_between_frames(const Job& job) {
+  // Not between the seed's word frames: its robots hear a command in several frames.
+  if (job.renewal() || job.frames().empty() || job.frames().front()->word) return;
+  std::vector<RobotIndex> due;
+  {
+    std::lock_guard lock(mutex_);
+    due = renewals_.due(now_ms(), reliability::kRenewalSlots);
+  }
+  if (!due.empty()) send_renewal(due);
+}
+
 void Transmitter::send_renewal(const std::vector<RobotIndex>& robots) {
   std::vector<link::Link*> links;
   {
@@ -81,17 +95,18 @@ void Transmitter::send_renewal(const std::vector<RobotIndex>& robots) {
   if (renewed.empty()) return;
   link::Link& first = *links[planned->renewed.front()];
   std::shared_ptr<Job> job;
+  std::shared_ptr<Job> between;  // the command whose frames it goes between, if any
   {
     std::lock_guard lock(mutex_);
     job = std::make_shared<Job>(first, std::move(planned->frame), std::move(renewed), run_id_);
     ProgressEvent queued{ProgressEvent::Kind::Queued};
     queued.frame_count = 1;
     emit(*job, queued);
-    on_air_ = job;
+    between = std::exchange(on_air_, job);
   }
   send_unanswered(*job);
   std::lock_guard lock(mutex_);
-  on_air_.reset();
+  on_air_ = between;
 }
 
 }  // namespace dtmf::server

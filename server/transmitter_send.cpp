@@ -114,6 +114,9 @@ void Transmitter::send(Job& job) {
 }
 
 bool Transmitter::transmit(Job& job, FrameAttempt& attempt) {
+  // A command's later frames and retransmissions may keep the air longer than a lease: the
+  // renewals that fall due meanwhile go between them (a renewal carries no command).
+  if (attempt.index > 0 || attempt.chord_start != 0) renew_between_frames(job);
   // One chord on air at a time, with the profile's silence between chords, and none into
   // another sender's exchange.
   if (job.cancelled() || !wait_for_air(job)) {
