@@ -4,16 +4,11 @@
 
 #include <algorithm>
 
-#include "link/answer_wait.h"
-#include "physical/realtime_priority.h"
-
 namespace dtmf::server {
 
 namespace {
-using Kind = ProgressEvent::Kind;
-}  // namespace
 
-namespace {
+using Kind = ProgressEvent::Kind;
 
 std::vector<RobotLinks> one_robot(std::vector<std::unique_ptr<link::Link>> links) {
   std::vector<RobotLinks> robots(1);
@@ -252,137 +247,6 @@ bool Transmitter::decide(const std::string& command_id, reliability::Decision de
 void Transmitter::set_run(std::optional<std::string> run_id) {
   std::lock_guard lock(mutex_);
   run_id_ = std::move(run_id);
-}
-
-void Transmitter::shutdown() {
-  {
-    std::lock_guard lock(mutex_);
-    if (stopping_ && !worker_.joinable()) return;
-    stopping_ = true;
-    if (on_air_) on_air_->cancel();
-  }
-  changed_.notify_all();
-  if (worker_.joinable()) worker_.join();
-  if (listener_.joinable()) listener_.join();
-}
-
-// Decodes at normal priority: a device is drained by a thread of its own
-// (physical/capture_thread.h), which only copies.
-void Transmitter::listen() {
-  ReplyListeners& listener = *ears_;
-  std::vector<float> block(static_cast<std::size_t>(listener.block_samples()));
-  double audio_ms = 0;
-  while (true) {
-    {
-      std::lock_guard lock(mutex_);
-      if (stopping_) return;
-    }
-    std::size_t got = 0;
-    try {
-      got = microphone_->read(block);
-    } catch (const std::exception& e) {
-      std::lock_guard lock(mutex_);
-      unavailable_ = std::string("the microphone failed: ") + e.what();
-      spdlog::error("{}", unavailable_);
-      changed_.notify_all();
-      return;
-    }
-    if (got == 0) return;  // the input ended (a file, or a stopped simulated air)
-    audio_ms += 1000.0 * static_cast<double>(got) / profile_.sample_rate_hz;
-    const double now = now_ms();
-    const double level_dbfs = reliability::block_level_dbfs(std::span<const float>(block.data(), got));
-    {
-      std::lock_guard lock(mutex_);
-      carrier_.hear(level_dbfs, now);
-    }
-    for (const HeardAnswer& heard : listener.feed(std::span<const float>(block.data(), got))) {
-      std::lock_guard lock(mutex_);
-      // The block just read ends now; the reply was heard a little earlier.
-      replies_.push_back({heard, now - (audio_ms - heard.answer.heard_ms)});
-      changed_.notify_all();
-    }
-  }
-}
-
-std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const link::Link& link, const link::TransmitFrame& frame,
-                                                               double since_ms, double until_ms) {
-  std::unique_lock lock(mutex_);
-  link::AnswerWait wait(link, frame);
-  while (true) {
-    while (!replies_.empty()) {
-      const HeardReply reply = replies_.front();
-      replies_.pop_front();
-      if (reply.steady_ms < since_ms || reply.answer.link != &link) continue;  // not an answer to this frame
-      if (!wait.answered_by(reply.answer.answer)) {
-        if (reply.answer.answer.tag_reading) continue;  // a tag chord spelling another tag
-        spdlog::debug("an ACK naming frame {} while frame {} waits: late, ignored",
-                      reply.answer.answer.sequence.value_or(0), frame.sequence.value_or(0));
-        continue;
-      }
-      return reply;
-    }
-    if (stopping_ || now_ms() >= until_ms) return std::nullopt;
-    changed_.wait_for(lock, std::chrono::duration<double, std::milli>(std::min(until_ms - now_ms(), 50.0)));
-  }
-}
-
-void Transmitter::play(const link::TransmitFrame& frame, double start_ms) {
-  speaker_->write(frame.audio);
-  // A file sink takes the audio at once: keep the pace of a real loudspeaker anyway.
-  const double end_ms = start_ms + frame.tone_ms;
-  while (now_ms() < end_ms) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(end_ms - now_ms()));
-}
-
-void Transmitter::run() {
-  if (options_.realtime_audio) {
-    std::string how;
-    physical::raise_audio_thread_priority(&how);
-    spdlog::info("loudspeaker thread: {}", how);
-  }
-  while (true) {
-    std::shared_ptr<Job> job;
-    std::vector<RobotIndex> renew;
-    {
-      std::unique_lock lock(mutex_);
-      while (!stopping_ && queue_.empty() && (renew = renewals_due()).empty()) {
-        if (const auto next = renewals_.next_due_ms())
-          changed_.wait_for(lock, std::chrono::duration<double, std::milli>(std::max(0.0, *next - now_ms())));
-        else
-          changed_.wait(lock);
-      }
-      if (stopping_) {
-        for (auto& waiting : queue_) end(*waiting, Outcome::Unavailable, "the server is shutting down");
-        queue_.clear();
-        return;
-      }
-      if (renew.empty()) renew = renewals_due();
-      if (renew.empty()) {
-        job = queue_.front();
-        queue_.pop_front();
-        on_air_ = job;
-      }
-    }
-    if (!renew.empty()) {
-      send_renewal(renew);
-      continue;
-    }
-    try {
-      job->plan();  // numbered now, in the order of the air
-    } catch (const std::exception& e) {
-      // The parameters were checked when it was queued; what fails here is the counter's
-      // store (a disk that went away): the command cannot go out authenticated.
-      spdlog::error("{}: cannot plan its frames: {}", job->description(), e.what());
-      end(*job, Outcome::Unavailable, std::string("cannot number its frames: ") + e.what());
-      std::lock_guard lock(mutex_);
-      on_air_.reset();
-      continue;
-    }
-    send(*job);
-    {
-      std::lock_guard lock(mutex_);
-      on_air_.reset();
-    }
-  }
 }
 
 }  // namespace dtmf::server

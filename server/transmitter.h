@@ -11,8 +11,9 @@
 // unless the operator allowed it (TransmitterOptions::allow_unauthenticated), and a Stop
 // always goes authenticated: the robot refuses a frame without a MAC, and an untagged ACK
 // is a fixed chord anyone within earshot can play (docs/security.md). Frames of a command
-// go out in order with nothing between them but other frames of the same command; a
-// cancelled command's queued frames never play, a chord already on air completes.
+// go out in order with nothing between them but other frames of the same command and the
+// joint renewals that fall due meanwhile; a cancelled command's queued frames never play, a
+// chord already on air completes.
 // It only emits progress events: the caller's stream reads them, and the observer it is
 // given (store_recorder.h on a server) records them first.
 // It drives one robot or several (RobotLinks: a name, a model, and links bound to the
@@ -22,7 +23,9 @@
 // answers it. Before each frame it listens before it talks (transmitter_air.cpp): the
 // microphone's levels tell it whether another sender's frame or answer is on the air. While
 // Teleop streams drive keyed robots, it renews their velocity leases together, one frame for
-// up to three robots, ahead of the queue (transmitter_renewal.cpp).
+// up to three robots, ahead of the queue (transmitter_renewal.cpp). The loudspeaker's
+// thread is transmitter_loop.cpp, the microphone's transmitter_ears.cpp, a command's frames
+// on air transmitter_send.cpp.
 #pragma once
 
 #include <atomic>

@@ -1,0 +1,71 @@
+// Transmitter: the sender's ears. listen() reads the microphone on a thread of its own, feeds
+// every block's level to the carrier sense and every answer heard to a queue; wait_reply()
+// takes from that queue the answer to the frame on air, until its deadline.
+#include <spdlog/spdlog.h>
+
+#include "link/answer_wait.h"
+#include "transmitter.h"
+
+namespace dtmf::server {
+
+// Decodes at normal priority: a device is drained by a thread of its own
+// (physical/capture_thread.h), which only copies.
+void Transmitter::listen() {
+  ReplyListeners& listener = *ears_;
+  std::vector<float> block(static_cast<std::size_t>(listener.block_samples()));
+  double audio_ms = 0;
+  while (true) {
+    {
+      std::lock_guard lock(mutex_);
+      if (stopping_) return;
+    }
+    std::size_t got = 0;
+    try {
+      got = microphone_->read(block);
+    } catch (const std::exception& e) {
+      std::lock_guard lock(mutex_);
+      unavailable_ = std::string("the microphone failed: ") + e.what();
+      spdlog::error("{}", unavailable_);
+      changed_.notify_all();
+      return;
+    }
+    if (got == 0) return;  // the input ended (a file, or a stopped simulated air)
+    audio_ms += 1000.0 * static_cast<double>(got) / profile_.sample_rate_hz;
+    const double now = now_ms();
+    const double level_dbfs = reliability::block_level_dbfs(std::span<const float>(block.data(), got));
+    {
+      std::lock_guard lock(mutex_);
+      carrier_.hear(level_dbfs, now);
+    }
+    for (const HeardAnswer& heard : listener.feed(std::span<const float>(block.data(), got))) {
+      std::lock_guard lock(mutex_);
+      // The block just read ends now; the reply was heard a little earlier.
+      replies_.push_back({heard, now - (audio_ms - heard.answer.heard_ms)});
+      changed_.notify_all();
+    }
+  }
+}
+
+std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const link::Link& link, const link::TransmitFrame& frame,
+                                                               double since_ms, double until_ms) {
+  std::unique_lock lock(mutex_);
+  link::AnswerWait wait(link, frame);
+  while (true) {
+    while (!replies_.empty()) {
+      const HeardReply reply = replies_.front();
+      replies_.pop_front();
+      if (reply.steady_ms < since_ms || reply.answer.link != &link) continue;  // not an answer to this frame
+      if (!wait.answered_by(reply.answer.answer)) {
+        if (reply.answer.answer.tag_reading) continue;  // a tag chord spelling another tag
+        spdlog::debug("an ACK naming frame {} while frame {} waits: late, ignored",
+                      reply.answer.answer.sequence.value_or(0), frame.sequence.value_or(0));
+        continue;
+      }
+      return reply;
+    }
+    if (stopping_ || now_ms() >= until_ms) return std::nullopt;
+    changed_.wait_for(lock, std::chrono::duration<double, std::milli>(std::min(until_ms - now_ms(), 50.0)));
+  }
+}
+
+}  // namespace dtmf::server
