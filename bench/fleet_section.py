@@ -71,16 +71,18 @@ def _load_rows(w, runs):
       "went unanswered, next to the unanswered frames that overlapped nothing; *into an exchange*: frames started "
       "while another sender's exchange (its frame's start until its answer, or its 500 ms wait) that had begun "
       "100 ms or more before was under way, which listening before talking should prevent (runs from before "
-      "2026-11-30 did not count them, and their senders did not listen).")
+      "2026-11-30 did not count them, and their senders did not listen). *Executed (wrong robot; unsent)*: frames "
+      "the robots executed, those a sender had sent to another address, and those no sender sent "
+      "(`bench/e2e/fleet_executions.sql`; runs from before 2026-11-30 did not count them).")
     w("")
     w("| run | agents | servers | time | database down | servers up after | agent CPU (mean / most) "
       "| receptions logged / stored | commands stored (confirmed; at the first try) | stored twice "
       "| left in spill files | frames sent | overlapped (unanswered) | unanswered, no overlap | into an exchange "
-      "| failures | measured |")
-    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+      "| executed (wrong robot; unsent) | failures | measured |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for title, load in runs.items():
         if "error" in load:
-            w(f"| {title} | | | | | | | | | | | | | | | failed: {load['error']} | |")
+            w(f"| {title} | | | | | | | | | | | | | | | | failed: {load['error']} | |")
             continue
         w(f"| {title} | {load['agents']} | {load['servers']} | {load['seconds']} s | {load['outage_s']} s "
           f"| {load['healthy_s']:.1f} s | {load['agent_cpu_mean_pct']:.1f} / {load['agent_cpu_max_pct']:.1f} % "
@@ -88,13 +90,21 @@ def _load_rows(w, runs):
           f"{load.get('confirmed_first_try', '–')}) | {load['duplicates']} | {load['spill_left']} "
           f"| {load.get('frames', '–')} | {load.get('frames_overlapped', '–')} "
           f"({load.get('frames_overlapped_unanswered', '–')}) | {load.get('frames_clear_unanswered', '–')} "
-          f"| {load.get('frames_into_exchange', '–')} | {len(load['failures'])} | {load.get('measured_utc', '')} |")
+          f"| {load.get('frames_into_exchange', '–')} | {_executions(load)} | {len(load['failures'])} "
+          f"| {load.get('measured_utc', '')} |")
     w("")
     failures = [f"- {title}: {failure}" for title, load in runs.items() for failure in load.get("failures", [])]
     for line in failures:
         w(line)
     if failures:
         w("")
+
+
+def _executions(load):
+    """Frames executed, and of them by a robot they were not sent to and sent by no sender."""
+    if "executed" not in load:
+        return "–"
+    return f"{load['executed']} ({load['executed_by_wrong_robot']}; {load['executed_unsent']})"
 
 
 def _air_share(profile, robots, _first):
@@ -115,13 +125,21 @@ def _two_senders_target(w, run):
     overlapped = 100.0 * run["frames_overlapped"] / max(run["frames"], 1)
     lost = 100.0 * run["frames_overlapped_unanswered"] / max(run["frames"], 1)
     full = run["servers"] == 2 and run["seconds"] >= 600
-    met = full and confirmed >= TWO_SENDERS_CONFIRMED_PCT and not run["failures"]
+    counted = "executed" in run
+    wrong = run.get("executed_by_wrong_robot", 0) + run.get("executed_unsent", 0)
+    confirmed_met = full and confirmed >= TWO_SENDERS_CONFIRMED_PCT and not run["failures"]
+    if counted:
+        executions = (f"; of {run['executed']} frames executed, {run['executed_by_wrong_robot']} by a robot they were "
+                      f"not sent to and {run['executed_unsent']} that no sender sent")
+        verdict = "yes" if confirmed_met and wrong == 0 else "no"
+    else:
+        executions = ("; wrong executions are not counted in this run (dtmf-bench-fleet-teleop and the FleetE2E test "
+                      "count them: 0)")
+        verdict = "the confirmed share: yes; wrong executions: not counted" if confirmed_met else "no"
     w(f"| {target} | {confirmed:.2f} % of {run['commands']} confirmed (the sender's own retransmissions "
       f"included); {overlapped:.1f} % of frames overlapped the other sender's and {lost:.1f} % were lost to it"
       f"{'; ' + str(run['frames_into_exchange']) + ' started into an exchange of the other' if 'frames_into_exchange' in run else ' (before the senders listened)'}"
-      f"; wrong executions are not counted in this run "
-      f"(dtmf-bench-fleet-teleop and the FleetE2E test count them: 0){'' if full else '; a shorter run'} | "
-      f"{'the confirmed share: yes; wrong executions: not counted' if met else 'no'} |")
+      f"{executions}{'' if full else '; a shorter run'} | {verdict} |")
 
 
 def _load_target(w, load):

@@ -13,6 +13,8 @@
 #     finished (no 'queued' or 'transmitting' left), with at least one frame attempt;
 #   - no two receptions of one agent heard at the same moment with the same frame;
 #   - the per-robot reports of each sender's commands add up to the room's;
+#   - every frame a robot executed was sent to its address by some sender (0 executions by
+#     the wrong robot, 0 of frames no sender sent);
 # and every program did its part: each server answered health checks and confirmed commands,
 # each agent logged frames. The CPU each agent used is printed: a decoder that spins (as one
 # at real-time priority once did, physical/capture_thread.h) shows there.
@@ -186,6 +188,11 @@ IFS='|' read -r attempts overlapped overlapped_lost clear_lost first_time into_e
             AND NOT EXISTS (SELECT 1 FROM frame_attempts f WHERE f.command_id = c.id AND f.attempt > 1)),
          count(*) FILTER (WHERE i)
   FROM x")
+# Executions (bench/e2e/fleet_executions.sql): every frame a robot executed was sent to its
+# address by some sender. Targets: 0 executions by the wrong robot, 0 of frames no one sent.
+IFS='|' read -r executed wrong_robot wrong_frame < <(q "$(cat bench/e2e/fleet_executions.sql)")
+[ "$wrong_robot" = 0 ] || failures+=("$wrong_robot frames executed by a robot they were not sent to")
+[ "$wrong_frame" = 0 ] || failures+=("$wrong_frame frames executed that no sender sent")
 spilled=$(find "$dir" -maxdepth 1 -name '*.spill*' -exec cat {} + | wc -l)
 [ "$spilled" = 0 ] || failures+=("$spilled rows left in spill files after a clean stop")
 
@@ -195,6 +202,7 @@ echo "fleet_load: receptions logged $logged_total, stored $stored_total; command
   "confirmed $confirmed_total ($first_time at the first try); spill lines left $spilled"
 echo "fleet_load: frames sent $attempts, $overlapped overlapped another sender's ($overlapped_lost of them" \
   "unanswered); unanswered without an overlap $clear_lost; started into another's exchange $into_exchange"
+echo "fleet_load: frames executed $executed; by a robot they were not sent to $wrong_robot; sent by no sender $wrong_frame"
 if [ -n "$json" ]; then
   python3 - "$json" "${failures[@]}" <<EOF
 import json, sys
@@ -204,7 +212,8 @@ json.dump({"agents": $agents, "servers": $servers, "seconds": $seconds, "outage_
            "confirmed": $confirmed_total, "confirmed_first_try": $first_time, "duplicates": $dupes,
            "spill_left": $spilled, "frames": $attempts, "frames_overlapped": $overlapped,
            "frames_overlapped_unanswered": $overlapped_lost, "frames_clear_unanswered": $clear_lost,
-           "frames_into_exchange": $into_exchange,
+           "frames_into_exchange": $into_exchange, "executed": $executed,
+           "executed_by_wrong_robot": $wrong_robot, "executed_unsent": $wrong_frame,
            "measured_utc": "$(date -u '+%Y-%m-%d %H:%M UTC')", "failures": sys.argv[2:]}, open(sys.argv[1], "w"))
 EOF
 fi

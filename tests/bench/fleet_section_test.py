@@ -16,8 +16,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
 import fleet_section  # noqa: E402
 
 
-def load(agents=20, servers=3, seconds=600, failures=(), confirmed=299, into_exchange=None):
+def load(agents=20, servers=3, seconds=600, failures=(), confirmed=299, into_exchange=None, executions=None):
     extra = {} if into_exchange is None else {"frames_into_exchange": into_exchange}
+    if executions is not None:
+        extra.update(executed=executions[0], executed_by_wrong_robot=executions[1], executed_unsent=executions[2])
     return dict(**extra,agents=agents, servers=servers, seconds=seconds, outage_s=10, healthy_s=5.2, agent_cpu_mean_pct=5.1,
                 agent_cpu_max_pct=5.6, receptions_logged=900, receptions_stored=900, commands=300, confirmed=confirmed,
                 confirmed_first_try=280, duplicates=0, spill_left=0, frames=400, frames_overlapped=40,
@@ -49,8 +51,8 @@ class FleetLoadRows(unittest.TestCase):
         text = section(load())
         self.assertTrue(target_row(text).endswith("| yes |"), target_row(text))
         self.assertIn("| load | 20 | 3 | 600 s | 10 s | 5.2 s | 5.1 / 5.6 % | 900 / 900 | 300 (299; 280) | 0 | 0 | 400 "
-                      "| 40 (20) | 3 | – | 0 |", text)
-        self.assertIn("| 40 (20) | 3 | 2 | 0 |", section(load(into_exchange=2)))
+                      "| 40 (20) | 3 | – | – | 0 |", text)
+        self.assertIn("| 40 (20) | 3 | 2 | 410 (1; 0) | 0 |", section(load(into_exchange=2, executions=(410, 1, 0))))
 
     def test_a_failure_misses_the_target_and_is_listed(self):
         text = section(load(failures=["agent3 logged 12 frames, the database holds 11"]))
@@ -64,7 +66,7 @@ class FleetLoadRows(unittest.TestCase):
 
     def test_a_run_that_failed_shows_its_error(self):
         text = section(error="fleet_load: FAILED: sender2 confirmed no command")
-        self.assertIn("| load | | | | | | | | | | | | | | | failed: fleet_load: FAILED: sender2 confirmed no command", text)
+        self.assertIn("| load | | | | | | | | | | | | | | | | failed: fleet_load: FAILED: sender2 confirmed no command", text)
         self.assertIn("failed: fleet_load: FAILED: sender2 confirmed no command | no |", target_row(text))
 
     def test_no_run_says_not_run(self):
@@ -81,6 +83,16 @@ class FleetLoadRows(unittest.TestCase):
         self.assertTrue(row.endswith("| the confirmed share: yes; wrong executions: not counted |"), row)
         missed = target_row(section(two_senders=load(agents=4, servers=2, confirmed=290)), "| two senders, ")
         self.assertTrue(missed.endswith("| no |"), missed)
+
+    def test_two_senders_meet_the_target_only_with_no_wrong_execution(self):
+        clean = target_row(section(two_senders=load(agents=4, servers=2, into_exchange=0, executions=(600, 0, 0))),
+                           "| two senders, ")
+        self.assertIn("of 600 frames executed, 0 by a robot they were not sent to and 0 that no sender sent", clean)
+        self.assertTrue(clean.endswith("| yes |"), clean)
+        for wrong in ((600, 1, 0), (600, 0, 1)):
+            row = target_row(section(two_senders=load(agents=4, servers=2, into_exchange=0, executions=wrong)),
+                             "| two senders, ")
+            self.assertTrue(row.endswith("| no |"), row)
 
 
 class FleetTeleopRows(unittest.TestCase):

@@ -4,6 +4,10 @@
 // no false positive of this run; RunReader and the runs view name the run's robots.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <fstream>
+#include <iterator>
+
 #include "run_reader.h"
 #include "store.h"
 #include "temp_database.h"
@@ -120,17 +124,29 @@ struct FleetRun {
   }
 };
 
-}  // namespace
-
-TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
-  TempDatabase db;
+// The store's options for `db`, with a spill file of the test's own.
+StoreOptions store_options(const TempDatabase& db, const std::string& test) {
   StoreOptions options;
   options.database = db.url();
-  options.spill_path = ::testing::TempDir() + "/fleet-report-" + std::to_string(::getpid()) + ".spill";
+  options.spill_path = ::testing::TempDir() + "/" + test + "-" + std::to_string(::getpid()) + ".spill";
+  return options;
+}
+
+// A run of sender-a's whose first command starts at f.t0.
+FleetRun fleet_run() {
   FleetRun f;
   f.run.label = "fleet";
   f.run.profile = "fast";
   f.run.started_at = f.t0 - milliseconds(100);
+  return f;
+}
+
+}  // namespace
+
+TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
+  TempDatabase db;
+  const StoreOptions options = store_options(db, "fleet-report");
+  FleetRun f = fleet_run();
   f.run.ended_at = f.t0 + milliseconds(20 * kSlotMs);
   {
     Store store(options);
@@ -196,4 +212,42 @@ TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
   EXPECT_EQ(reader.report(f.run.id, false)->every_robot_stops_sent, 1);
   EXPECT_EQ(reader.report(f.run.id, false)->renewals_sent, 2);
   EXPECT_EQ(read->renewals_executed, 2);
+}
+
+// bench/e2e/fleet_executions.sql, which fleet_load.sh runs: every frame a robot executed is
+// one a sender sent to its address (or to every robot); another robot's frame executed, and
+// a frame no sender sent, are each counted.
+TEST(FleetReport, ExecutionsByTheWrongRobotAndOfUnsentFramesAreCounted) {
+  TempDatabase db;
+  const StoreOptions options = store_options(db, "fleet-executions");
+  FleetRun f = fleet_run();
+  std::ifstream file(std::string(DTMF_SOURCE_DIR) + "/bench/e2e/fleet_executions.sql");
+  ASSERT_TRUE(file.good());
+  const std::string executions((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const auto count = [&] {
+    pqxx::connection c(db.url());
+    pqxx::work tx(c);
+    const pqxx::row row = tx.exec(executions)[0];
+    return std::array{row[0].as<int>(), row[1].as<int>(), row[2].as<int>()};
+  };
+  {
+    Store store(options);
+    store.write(f.run);
+    for (int i = 0; i < 3; ++i) f.command(store, "alpha", 1, false);
+    f.command(store, "beta", 2, false);
+    f.stop_every_robot(store);  // executed by both: sent to every robot
+    f.renewal(store);           // taken, not executed
+    ASSERT_TRUE(store.flush(std::chrono::seconds(30)));
+  }
+  EXPECT_EQ(count(), (std::array{8, 0, 0})) << "4 commands and 2 stop copies executed by both robots";
+  {
+    Store store(options);
+    // beta executes alpha's first frame, heard while it sounded; then a frame no one sent.
+    store.write(f.reception("beta", 2, f.t0 + milliseconds(60), "drive_for_duration", "100000"));
+    store.write(f.reception("alpha", 1, f.t0 + milliseconds(70), "drive_for_duration", "424242"));
+    // alpha's own first frame heard 10 s late is no longer that frame.
+    store.write(f.reception("alpha", 1, f.t0 + milliseconds(10000), "drive_for_duration", "100000"));
+    ASSERT_TRUE(store.flush(std::chrono::seconds(30)));
+  }
+  EXPECT_EQ(count(), (std::array{11, 1, 2}));
 }
