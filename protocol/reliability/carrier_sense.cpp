@@ -70,12 +70,18 @@ bool CarrierSense::ours(double level_dbfs, double end_ms) {
   return true;
 }
 
-void CarrierSense::follow_floor(double level_dbfs, double end_ms) {
+double CarrierSense::follow_floor(double level_dbfs, double end_ms) {
   const double power = std::pow(10.0, level_dbfs / 10);
   if (!smoothed_power_ || !last_end_ms_) {
     smoothed_power_ = power;
   } else {
-    const double step = 1 - std::exp(-std::max(0.0, end_ms - *last_end_ms_) / kFloorSmoothMs);
+    // After our own sound, the smoothing resumes from the floor, over this block only: the
+    // blocks our sound hid are the room's quiet, not a gap to bridge in one step (which
+    // let a single block of noise stand for the whole 20 ms).
+    const bool resumed = last_block_end_ms_ && *last_block_end_ms_ > *last_end_ms_;
+    if (resumed) smoothed_power_ = std::pow(10.0, floor_dbfs_ / 10);
+    const double from_ms = resumed ? *last_block_end_ms_ : *last_end_ms_;
+    const double step = 1 - std::exp(-std::max(0.0, end_ms - from_ms) / kFloorSmoothMs);
     *smoothed_power_ += step * (power - *smoothed_power_);
   }
   last_end_ms_ = end_ms;
@@ -85,12 +91,18 @@ void CarrierSense::follow_floor(double level_dbfs, double end_ms) {
   // A sender that sent for longer than the window heard nothing else: it keeps the last.
   while (minima_.size() > 1 && minima_.front().first < end_ms - kFloorWindowMs) minima_.pop_front();
   floor_dbfs_ = minima_.front().second;
+  return smoothed_dbfs;
 }
 
 void CarrierSense::hear(double level_dbfs, double end_ms) {
   const bool ours_now = ours(level_dbfs, end_ms);
-  if (!ours_now) follow_floor(level_dbfs, end_ms);
-  busy_now_ = !ours_now && level_dbfs >= floor_dbfs_ + kBusyOverFloorDb;
+  // A sound: this block over the busy mark, and the last 20 ms too. One block of noise over
+  // the mark is none (5 ms of pink noise at -50 dBFS passes it once in 20-30 s: a lone
+  // sender then took the room for shared, and yielded for a minute).
+  const double smoothed_dbfs = ours_now ? kSilenceDbfs : follow_floor(level_dbfs, end_ms);
+  last_block_end_ms_ = end_ms;
+  const double mark_dbfs = floor_dbfs_ + kBusyOverFloorDb;
+  busy_now_ = !ours_now && level_dbfs >= mark_dbfs && smoothed_dbfs >= mark_dbfs;
   if (ours_now || busy_now_)
     quiet_since_ms_.reset();
   else if (!quiet_since_ms_)

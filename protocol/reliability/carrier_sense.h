@@ -2,8 +2,10 @@
 //
 // The sender's microphone hears its own loudspeaker, its robots' answers, and every other
 // sender and robot in the room. This keeps the level of each block the microphone gives
-// (dBFS, block_level_dbfs) against the room's noise floor, and calls a block *busy* when it
-// stands kBusyOverFloorDb over that floor and is not the sender's own sound:
+// (dBFS, block_level_dbfs) against the room's noise floor, and calls a block *busy* when it,
+// and the level smoothed over the last kFloorSmoothMs, stand kBusyOverFloorDb over that
+// floor (a sound lasts; a block of noise may pass the mark alone), and it is not the
+// sender's own sound:
 // - its frame, from its start until it ended (own_begin, frame_ended);
 // - that frame's reverberant tail, and after the exchange its answer's: blocks that do not
 //   rise kBusyOverFloorDb over the quietest block since, until one falls into the noise
@@ -80,7 +82,8 @@ class CarrierSense {
 
  private:
   bool ours(double level_dbfs, double end_ms);
-  void follow_floor(double level_dbfs, double end_ms);
+  // Follows the floor with a non-own block; returns the level smoothed over kFloorSmoothMs.
+  double follow_floor(double level_dbfs, double end_ms);
   void tail_from(double at_ms);
 
   bool own_on_ = false;   // our frame sounds
@@ -93,8 +96,9 @@ class CarrierSense {
   bool busy_now_ = false;
   std::optional<double> quiet_since_ms_;
   std::size_t busy_blocks_ = 0;
-  std::optional<double> smoothed_power_;  // mean-square, relative to a full-scale sine's
-  std::optional<double> last_end_ms_;
+  std::optional<double> smoothed_power_;     // mean-square, relative to a full-scale sine's
+  std::optional<double> last_end_ms_;        // the last block not ours
+  std::optional<double> last_block_end_ms_;  // the last block
   // (end_ms, smoothed level) of the last 10 s, levels rising from front to back: the front
   // is the floor (a monotonic queue, so each block costs O(1)).
   std::deque<std::pair<double, double>> minima_;

@@ -154,3 +154,32 @@ TEST(CarrierSense, ASoundHeldLongerThanAnyTailIsNotOurs) {
   hear_for(sense, t, 2 * kBlockMs, -20);
   EXPECT_TRUE(sense.busy_now());
 }
+
+TEST(CarrierSense, ABlockOverTheMarkAloneIsNoSoundButASoundThatLastsIs) {
+  CarrierSense sense;
+  double t = hear_for(sense, 0, 1000, kNoiseDbfs);
+  const double spike_dbfs = kNoiseDbfs + kBusyOverFloorDb + 3;
+  for (int k = 0; k < 5; ++k) {
+    t = hear_for(sense, t, kBlockMs, spike_dbfs);  // one block of noise over the mark
+    t = hear_for(sense, t, 300, kNoiseDbfs);
+  }
+  // ... also the first block after our own exchange, where the smoothing resumes.
+  sense.own_begin(t);
+  t = hear_for(sense, t, 150, -10);
+  sense.own_end(t);
+  t = hear_for(sense, t, 200, kNoiseDbfs);  // the tail fell at once
+  sense.own_begin(t);
+  t = hear_for(sense, t, 150, -10);
+  sense.own_end(t);
+  for (double level = -10; level > kNoiseDbfs; level -= 3) t = hear_for(sense, t, kBlockMs, level);
+  t = hear_for(sense, t, kBlockMs, spike_dbfs);
+  t = hear_for(sense, t, 300, kNoiseDbfs);
+  EXPECT_FALSE(sense.last_busy_ms()) << "a block of noise was taken for a sound";
+  // Another's chord, as faint: heard within 50 ms (a slot of air_access.h), and to its end.
+  const double from = t;
+  t = hear_for(sense, t, 60, spike_dbfs);
+  ASSERT_TRUE(sense.last_busy_ms());
+  EXPECT_LE(*sense.last_busy_ms() - from, 60);
+  EXPECT_DOUBLE_EQ(*sense.last_busy_ms(), t);
+  EXPECT_GE(sense.busy_blocks(), 3u);
+}
