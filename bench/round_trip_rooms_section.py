@@ -56,11 +56,13 @@ def round_trip_rooms_section(w, rooms, profiles):
     w("Each measured room of bench/rirs both ways (pink noise −50 dBFS, 1 m, the sender's own loudspeaker at 0.1 m "
       "from its microphone): `dtmf-bench-e2e --rir` (the whole system in real time: gRPC, the server's transmitter, "
       "the agent) and `dtmf-bench-roundtrip --rir` (the link alone, offline, 5 ms blocks). First attempts: "
-      "transmissions answered without a retransmission.")
+      "transmissions answered without a retransmission. *Yields*: the pauses the sender made to let another sender "
+      "in, which it makes only once it has heard one (docs/protocol.md §9, sharing the air): alone in its room it "
+      "should make none, and its only pauses are a listening pause per 20 s of frames back to back.")
     w("")
-    w("| profile | room | RT60 | e2e: first attempts | e2e: RPC → confirmed, median / p95 | e2e: net | "
-      "offline: first attempts | offline: median / p95 | offline: net |")
-    w("|---|---|---|---|---|---|---|---|---|")
+    w("| profile | room | RT60 | e2e: first attempts | e2e: RPC → confirmed, median / p95 | e2e: max | e2e: net "
+      "| e2e: yields | offline: first attempts | offline: median / p95 | offline: net |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|")
     for p in shown:
         for room in MEASURED_ROOMS:
             docs = rooms[p].get(room)
@@ -70,10 +72,15 @@ def round_trip_rooms_section(w, rooms, profiles):
             for bench in ("e2e", "roundtrip"):
                 d = docs.get(bench)
                 if d is None:
-                    cells += ["not run", "–", "–"]
+                    cells += ["not run", "–", "–"] + (["–", "–"] if bench == "e2e" else [])
                     continue
                 med, p95 = latency(d)
-                cells += [f"{100 * first_attempt(d):.1f} %", f"{med:.0f} / {p95:.0f} ms", f"{d['throughput_bps']:.0f} bit/s"]
+                cells += [f"{100 * first_attempt(d):.1f} %", f"{med:.0f} / {p95:.0f} ms"]
+                if bench == "e2e":
+                    cells.append(f"{d['latency_ms_max']:.0f} ms" if "latency_ms_max" in d else "–")
+                cells.append(f"{d['throughput_bps']:.0f} bit/s")
+                if bench == "e2e":
+                    cells.append(str(d["air_yields"]) if "air_yields" in d else "–")
             w(f"| `{p}` | {room} | {RT60_S[room]:.2f} s | " + " | ".join(cells) + " |")
     w("")
 

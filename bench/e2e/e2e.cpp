@@ -144,13 +144,18 @@ int main(int argc, char** argv) {
         const double wall_s = ms_between(first_call, last_confirm) / 1000;
         const double throughput = wall_s > 0 ? static_cast<double>(payload_bits) / wall_s : 0;
         const double frame_success = first_tx ? static_cast<double>(first_acked) / static_cast<double>(first_tx) : 0;
+        // Alone in its room, the sender should never defer or yield: only its listening pauses.
+        const server::AirShare air = system.air_share();
         std::printf(
             "e2e %s: %llu of %d commands confirmed; latency median %.0f ms, p95 %.0f ms, max %.0f ms; "
-            "%.2f bit/s net payload; frames ACKed at the first attempt %llu of %llu (%.2f %%), %llu retransmissions\n",
+            "%.2f bit/s net payload; frames ACKed at the first attempt %llu of %llu (%.2f %%), %llu retransmissions; "
+            "the air: %llu blocks heard busy, %llu frames deferred, %llu yields, %llu listening pauses\n",
             profile.name.c_str(), static_cast<unsigned long long>(confirmed), commands, percentile(latencies_ms, 0.5),
             percentile(latencies_ms, 0.95), percentile(latencies_ms, 1.0), throughput,
             static_cast<unsigned long long>(first_acked), static_cast<unsigned long long>(first_tx),
-            100 * frame_success, static_cast<unsigned long long>(retransmissions));
+            100 * frame_success, static_cast<unsigned long long>(retransmissions),
+            static_cast<unsigned long long>(air.busy_blocks), static_cast<unsigned long long>(air.deferred),
+            static_cast<unsigned long long>(air.yields), static_cast<unsigned long long>(air.listens));
         write_json(json_path, {{"benchmark", "e2e"},
                                {"profile", profile.name},
                                {"authenticated", authenticated},
@@ -171,6 +176,10 @@ int main(int argc, char** argv) {
                                {"frames_acked_first_attempt", first_acked},
                                {"frame_success_rate", frame_success},
                                {"retransmissions", retransmissions},
+                               {"air_busy_blocks", air.busy_blocks},
+                               {"air_deferred", air.deferred},
+                               {"air_yields", air.yields},
+                               {"air_listens", air.listens},
                                {"per_command", per_command}});
         return confirmed == static_cast<std::uint64_t>(commands) ? 0 : 1;
       },

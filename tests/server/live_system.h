@@ -80,6 +80,8 @@ class LiveSystem {
   agent::Velocity last_velocity();
   // Every cmd_vel sample so far, in order, from the `from`th on (the history only grows).
   std::vector<PublishedVelocity> velocities(std::size_t from = 0);
+  // How the sender shared the air: a lone sender defers to no one and never yields.
+  server::AirShare air_share() const { return transmitter_->air_share(); }
   // The sound devices go away (a USB sound card unplugged): the room stops.
   void pull_the_plug() { air_.stop(); }
   // The sender's loudspeaker goes silent (or sounds again): the link is lost from now on, the
