@@ -2,6 +2,8 @@
 // level to the carrier sense; before each frame the loudspeaker's thread waits for the air
 // (reliability/air_access.h), and marks its exchange so that its own sound is not taken
 // for another's.
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <chrono>
 
@@ -53,7 +55,13 @@ void Transmitter::frame_ended() {
 void Transmitter::exchange_ended(std::optional<reliability::AirSpan> answer, bool unconfirmed) {
   std::lock_guard lock(mutex_);
   const double now = now_ms();
+  const std::size_t busy_before = carrier_.busy_blocks();
   carrier_.own_end(now, answer);
+  if (carrier_.busy_blocks() > busy_before)
+    spdlog::debug(
+        "the air: {} blocks heard during our exchange, outside our answer ({:.0f}..{:.0f} ms, now {:.0f}), "
+        "were another's",
+        carrier_.busy_blocks() - busy_before, answer ? answer->from_ms : -1.0, answer ? answer->to_ms : -1.0, now);
   if (air_ && unconfirmed) air_->unanswered(carrier_, now);
 }
 

@@ -35,7 +35,11 @@ void Transmitter::listen() {
     const double level_dbfs = reliability::block_level_dbfs(std::span<const float>(block.data(), got));
     {
       std::lock_guard lock(mutex_);
+      const bool waiting = carrier_.own_on();
       carrier_.hear(level_dbfs, now);
+      if (carrier_.busy_now())
+        spdlog::debug("the air at {:.0f} ms: {:.1f} dBFS over a floor of {:.1f}: another's sound{}", now, level_dbfs,
+                      carrier_.floor_dbfs(), waiting ? " (while our exchange goes on: counted if not our answer)" : "");
     }
     for (const HeardAnswer& heard : listener.feed(std::span<const float>(block.data(), got))) {
       std::lock_guard lock(mutex_);
