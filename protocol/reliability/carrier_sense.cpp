@@ -16,6 +16,15 @@ double block_level_dbfs(std::span<const float> samples) {
   return std::isfinite(level) ? std::max(level, kSilenceDbfs) : kSilenceDbfs;
 }
 
+namespace {
+double power_of(double level_dbfs) { return std::pow(10.0, level_dbfs / 10); }
+double dbfs_of(double power) { return std::max(10 * std::log10(power), kSilenceDbfs); }
+// An exponential average over kFloorSmoothMs: `smoothed` moved toward `power` for `elapsed_ms`.
+double smoothed_toward(double smoothed, double power, double elapsed_ms) {
+  return smoothed + (1 - std::exp(-std::max(0.0, elapsed_ms) / kFloorSmoothMs)) * (power - smoothed);
+}
+}  // namespace
+
 void CarrierSense::own_begin(double) {
   own_on_ = true;
   waiting_ = false;
@@ -25,6 +34,7 @@ void CarrierSense::own_begin(double) {
 void CarrierSense::tail_from(double at_ms) {
   tail_from_ms_ = at_ms;
   tail_min_dbfs_ = std::numeric_limits<double>::infinity();
+  tail_power_.reset();
 }
 
 void CarrierSense::frame_ended(double at_ms) {
@@ -54,16 +64,22 @@ bool CarrierSense::ours(double level_dbfs, double end_ms) {
   if (!tail_from_ms_) return false;
   const double since_ms = end_ms - *tail_from_ms_;
   if (since_ms >= kOwnTailMaxMs) return false;
-  if (since_ms < kOwnLatencyMs) {
-    tail_min_dbfs_ = std::min(tail_min_dbfs_, level_dbfs);
-    return true;
-  }
-  // A rise: someone else (or, while we wait, our robot's answer). The tail goes on under it.
-  if (level_dbfs >= tail_min_dbfs_ + kBusyOverFloorDb) return false;
-  tail_min_dbfs_ = std::min(tail_min_dbfs_, level_dbfs);
+  // The tail is judged on its envelope: a tone's decay in a room beats (its modes interfere),
+  // so single blocks dip far under it and come back.
+  const double power = power_of(level_dbfs);
+  const double smoothed_power = tail_power_ ? smoothed_toward(*tail_power_, power, end_ms - tail_last_ms_) : power;
+  const double tail_dbfs = dbfs_of(smoothed_power);
+  // Our sound may still be arriving for kOwnLatencyMs; after that, a rise is someone else
+  // (or, while we wait, our robot's answer). The tail goes on under it.
+  const bool arriving = since_ms < kOwnLatencyMs;
+  if (!arriving && tail_dbfs >= tail_min_dbfs_ + kBusyOverFloorDb) return false;
+  tail_power_ = smoothed_power;
+  tail_last_ms_ = end_ms;
+  tail_min_dbfs_ = std::min(tail_min_dbfs_, tail_dbfs);
+  if (arriving) return true;
   // Fallen into the noise: the tail is over, and the air as quiet as it gets. Well under the
   // busy mark, so that a tail that flickers about it on its way down is not taken for another.
-  if (!waiting_ && level_dbfs < floor_dbfs_ + kBusyOverFloorDb - kTailEndMarginDb) {
+  if (!waiting_ && tail_dbfs < floor_dbfs_ + kBusyOverFloorDb - kTailEndMarginDb) {
     tail_from_ms_.reset();
     return false;
   }
@@ -71,7 +87,7 @@ bool CarrierSense::ours(double level_dbfs, double end_ms) {
 }
 
 double CarrierSense::follow_floor(double level_dbfs, double end_ms) {
-  const double power = std::pow(10.0, level_dbfs / 10);
+  const double power = power_of(level_dbfs);
   if (!smoothed_power_ || !last_end_ms_) {
     smoothed_power_ = power;
   } else {
@@ -79,13 +95,12 @@ double CarrierSense::follow_floor(double level_dbfs, double end_ms) {
     // blocks our sound hid are the room's quiet, not a gap to bridge in one step (which
     // let a single block of noise stand for the whole 20 ms).
     const bool resumed = last_block_end_ms_ && *last_block_end_ms_ > *last_end_ms_;
-    if (resumed) smoothed_power_ = std::pow(10.0, floor_dbfs_ / 10);
+    if (resumed) smoothed_power_ = power_of(floor_dbfs_);
     const double from_ms = resumed ? *last_block_end_ms_ : *last_end_ms_;
-    const double step = 1 - std::exp(-std::max(0.0, end_ms - from_ms) / kFloorSmoothMs);
-    *smoothed_power_ += step * (power - *smoothed_power_);
+    smoothed_power_ = smoothed_toward(*smoothed_power_, power, end_ms - from_ms);
   }
   last_end_ms_ = end_ms;
-  const double smoothed_dbfs = std::max(10 * std::log10(*smoothed_power_), kSilenceDbfs);
+  const double smoothed_dbfs = dbfs_of(*smoothed_power_);
   while (!minima_.empty() && minima_.back().second >= smoothed_dbfs) minima_.pop_back();
   minima_.emplace_back(end_ms, smoothed_dbfs);
   // A sender that sent for longer than the window heard nothing else: it keeps the last.

@@ -7,10 +7,12 @@
 // floor (a sound lasts; a block of noise may pass the mark alone), and it is not the
 // sender's own sound:
 // - its frame, from its start until it ended (own_begin, frame_ended);
-// - that frame's reverberant tail, and after the exchange its answer's: blocks that do not
-//   rise kBusyOverFloorDb over the quietest block since, until one falls into the noise
-//   (kTailEndMarginDb under the floor's busy mark), for at most kOwnTailMaxMs. A tail only
-//   falls; another sender's frame begins with a rise;
+// - that frame's reverberant tail, and after the exchange its answer's: while the tail's
+//   level smoothed over kFloorSmoothMs does not rise kBusyOverFloorDb over its quietest
+//   since, until it falls into the noise (kTailEndMarginDb under the floor's busy mark), for
+//   at most kOwnTailMaxMs. A tail only falls; another sender's frame begins with a rise. It
+//   is smoothed because a tone's decay in a room beats: single 5 ms blocks of it dip 10 dB
+//   and more under its envelope and come back (carrier_sense_rooms_test.cpp);
 // - its robot's answer. The microphone keeps listening while the sender waits for it, so
 //   that a sender that is never silent between its exchanges still hears the others in its
 //   waits, but a block it hears busy there stays provisional until the exchange ends
@@ -90,7 +92,9 @@ class CarrierSense {
   bool waiting_ = false;  // ... it ended, and we wait for its answer
   std::optional<double> own_ended_ms_;
   std::optional<double> tail_from_ms_;  // our last sound ended here
-  double tail_min_dbfs_ = 0;            // the quietest block since
+  std::optional<double> tail_power_;    // its level smoothed over kFloorSmoothMs (mean-square) ...
+  double tail_last_ms_ = 0;             // ... up to this block's end
+  double tail_min_dbfs_ = 0;            // the quietest it has been since
   std::vector<double> provisional_;     // busy blocks heard while we wait (their end_ms)
   std::optional<double> last_busy_ms_;
   bool busy_now_ = false;

@@ -137,9 +137,27 @@ TEST(CarrierSense, TheAirIsQuietOnlyOnceOurTailHasFallenIntoTheNoise) {
   sense.own_end(t);
   t = hear_for(sense, t, 300, -30);
   EXPECT_FALSE(sense.quiet_since_ms()) << "our tail was taken for quiet";
-  t = hear_for(sense, t, 100, kNoiseDbfs);
+  t = hear_for(sense, t, 200, kNoiseDbfs);
   ASSERT_TRUE(sense.quiet_since_ms());
-  EXPECT_DOUBLE_EQ(*sense.quiet_since_ms(), t - 100 + kBlockMs);
+  // The tail is judged smoothed over kFloorSmoothMs: from 20 dB over the noise it takes
+  // 20 ms * ln(99 / (10^0.4 - 1)) = 83.6 ms to fall kTailEndMarginDb under the busy mark.
+  const double fall_ms = kFloorSmoothMs * std::log(99 / (std::pow(10, (kBusyOverFloorDb - kTailEndMarginDb) / 10) - 1));
+  EXPECT_DOUBLE_EQ(*sense.quiet_since_ms(), t - 200 + std::ceil(fall_ms / kBlockMs) * kBlockMs);
+}
+
+// A tone's decay in a room beats: a block far under the tail's envelope, then the tail
+// again, is still our tail (carrier_sense_rooms_test.cpp has it through measured rooms).
+TEST(CarrierSense, ABlockThatDipsUnderOurTailIsNoRiseAfterIt) {
+  CarrierSense sense;
+  double t = hear_for(sense, 0, 1000, kNoiseDbfs);
+  sense.own_begin(t);
+  t = hear_for(sense, t, 150, -10);
+  sense.own_end(t);
+  t = hear_for(sense, t, 150, -25);
+  t = hear_for(sense, t, kBlockMs, -45);  // 20 dB under the tail, still over the noise
+  hear_for(sense, t, 50, -25);
+  EXPECT_FALSE(sense.last_busy_ms());
+  EXPECT_EQ(sense.busy_blocks(), 0u);
 }
 
 TEST(CarrierSense, ASoundHeldLongerThanAnyTailIsNotOurs) {
