@@ -25,6 +25,12 @@ double smoothed_toward(double smoothed, double power, double elapsed_ms) {
 }
 }  // namespace
 
+AirSpan own_answer_span(double frame_end_ms, std::optional<double> delay_ms, double max_delay_ms, double answer_ms) {
+  const double from_ms = frame_end_ms + delay_ms.value_or(0);
+  const double to_ms = frame_end_ms + delay_ms.value_or(max_delay_ms) + answer_ms;
+  return {from_ms - kOwnLatencyMs, to_ms + kOwnLatencyMs};
+}
+
 void CarrierSense::own_begin(double) {
   own_on_ = true;
   waiting_ = false;
@@ -34,7 +40,7 @@ void CarrierSense::own_begin(double) {
 void CarrierSense::tail_from(double at_ms) {
   tail_from_ms_ = at_ms;
   tail_min_dbfs_ = std::numeric_limits<double>::infinity();
-  tail_power_.reset();
+  tail_recent_.clear();
 }
 
 void CarrierSense::frame_ended(double at_ms) {
@@ -64,22 +70,25 @@ bool CarrierSense::ours(double level_dbfs, double end_ms) {
   if (!tail_from_ms_) return false;
   const double since_ms = end_ms - *tail_from_ms_;
   if (since_ms >= kOwnTailMaxMs) return false;
-  // The tail is judged on its envelope: a tone's decay in a room beats (its modes interfere),
-  // so single blocks dip far under it and come back.
-  const double power = power_of(level_dbfs);
-  const double smoothed_power = tail_power_ ? smoothed_toward(*tail_power_, power, end_ms - tail_last_ms_) : power;
-  const double tail_dbfs = dbfs_of(smoothed_power);
-  // Our sound may still be arriving for kOwnLatencyMs; after that, a rise is someone else
-  // (or, while we wait, our robot's answer). The tail goes on under it.
+  // Our sound may still be arriving for kOwnLatencyMs; after that, a rise over the tail's
+  // quietest is someone else (or, while we wait, our robot's answer). The tail goes on under it.
   const bool arriving = since_ms < kOwnLatencyMs;
-  if (!arriving && tail_dbfs >= tail_min_dbfs_ + kBusyOverFloorDb) return false;
-  tail_power_ = smoothed_power;
-  tail_last_ms_ = end_ms;
-  tail_min_dbfs_ = std::min(tail_min_dbfs_, tail_dbfs);
+  if (!arriving && level_dbfs >= tail_min_dbfs_ + kBusyOverFloorDb) return false;
+  // The tail's envelope: its loudest block of the last kFloorSmoothMs. A tone's decay in a
+  // room beats (its modes interfere), so single blocks dip far under it and come back; the
+  // envelope does not, yet follows a tail that ends at once (a flat air) within 20 ms. Not
+  // while we wait: a sender's frame and its answer may leave less than 20 ms between them, an
+  // envelope would then never fall, and a quieter sender would go unheard in every wait (on
+  // the PulseAudio air, three senders started 2 to 3 times as many frames into another's).
+  tail_recent_.emplace_back(end_ms, level_dbfs);
+  while (tail_recent_.front().first <= end_ms - kFloorSmoothMs) tail_recent_.pop_front();
+  double envelope_dbfs = kSilenceDbfs;
+  for (const auto& [at_ms, level] : tail_recent_) envelope_dbfs = std::max(envelope_dbfs, level);
+  tail_min_dbfs_ = std::min(tail_min_dbfs_, waiting_ ? level_dbfs : envelope_dbfs);
   if (arriving) return true;
   // Fallen into the noise: the tail is over, and the air as quiet as it gets. Well under the
   // busy mark, so that a tail that flickers about it on its way down is not taken for another.
-  if (!waiting_ && tail_dbfs < floor_dbfs_ + kBusyOverFloorDb - kTailEndMarginDb) {
+  if (!waiting_ && envelope_dbfs < floor_dbfs_ + kBusyOverFloorDb - kTailEndMarginDb) {
     tail_from_ms_.reset();
     return false;
   }

@@ -7,12 +7,15 @@
 // floor (a sound lasts; a block of noise may pass the mark alone), and it is not the
 // sender's own sound:
 // - its frame, from its start until it ended (own_begin, frame_ended);
-// - that frame's reverberant tail, and after the exchange its answer's: while the tail's
-//   level smoothed over kFloorSmoothMs does not rise kBusyOverFloorDb over its quietest
-//   since, until it falls into the noise (kTailEndMarginDb under the floor's busy mark), for
-//   at most kOwnTailMaxMs. A tail only falls; another sender's frame begins with a rise. It
-//   is smoothed because a tone's decay in a room beats: single 5 ms blocks of it dip 10 dB
-//   and more under its envelope and come back (carrier_sense_rooms_test.cpp);
+// - that frame's reverberant tail, and after the exchange its answer's: blocks that do not
+//   rise kBusyOverFloorDb over the quietest the tail's envelope has been since, until the
+//   envelope falls into the noise (kTailEndMarginDb under the floor's busy mark), for at most
+//   kOwnTailMaxMs. A tail only falls; another sender's frame begins with a rise. The
+//   envelope is the loudest block of the last kFloorSmoothMs, because a tone's decay in a
+//   room beats: single 5 ms blocks of it dip 10 dB and more under it and come back
+//   (carrier_sense_rooms_test.cpp). While we wait for our answer, single blocks count: a
+//   frame and its answer may leave less than 20 ms between them, and an envelope that never
+//   fell would hide a quieter sender in every wait;
 // - its robot's answer. The microphone keeps listening while the sender waits for it, so
 //   that a sender that is never silent between its exchanges still hears the others in its
 //   waits, but a block it hears busy there stays provisional until the exchange ends
@@ -56,6 +59,14 @@ struct AirSpan {
   double from_ms = 0, to_ms = 0;
 };
 
+// Where our robot's answer to a frame that ended at `frame_end_ms` sounds (or would have),
+// for CarrierSense::own_end: `answer_ms` long, `delay_ms` after the frame (as its last
+// answer came), with kOwnLatencyMs either side. Before a robot has answered at all, its
+// answer may begin anywhere up to `max_delay_ms` after the frame (its profile's
+// ack_timeout_ms − chord_ms), and the whole of that is its own: an answer heard but not read
+// (too weak, or garbled by the room) is still no other sender's.
+AirSpan own_answer_span(double frame_end_ms, std::optional<double> delay_ms, double max_delay_ms, double answer_ms);
+
 class CarrierSense {
  public:
   // Our frame begins: what is heard is ours until frame_ended().
@@ -91,11 +102,10 @@ class CarrierSense {
   bool own_on_ = false;   // our frame sounds
   bool waiting_ = false;  // ... it ended, and we wait for its answer
   std::optional<double> own_ended_ms_;
-  std::optional<double> tail_from_ms_;  // our last sound ended here
-  std::optional<double> tail_power_;    // its level smoothed over kFloorSmoothMs (mean-square) ...
-  double tail_last_ms_ = 0;             // ... up to this block's end
-  double tail_min_dbfs_ = 0;            // the quietest it has been since
-  std::vector<double> provisional_;     // busy blocks heard while we wait (their end_ms)
+  std::optional<double> tail_from_ms_;                 // our last sound ended here
+  std::deque<std::pair<double, double>> tail_recent_;  // (end_ms, level) of its last kFloorSmoothMs
+  double tail_min_dbfs_ = 0;                           // the quietest its envelope has been since
+  std::vector<double> provisional_;                    // busy blocks heard while we wait (their end_ms)
   std::optional<double> last_busy_ms_;
   bool busy_now_ = false;
   std::optional<double> quiet_since_ms_;

@@ -2,8 +2,8 @@
 // from its loudspeaker 0.1 m beside its microphone in every measured room (bench/rirs): the
 // reverberant tail of our own sound is never another's. A pure tone's decay in a room beats
 // (its modes interfere), so 5 ms blocks of a tail dip well under its envelope and come back;
-// before the tail was judged on levels smoothed over kFloorSmoothMs, such a dip made the
-// next blocks a "rise", and a lone sender in the seminar room yielded for a minute
+// before the tail was judged on its envelope (the loudest block of the last kFloorSmoothMs),
+// such a dip made the next blocks a "rise", and a lone sender in the seminar room yielded for a minute
 // (dtmf-bench-e2e --profile seed --rir seminar_room_clap.wav --seed 1: 12 yields).
 #include <gtest/gtest.h>
 
