@@ -185,7 +185,6 @@ void Transmitter::await_answer(Job& job, FrameAttempt& attempt) {
   // Where our robot's answer sounded, or would have: what the microphone heard there is ours.
   const double answer_ms = job.profile().timing.ack_ms;
   const double frame_end_ms = attempt.chord_start + attempt.frame->tone_ms;
-  std::optional<reliability::AirSpan> answer_span;
   std::optional<double>& answer_delay_ms = robots_[robot_of(job.link())].answer_delay_ms;
   if (reply) {
     const auto kind = reply->answer.answer.ack ? reliability::Answer::Ack : reliability::Answer::Nack;
@@ -202,11 +201,9 @@ void Transmitter::await_answer(Job& job, FrameAttempt& attempt) {
   } else {
     retry.on_tick(std::max(now_ms(), *retry.deadline_ms()));
   }
-  if (answer_delay_ms) {
-    const double from_ms = frame_end_ms + *answer_delay_ms;
-    answer_span =
-        reliability::AirSpan{from_ms - reliability::kOwnLatencyMs, from_ms + answer_ms + reliability::kOwnLatencyMs};
-  }
+  const LinkTiming& timing = job.profile().timing;
+  const reliability::AirSpan answer_span =
+      reliability::own_answer_span(frame_end_ms, answer_delay_ms, timing.ack_timeout_ms - timing.chord_ms, answer_ms);
   exchange_ended(answer_span, !reply || !reply->answer.answer.ack);
   emit(job, answer);
 }
