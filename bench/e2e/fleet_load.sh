@@ -68,6 +68,14 @@ for a in $(seq "$agents"); do
     --cmd-vel log --db "$DTMF_DB_URL" --spill-file "$dir/agent$a.spill" \
     > /dev/null 2> "$dir/agent$a.log" &
   pids+=($!) agent_pids+=($!)
+  # One at a time: a real robot has a sound server of its own, and this air's one PulseAudio,
+  # asked by 20 agents within 50 ms, left some unanswered ("PulseAudio server ... did not
+  # answer", or a device that would not take mono), and those agents logged no frame.
+  for _ in $(seq 100); do
+    grep -q "listening to" "$dir/agent$a.log" 2>/dev/null && break
+    kill -0 "$!" 2>/dev/null || break
+    sleep 0.1
+  done
 done
 ports=()
 for s in $(seq "$servers"); do
