@@ -35,6 +35,9 @@ BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "answers", "t
 # Run only where they apply (dtmf-bench-lost: hopped frames without a key; dtmf-bench-room-stop:
 # profiles whose frames name robots): listed under "not run" only when they failed.
 OPTIONAL_BENCHES = ["lost", "room_stop", "fleet_teleop"]
+# A frame heard that reads as a joint renewal forges one with at most 3 slots in each of 4 readings,
+# each 2^-18 (docs/security.md, "Joint renewals": kMacChecksPerFrame, kRenewalMacBits).
+RENEWAL_FORGERY_PER_FRAME = 12 * 2.0**-18
 TALKOFF = [("speech", "speech (espeak-ng)"), ("music", "music-like (sox synth)"), ("noise", "noise (white, pink, brown)")]
 
 
@@ -434,19 +437,28 @@ def main() -> int:
     w("A false confirmation is an ACK the sender would take for the frame it waits for (a new random frame every "
       "ACK timeout; with a key, a tag chord reading with 9 of 16 bands of its tag, `protocol/link/answer_wait.h`).")
     w("")
-    w("| signal | profile | hours | RMS | accepted frames (/h) | check-failing frames (/h) | false ACK (/h) | false NACK (/h) "
-      "| false confirmations (/h) |")
-    w("|---|---|---|---|---|---|---|---|---|")
+    w("A frame that passes its check but not the robot's other tests (its MAC, with a key) is *intact, refused*. With a "
+      "key, only such a frame could pass for a joint renewal: the robot reads a renewal's slots only in an intact "
+      "frame, and a slot naming it holds by chance with 2⁻¹⁸, at most 12 × 2⁻¹⁸ = 4.6 × 10⁻⁵ a frame heard "
+      "(docs/security.md, *Joint renewals*). Talk-off gives the robot no velocity to renew, so the chance is "
+      "counted, not tried: the last column is the intact frames times that bound.")
+    w("")
+    w("| signal | profile | hours | RMS | accepted frames (/h) | check-failing frames (/h) | intact, refused (/h) "
+      "| false ACK (/h) | false NACK (/h) | false confirmations (/h) | renewals forged by chance (/h, bound) |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|")
     for kind, label in TALKOFF:
         for p in profiles:
             d = data[p]["talkoff_" + kind]
             if not ok(d):
-                w(f"| {label} | `{p}` | not run: {d['error']} | | | | | | |")
+                w(f"| {label} | `{p}` | not run: {d['error']} | | | | | | | | |")
                 continue
+            renewal_bound = (f"{d['refused_per_hour'] * RENEWAL_FORGERY_PER_FRAME:.1e}" if d.get("authenticated")
+                             else "no renewals")
             w(f"| {label} | `{p}` | {d['hours']:.2f} | {num(d['rms_dbfs'], 1)} dBFS | {d['accepted']} ({d['accepted_per_hour']:.2f}) "
-              f"| {d['check_failed']} ({d['check_failed_per_hour']:.2f}) | {d['acks']} ({d['acks_per_hour']:.2f}) "
+              f"| {d['check_failed']} ({d['check_failed_per_hour']:.2f}) "
+              f"| {d['refused']} ({d['refused_per_hour']:.2f}) | {d['acks']} ({d['acks_per_hour']:.2f}) "
               f"| {d['nacks']} ({d['nacks_per_hour']:.2f}) "
-              f"| {d.get('false_confirmations', 0)} ({d.get('false_confirmations_per_hour', 0):.2f}) |")
+              f"| {d.get('false_confirmations', 0)} ({d.get('false_confirmations_per_hour', 0):.2f}) | {renewal_bound} |")
     w("")
 
     w("## Decoder speed")
