@@ -16,15 +16,6 @@ double block_level_dbfs(std::span<const float> samples) {
   return std::isfinite(level) ? std::max(level, kSilenceDbfs) : kSilenceDbfs;
 }
 
-namespace {
-double power_of(double level_dbfs) { return std::pow(10.0, level_dbfs / 10); }
-double dbfs_of(double power) { return std::max(10 * std::log10(power), kSilenceDbfs); }
-// An exponential average over kFloorSmoothMs: `smoothed` moved toward `power` for `elapsed_ms`.
-double smoothed_toward(double smoothed, double power, double elapsed_ms) {
-  return smoothed + (1 - std::exp(-std::max(0.0, elapsed_ms) / kFloorSmoothMs)) * (power - smoothed);
-}
-}  // namespace
-
 AirSpan own_answer_span(double frame_end_ms, std::optional<double> delay_ms, double max_delay_ms, double answer_ms) {
   const double from_ms = frame_end_ms + delay_ms.value_or(0);
   const double to_ms = frame_end_ms + delay_ms.value_or(max_delay_ms) + answer_ms;
@@ -96,7 +87,7 @@ bool CarrierSense::ours(double level_dbfs, double end_ms) {
 }
 
 double CarrierSense::follow_floor(double level_dbfs, double end_ms) {
-  const double power = power_of(level_dbfs);
+  const double power = std::pow(10.0, level_dbfs / 10);
   if (!smoothed_power_ || !last_end_ms_) {
     smoothed_power_ = power;
   } else {
@@ -104,12 +95,13 @@ double CarrierSense::follow_floor(double level_dbfs, double end_ms) {
     // blocks our sound hid are the room's quiet, not a gap to bridge in one step (which
     // let a single block of noise stand for the whole 20 ms).
     const bool resumed = last_block_end_ms_ && *last_block_end_ms_ > *last_end_ms_;
-    if (resumed) smoothed_power_ = power_of(floor_dbfs_);
+    if (resumed) smoothed_power_ = std::pow(10.0, floor_dbfs_ / 10);
     const double from_ms = resumed ? *last_block_end_ms_ : *last_end_ms_;
-    smoothed_power_ = smoothed_toward(*smoothed_power_, power, end_ms - from_ms);
+    const double step = 1 - std::exp(-std::max(0.0, end_ms - from_ms) / kFloorSmoothMs);
+    *smoothed_power_ += step * (power - *smoothed_power_);
   }
   last_end_ms_ = end_ms;
-  const double smoothed_dbfs = dbfs_of(*smoothed_power_);
+  const double smoothed_dbfs = std::max(10 * std::log10(*smoothed_power_), kSilenceDbfs);
   while (!minima_.empty() && minima_.back().second >= smoothed_dbfs) minima_.pop_back();
   minima_.emplace_back(end_ms, smoothed_dbfs);
   // A sender that sent for longer than the window heard nothing else: it keeps the last.

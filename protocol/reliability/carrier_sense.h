@@ -104,7 +104,7 @@ class CarrierSense {
   std::optional<double> own_ended_ms_;
   std::optional<double> tail_from_ms_;                 // our last sound ended here
   std::deque<std::pair<double, double>> tail_recent_;  // (end_ms, level) of its last kFloorSmoothMs
-  double tail_min_dbfs_ = 0;                           // the quietest its envelope has been since
+  double tail_min_dbfs_ = 0;                           // the quietest since (envelope; while waiting, a block)
   std::vector<double> provisional_;                    // busy blocks heard while we wait (their end_ms)
   std::optional<double> last_busy_ms_;
   bool busy_now_ = false;
