@@ -226,6 +226,9 @@ json.dump({"agents": $agents, "servers": $servers, "seconds": $seconds, "outage_
 EOF
 fi
 if [ ${#failures[@]} -gt 0 ]; then
+  # What the programs said about their database, and what was left behind: the why of a lost row.
+  grep -H -iE 'database|spill|rejected|lost' "$dir"/*.log | tail -40 >&2 || true
+  find "$dir" -maxdepth 1 -name '*.spill*' -exec sh -c 'echo "== $1"; head -c 2000 "$1"; echo' _ {} \; >&2
   printf 'fleet_load: FAILED: %s\n' "${failures[@]}" >&2
   exit 1
 fi

@@ -14,6 +14,9 @@ namespace {
 
 using SteadyClock = std::chrono::steady_clock;
 
+// How long a stopping store goes on writing before it leaves the rest in the spill file.
+constexpr std::chrono::seconds kStopWriteTime{1};
+
 // SQLSTATE classes that mean "this row is wrong", not "the database is away": data
 // exceptions, integrity violations, syntax / undefined objects, and store_rows' own RAISE.
 bool is_data_error(const std::string& sqlstate) {
@@ -54,6 +57,7 @@ Store::~Store() {
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;
+    stop_deadline_ = SteadyClock::now() + kStopWriteTime;
   }
   wake_.notify_all();
   worker_.join();
@@ -190,7 +194,7 @@ bool Store::replay_spill() {
     spill_.replay_chunk_done();
     {
       std::lock_guard lock(mutex_);
-      if (stopping_) return true;  // leave the rest of the file for the next start
+      if (stopping_ && SteadyClock::now() >= stop_deadline_) return true;  // the rest waits for the next start
     }
     progress_.notify_all();
   }
@@ -226,7 +230,15 @@ void Store::run() {
     std::unique_lock lock(mutex_);
     busy_ = false;
     progress_.notify_all();
-    if (stopping_ && queue_.empty()) break;
+    if (stopping_ && queue_.empty()) {
+      // A clean stop tries the database once more, backoff or not, for the rows in the spill
+      // file: a connection that broke unnoticed (the database restarted while we were idle)
+      // fails on the last rows, and they would wait in the file for a next start.
+      if (!spill_.pending() || last_try_made_ || SteadyClock::now() >= stop_deadline_) break;
+      last_try_made_ = true;
+      next_attempt_ = SteadyClock::now();
+      continue;
+    }
     if (!queue_.empty()) continue;
     if (connection_ && spill_.pending()) continue;
     // Nothing queued: sleep until a row comes, or until it is time to try the database again.

@@ -82,7 +82,8 @@ class Store {
   std::deque<std::string> queue_;
   std::int64_t last_revision_ = 0;
   bool stopping_ = false;
-  bool busy_ = false;  // the worker holds rows taken from the queue
+  std::chrono::steady_clock::time_point stop_deadline_{};  // set with stopping_
+  bool busy_ = false;                                      // the worker holds rows taken from the queue
   StoreStats stats_;
 
   // The worker's own.
@@ -90,6 +91,7 @@ class Store {
   std::chrono::steady_clock::time_point next_attempt_{};
   std::chrono::milliseconds backoff_;
   bool outage_reported_ = false;
+  bool last_try_made_ = false;  // the stop's one try past the backoff
   std::thread worker_;
 };
 

@@ -191,3 +191,32 @@ TEST(Store, ThirtySecondOutageLosesNothingAndNeverBlocks) {
   EXPECT_EQ(count_host(db, host), 10100);
   EXPECT_EQ(count_host(db, host, true), 10100);
 }
+
+// A database that restarted while the store was idle leaves it a broken connection that it
+// only finds with its next rows. Those rows go to the spill file and wait for the backoff;
+// a clean stop then must still write them (bench.FleetLoad once found one such row per agent
+// left in its spill file, missing from the database).
+TEST(Store, AStopJustAfterAnUnnoticedRestartStillWritesItsLastRows) {
+  TempDatabase db;
+  const std::string host = "restart-" + std::to_string(::getpid());
+  const std::string spill = spill_path("restart");
+  {
+    StoreOptions o = options_for(db.url(), spill);
+    o.min_backoff = std::chrono::seconds(30);  // the store's own retry would not come in time
+    Store store(o);
+    store.write(reception(host, 1));
+    ASSERT_TRUE(store.flush(std::chrono::seconds(20)));
+    cluster("stop");
+    cluster("start");
+    store.write(reception(host, 2));
+    // Wait until the row met the broken connection and went to the spill file.
+    const auto deadline = SteadyClock::now() + std::chrono::seconds(10);
+    while (store.stats().spilled == 0 && SteadyClock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_EQ(store.stats().spilled, 1u) << "the row did not meet the broken connection";
+    EXPECT_FALSE(store.stats().connected);
+  }  // a clean stop
+  EXPECT_EQ(count_host(db, host), 2);
+  EXPECT_FALSE(fs::exists(spill));
+  EXPECT_FALSE(fs::exists(spill + ".replaying"));
+}
