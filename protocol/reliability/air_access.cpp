@@ -29,8 +29,13 @@ std::optional<double> AirAccess::pause_left_ms(const CarrierSense& sense, double
   if (quiet_for_ms >= window_ms) return std::nullopt;
   if (!pausing_) {
     pausing_ = true;
+    pause_since_ms_ = now_ms;
     ++(shared ? yields_ : listens_);
   }
+  // Paused for as long as a starved deferral: the other does not pause for as long as we
+  // wait (it never heard us, and only stops to listen). Our deferral's rules, starved by
+  // now, take over and start us in its listening pause.
+  if (now_ms - pause_since_ms_ >= kMaxDeferMs) return std::nullopt;
   return window_ms - quiet_for_ms;
 }
 
@@ -69,6 +74,7 @@ void AirAccess::started(const CarrierSense& sense, double at_ms) {
   deferred_since_ms_.reset();
   starved_ = false;
   pausing_ = false;
+  pause_since_ms_ = 0;
   not_before_ms_.reset();
   stop_asked_ms_.reset();
 }

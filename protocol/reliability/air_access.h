@@ -13,7 +13,9 @@
 // - Yield: once the room is known to be shared (another was heard within kSharedMemoryMs),
 //   a sender whose frames have held the air for kMaxHoldMs pauses until the air has been
 //   quiet for longer than the others' quiet hold and backoff, and then listens again like
-//   them.
+//   them. A pause that has lasted kMaxDeferMs ends, and the frame defers like any other
+//   (starved by then): a sender that never heard us never pauses as long as we wait, only
+//   to listen, and a starved sender starts within that.
 // - Listen: a sender that has heard nobody pauses after kListenEveryMs of its frames until
 //   the air has been quiet for kListenWindowMs. While it sends, its own sound hides the
 //   others (its microphone is beside its loudspeaker), so this is where it hears a sender
@@ -97,6 +99,7 @@ class AirAccess {
   std::optional<double> stop_asked_ms_;  // when the stop waiting for the air first asked
   std::optional<double> run_start_ms_;
   bool pausing_ = false;
+  double pause_since_ms_ = 0;  // while pausing_
   std::uint64_t deferred_ = 0, yields_ = 0, listens_ = 0;
 };
 

@@ -196,6 +196,30 @@ TEST(AirAccess, AStarvedSenderWaitsOnlyAShortQuietAndAShortBackoff) {
   EXPECT_LT(at - last_busy, kListenWindowMs) << "it would start after the other's listening pause";
 }
 
+// A yielding sender whose other never heard it (their frames overlapped, each hid the other's
+// under its own) waits for a quiet the other never leaves: it pauses only to listen. After
+// kMaxDeferMs it starts in that listening pause. (bench.FleetLoad once saw a server wait
+// 29 s so, while the other's driver sent frames back to back.)
+TEST(AirAccess, AYieldingSenderStartsInTheListeningPauseOfAnotherThatNeverHeardIt) {
+  CarrierSense sense;
+  AirAccess air(kQuietMs, 5);
+  double t = hear_for(sense, 0, 1000, kNoiseDbfs);
+  t = hear_for(sense, t, 200, -20);  // another was heard: the room is shared
+  t = wait_for_air(sense, air, t, AirUse::Command);
+  while (air.start_at(sense, t, AirUse::Command) == t) t = exchange(sense, air, t, 250);
+  ASSERT_EQ(air.yields(), 1u);
+  // The other holds the air, 250 ms frames 20 ms apart, and then pauses to listen.
+  const double from = t;
+  while (t - from < kMaxDeferMs + 500) {
+    t = hear_for(sense, t, 250, -20);
+    ASSERT_GT(air.start_at(sense, t, AirUse::Command), t);
+    t = hear_for(sense, t, 20, kNoiseDbfs);
+  }
+  const double pause_end = t + kOwnLatencyMs + kListenWindowMs;
+  const double at = wait_for_air(sense, air, t, AirUse::Command);
+  EXPECT_LT(at, pause_end) << "it waited past the other's listening pause";
+}
+
 TEST(AirAccess, AfterALossInASharedRoomItBacksOffAtRandomAloneItDoesNot) {
   std::set<double> waits;
   for (std::uint64_t seed = 0; seed < 32; ++seed) {
