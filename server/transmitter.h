@@ -109,10 +109,12 @@ struct TransmitterOptions {
 
 // How this sender shared the air (listen before talk), for tests and logs.
 struct AirShare {
-  std::uint64_t deferred = 0;     // frames that waited for another's sound
-  std::uint64_t yields = 0;       // pauses made to let the others in
-  std::uint64_t listens = 0;      // pauses made, alone, to hear whether others wait
-  std::uint64_t busy_blocks = 0;  // microphone blocks heard busy with another's sound
+  std::uint64_t deferred = 0;        // frames that waited for another's sound
+  std::uint64_t answered_waits = 0;  // ... only the short quiet, after an answer the ear read
+  std::uint64_t yields = 0;          // pauses made to let the others in
+  std::uint64_t listens = 0;         // pauses made, alone, to hear whether others wait
+  std::uint64_t busy_blocks = 0;     // microphone blocks heard busy with another's sound
+  std::uint64_t others_answers = 0;  // answers the ear read that were another's
 };
 
 class Transmitter {

@@ -69,8 +69,10 @@ AirShare Transmitter::air_share() const {
   std::lock_guard lock(mutex_);
   AirShare share;
   share.busy_blocks = carrier_.busy_blocks();
+  share.others_answers = carrier_.others_answers();
   if (air_) {
     share.deferred = air_->deferred();
+    share.answered_waits = air_->answered_waits();
     share.yields = air_->yields();
     share.listens = air_->listens();
   }

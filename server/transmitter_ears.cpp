@@ -44,7 +44,12 @@ void Transmitter::listen() {
     for (const HeardAnswer& heard : listener.feed(std::span<const float>(block.data(), got))) {
       std::lock_guard lock(mutex_);
       // The block just read ends now; the reply was heard a little earlier.
-      replies_.push_back({heard, now - (audio_ms - heard.answer.heard_ms)});
+      const double heard_at_ms = now - (audio_ms - heard.answer.heard_ms);
+      replies_.push_back({heard, heard_at_ms});
+      // Another's answer ends its exchange (reliability/air_access.h). Not a tag chord's
+      // reading: the tag listener reads one out of noise or music up to every hop (talk-off,
+      // benchmarks.md), where an ACK or a NACK is heard a hundred times an hour at most.
+      if (!heard.answer.tag_reading) carrier_.answer_read(heard_at_ms);
       changed_.notify_all();
     }
   }

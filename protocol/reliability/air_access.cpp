@@ -42,6 +42,7 @@ std::optional<double> AirAccess::pause_left_ms(const CarrierSense& sense, double
 double AirAccess::start_at(const CarrierSense& sense, double now_ms, AirUse use) {
   const std::optional<double> busy_ms = sense.last_busy_ms();
   if (use == AirUse::Stop) {
+    answered_ = false;
     if (!stop_asked_ms_) stop_asked_ms_ = now_ms;
     if (!busy_ms || now_ms - *busy_ms >= kBusyNowMs) return now_ms;
     return std::min(*busy_ms + kBusyNowMs, *stop_asked_ms_ + kMaxStopWaitMs);
@@ -54,7 +55,11 @@ double AirAccess::start_at(const CarrierSense& sense, double now_ms, AirUse use)
     starved_ = true;
     backoff_ms_ = draw_backoff_ms(kStarvedSlots);
   }
-  const double hold_ms = starved_ ? kStarvedQuietMs : quiet_ms_;
+  // Another's sound that ended with an answer we read was a whole exchange: nobody waits for
+  // an answer on the air, and the quiet of a starved sender is enough.
+  const bool answered = busy_ms && sense.answered_exchange_ms();
+  const double hold_ms = starved_ || answered ? kStarvedQuietMs : quiet_ms_;
+  answered_ = answered && !starved_;
   if (busy_ms && *busy_ms + hold_ms > now_ms && !backoff_ms_) {
     backoff_ms_ = draw_backoff_ms(kBackoffSlots);
     deferred_since_ms_ = now_ms;
@@ -70,6 +75,8 @@ void AirAccess::started(const CarrierSense& sense, double at_ms) {
   const std::optional<double> quiet_since = sense.quiet_since_ms();
   // A new run after a pause, or after a quiet as long as a listening pause.
   if (!run_start_ms_ || pausing_ || (quiet_since && at_ms - *quiet_since >= kListenWindowMs)) run_start_ms_ = at_ms;
+  if (backoff_ms_ && answered_) ++answered_waits_;
+  answered_ = false;
   backoff_ms_.reset();
   deferred_since_ms_.reset();
   starved_ = false;

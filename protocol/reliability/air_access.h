@@ -7,6 +7,11 @@
 //   and its answer's start (ack_timeout_ms − chord_ms). So a frame never starts into an
 //   answer another sender still waits for: a frame and its answer are one busy stretch.
 //   Heard quiet: our own tail, which may hide another, must have fallen too.
+//   Unless that sound ended with an answer the sender's ear read (it reads every robot's
+//   answers in the profiles it knows): the exchange is over, nobody waits for an answer, and
+//   kStarvedQuietMs of quiet will do. An answer it cannot read (another profile's, or too
+//   weak) leaves the full hold, and so does an authenticated answer, which is only a tag
+//   chord (the ear reads one out of mere noise; server/transmitter_ears.cpp).
 // - Then back off at random (kBackoffSlots slots of kSlotMs, drawn once per deferral), so
 //   that two senders that waited for the same quiet seldom start together. A slot is longer
 //   than the time a start takes to be heard (the capture latency and a block).
@@ -81,6 +86,8 @@ class AirAccess {
   // How many frames had to wait for another's sound, and how many pauses we made (to yield
   // in a shared room, or to listen alone).
   std::uint64_t deferred() const { return deferred_; }
+  // How many of those started after the short quiet, their wait ended by an answer we read.
+  std::uint64_t answered_waits() const { return answered_waits_; }
   std::uint64_t yields() const { return yields_; }
   std::uint64_t listens() const { return listens_; }
 
@@ -95,12 +102,13 @@ class AirAccess {
   std::optional<double> backoff_ms_;  // drawn for the deferral under way
   std::optional<double> deferred_since_ms_;
   bool starved_ = false;
+  bool answered_ = false;                // the deferral under way waits the short quiet after an answer
   std::optional<double> not_before_ms_;  // after an unanswered frame
   std::optional<double> stop_asked_ms_;  // when the stop waiting for the air first asked
   std::optional<double> run_start_ms_;
   bool pausing_ = false;
   double pause_since_ms_ = 0;  // while pausing_
-  std::uint64_t deferred_ = 0, yields_ = 0, listens_ = 0;
+  std::uint64_t deferred_ = 0, yields_ = 0, listens_ = 0, answered_waits_ = 0;
 };
 
 }  // namespace dtmf::reliability

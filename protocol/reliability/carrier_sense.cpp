@@ -24,6 +24,7 @@ AirSpan own_answer_span(double frame_end_ms, std::optional<double> delay_ms, dou
 
 void CarrierSense::own_begin(double) {
   own_on_ = true;
+  answer_tail_open_ = false;  // what follows is ours
   waiting_ = false;
   provisional_.clear();
 }
@@ -123,6 +124,7 @@ void CarrierSense::hear(double level_dbfs, double end_ms) {
     quiet_since_ms_.reset();
   else if (!quiet_since_ms_)
     quiet_since_ms_ = end_ms;
+  if (!ours_now) follow_answer_tail(level_dbfs, end_ms);
   if (!busy_now_) return;
   if (waiting_) {
     provisional_.push_back(end_ms);
@@ -130,6 +132,35 @@ void CarrierSense::hear(double level_dbfs, double end_ms) {
   }
   last_busy_ms_ = end_ms;
   ++busy_blocks_;
+}
+
+double CarrierSense::others_envelope_dbfs() const {
+  double envelope_dbfs = kSilenceDbfs;
+  for (const auto& [at_ms, level] : others_recent_) envelope_dbfs = std::max(envelope_dbfs, level);
+  return envelope_dbfs;
+}
+
+// Another's answer's tail, judged as our own (ours()): on its envelope, since a tone's decay
+// in a room beats; a sound rising over it is a new frame, whose answer someone awaits.
+void CarrierSense::follow_answer_tail(double level_dbfs, double end_ms) {
+  others_recent_.emplace_back(end_ms, level_dbfs);
+  while (others_recent_.front().first <= end_ms - kFloorSmoothMs) others_recent_.pop_front();
+  if (!answer_tail_open_) return;
+  if (busy_now_ && level_dbfs >= answer_tail_min_dbfs_ + kBusyOverFloorDb) {
+    answer_tail_open_ = false;
+    return;
+  }
+  answer_tail_min_dbfs_ = std::min(answer_tail_min_dbfs_, others_envelope_dbfs());
+}
+
+void CarrierSense::answer_read(double end_ms) {
+  if (own_on()) return;  // our robot's
+  ++others_answers_;
+  others_answer_ms_ = end_ms;
+  answer_tail_open_ = true;
+  while (!others_recent_.empty() && others_recent_.front().first <= end_ms - kFloorSmoothMs) others_recent_.pop_front();
+  // The answer's own level: a frame that follows as loud is not yet told from its tail.
+  answer_tail_min_dbfs_ = others_recent_.empty() ? kSilenceDbfs : others_envelope_dbfs();
 }
 
 }  // namespace dtmf::reliability

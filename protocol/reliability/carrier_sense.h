@@ -78,6 +78,12 @@ class CarrierSense {
   void own_end(double at_ms, std::optional<AirSpan> answer = std::nullopt);
   // One microphone block of `level_dbfs`, which ended at `end_ms`.
   void hear(double level_dbfs, double end_ms);
+  // The sender's ear read a robot's answer that ended at `end_ms` (it decodes every robot's
+  // answers in the profiles it knows). Outside our own exchange, it was another's: that
+  // exchange is over, and nobody waits on the air for it. What follows is its tail until a
+  // sound rises kBusyOverFloorDb over the quietest the tail's envelope has been (as for our
+  // own tail): a new frame.
+  void answer_read(double end_ms);
 
   // The last block heard busy (another's sound), if any; blocks of our wait count once it ended.
   std::optional<double> last_busy_ms() const { return last_busy_ms_; }
@@ -90,14 +96,21 @@ class CarrierSense {
   bool own_on() const { return own_on_ || waiting_; }
   // When our last exchange ended; nothing before the first.
   std::optional<double> own_ended_ms() const { return own_ended_ms_; }
+  // When another's exchange ended in an answer we read, if nothing but that answer's tail
+  // has sounded since.
+  std::optional<double> answered_exchange_ms() const { return answer_tail_open_ ? others_answer_ms_ : std::nullopt; }
   double floor_dbfs() const { return floor_dbfs_; }
   std::size_t busy_blocks() const { return busy_blocks_; }
+  // How many answers read were another's (answer_read outside our exchange).
+  std::size_t others_answers() const { return others_answers_; }
 
  private:
   bool ours(double level_dbfs, double end_ms);
   // Follows the floor with a non-own block; returns the level smoothed over kFloorSmoothMs.
   double follow_floor(double level_dbfs, double end_ms);
   void tail_from(double at_ms);
+  double others_envelope_dbfs() const;
+  void follow_answer_tail(double level_dbfs, double end_ms);
 
   bool own_on_ = false;   // our frame sounds
   bool waiting_ = false;  // ... it ended, and we wait for its answer
@@ -109,6 +122,11 @@ class CarrierSense {
   std::optional<double> last_busy_ms_;
   bool busy_now_ = false;
   std::optional<double> quiet_since_ms_;
+  std::optional<double> others_answer_ms_;
+  bool answer_tail_open_ = false;  // since it, only its tail
+  std::size_t others_answers_ = 0;
+  double answer_tail_min_dbfs_ = 0;
+  std::deque<std::pair<double, double>> others_recent_;  // (end_ms, level) of the last kFloorSmoothMs not ours
   std::size_t busy_blocks_ = 0;
   std::optional<double> smoothed_power_;     // mean-square, relative to a full-scale sine's
   std::optional<double> last_end_ms_;        // the last block not ours

@@ -94,6 +94,41 @@ TEST(AirAccess, AfterAnothersSoundItWaitsTheQuietAndABackoffWithinItsWindow) {
   EXPECT_EQ(air.deferred(), 1u);
 }
 
+// Another's frame, its robot's silence, and the answer our ear read: that exchange is over,
+// and a short quiet will do, after the answer's tail too (a room's, beating as it falls). A
+// sound that rises over that tail is a new frame, whose answer is awaited.
+TEST(AirAccess, AfterAnAnswerItReadEndedAnothersExchangeItHoldsOnlyAShortQuiet) {
+  enum class After { Nothing, ItsTail, AFrame };
+  for (const After after : {After::Nothing, After::ItsTail, After::AFrame}) {
+    SCOPED_TRACE(after == After::Nothing ? "the answer last" : after == After::ItsTail ? "its tail" : "a frame");
+    CarrierSense sense;
+    constexpr double kSeedQuietMs = 700;  // longer than the short quiet and the longest backoff
+    AirAccess air(kSeedQuietMs, 7);
+    double t = hear_for(sense, 0, 1000, kNoiseDbfs);
+    t = hear_for(sense, t, 200, -20);  // another's frame
+    t = hear_for(sense, t, 60, kNoiseDbfs);
+    t = hear_for(sense, t, 40, -25);  // its robot's answer
+    sense.answer_read(t);
+    if (after == After::ItsTail) {
+      // 300 ms falling 30 dB, every third block dipping 12 dB under the envelope and back.
+      for (int k = 0; k < 60; ++k) t = hear_for(sense, t, kBlockMs, -25 - 0.5 * k - (k % 3 == 1 ? 12 : 0));
+    }
+    if (after == After::AFrame) t = hear_for(sense, t, 200, -12);
+    t = hear_for(sense, t, 2 * kBlockMs, kNoiseDbfs);
+    const double quiet_from = *sense.quiet_since_ms();
+    const double at = air.start_at(sense, t, AirUse::Command);
+    t = wait_for_air(sense, air, t, AirUse::Command);
+    air.started(sense, t);
+    EXPECT_EQ(air.answered_waits(), after == After::AFrame ? 0u : 1u);
+    if (after == After::AFrame) {
+      EXPECT_GE(at, quiet_from + kSeedQuietMs);
+    } else {
+      EXPECT_GE(at, quiet_from + kStarvedQuietMs);
+      EXPECT_LE(at, quiet_from + kStarvedQuietMs + (kBackoffSlots - 1) * kSlotMs);
+    }
+  }
+}
+
 TEST(AirAccess, ADeferringSenderWaitsForItsOwnTailToFallBeforeItCountsTheQuiet) {
   CarrierSense sense;
   AirAccess air(kQuietMs, 7);

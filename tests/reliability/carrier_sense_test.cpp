@@ -251,3 +251,15 @@ TEST(CarrierSense, AnothersSoundJustAfterOursEndedAtOnceIsHeard) {
   EXPECT_DOUBLE_EQ(*sense.last_busy_ms(), t);
   EXPECT_GT(t, onset_ms);
 }
+
+TEST(CarrierSense, AnAnswerReadDuringOurExchangeIsOursAndAfterItAnothers) {
+  CarrierSense sense;
+  sense.own_begin(1000);
+  sense.frame_ended(1100);
+  sense.answer_read(1180);
+  EXPECT_FALSE(sense.answered_exchange_ms()) << "our robot's answer";
+  sense.own_end(1190, AirSpan{1120, 1200});
+  sense.answer_read(1600);
+  ASSERT_TRUE(sense.answered_exchange_ms());
+  EXPECT_EQ(*sense.answered_exchange_ms(), 1600);
+}
