@@ -6,6 +6,21 @@
 
 namespace dtmf::reliability {
 
+namespace {
+// A block's (end_ms, level) joins the last kFloorSmoothMs of them.
+void keep_recent(std::deque<std::pair<double, double>>& recent, double level_dbfs, double end_ms) {
+  recent.emplace_back(end_ms, level_dbfs);
+  while (recent.front().first <= end_ms - kFloorSmoothMs) recent.pop_front();
+}
+
+// The loudest of them: a tail's envelope.
+double loudest_dbfs(const std::deque<std::pair<double, double>>& recent) {
+  double envelope_dbfs = kSilenceDbfs;
+  for (const auto& [at_ms, level] : recent) envelope_dbfs = std::max(envelope_dbfs, level);
+  return envelope_dbfs;
+}
+}  // namespace
+
 double block_level_dbfs(std::span<const float> samples) {
   if (samples.empty()) return kSilenceDbfs;
   double power = 0;
@@ -72,10 +87,8 @@ bool CarrierSense::ours(double level_dbfs, double end_ms) {
   // while we wait: a sender's frame and its answer may leave less than 20 ms between them, an
   // envelope would then never fall, and a quieter sender would go unheard in every wait (on
   // the PulseAudio air, three senders started 2 to 3 times as many frames into another's).
-  tail_recent_.emplace_back(end_ms, level_dbfs);
-  while (tail_recent_.front().first <= end_ms - kFloorSmoothMs) tail_recent_.pop_front();
-  double envelope_dbfs = kSilenceDbfs;
-  for (const auto& [at_ms, level] : tail_recent_) envelope_dbfs = std::max(envelope_dbfs, level);
+  keep_recent(tail_recent_, level_dbfs, end_ms);
+  const double envelope_dbfs = loudest_dbfs(tail_recent_);
   tail_min_dbfs_ = std::min(tail_min_dbfs_, waiting_ ? level_dbfs : envelope_dbfs);
   if (arriving) return true;
   // Fallen into the noise: the tail is over, and the air as quiet as it gets. Well under the
@@ -134,23 +147,16 @@ void CarrierSense::hear(double level_dbfs, double end_ms) {
   ++busy_blocks_;
 }
 
-double CarrierSense::others_envelope_dbfs() const {
-  double envelope_dbfs = kSilenceDbfs;
-  for (const auto& [at_ms, level] : others_recent_) envelope_dbfs = std::max(envelope_dbfs, level);
-  return envelope_dbfs;
-}
-
 // Another's answer's tail, judged as our own (ours()): on its envelope, since a tone's decay
 // in a room beats; a sound rising over it is a new frame, whose answer someone awaits.
 void CarrierSense::follow_answer_tail(double level_dbfs, double end_ms) {
-  others_recent_.emplace_back(end_ms, level_dbfs);
-  while (others_recent_.front().first <= end_ms - kFloorSmoothMs) others_recent_.pop_front();
+  keep_recent(others_recent_, level_dbfs, end_ms);
   if (!answer_tail_open_) return;
   if (busy_now_ && level_dbfs >= answer_tail_min_dbfs_ + kBusyOverFloorDb) {
     answer_tail_open_ = false;
     return;
   }
-  answer_tail_min_dbfs_ = std::min(answer_tail_min_dbfs_, others_envelope_dbfs());
+  answer_tail_min_dbfs_ = std::min(answer_tail_min_dbfs_, loudest_dbfs(others_recent_));
 }
 
 void CarrierSense::answer_read(double end_ms) {
@@ -160,7 +166,7 @@ void CarrierSense::answer_read(double end_ms) {
   answer_tail_open_ = true;
   while (!others_recent_.empty() && others_recent_.front().first <= end_ms - kFloorSmoothMs) others_recent_.pop_front();
   // The answer's own level: a frame that follows as loud is not yet told from its tail.
-  answer_tail_min_dbfs_ = others_recent_.empty() ? kSilenceDbfs : others_envelope_dbfs();
+  answer_tail_min_dbfs_ = loudest_dbfs(others_recent_);
 }
 
 }  // namespace dtmf::reliability

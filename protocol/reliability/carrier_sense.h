@@ -109,7 +109,6 @@ class CarrierSense {
   // Follows the floor with a non-own block; returns the level smoothed over kFloorSmoothMs.
   double follow_floor(double level_dbfs, double end_ms);
   void tail_from(double at_ms);
-  double others_envelope_dbfs() const;
   void follow_answer_tail(double level_dbfs, double end_ms);
 
   bool own_on_ = false;   // our frame sounds
