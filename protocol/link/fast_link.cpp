@@ -14,6 +14,7 @@
 #include "link/hop_frame_path.h"
 #include "link/reply_lane.h"
 #include "reliability/command_frame.h"
+#include "reliability/plain_renewal.h"
 #include "reliability/renewal_frame.h"
 #include "reliability/reply_code.h"
 #include "reliability/sealed_frame.h"
@@ -73,6 +74,10 @@ TransmitFrame FastLink::plain_frame(std::uint32_t payload) {
   const reliability::CommandFrame frame{
       options_.address, static_cast<std::uint8_t>(next_sequence_ & reliability::kSequenceMask), payload};
   next_sequence_ = static_cast<std::uint8_t>((frame.sequence + 1) & reliability::kSequenceMask);
+  return frame_of(frame);
+}
+
+TransmitFrame FastLink::frame_of(const reliability::CommandFrame& frame) const {
   TransmitFrame f;
   f.bits = reliability::command_frame_pack(frame);
   f.bit_count = reliability::kCommandFrameBits;
@@ -134,7 +139,13 @@ std::vector<TransmitFrame> FastLink::broadcast_frames(std::uint32_t payload) {
 std::vector<TransmitFrame> FastLink::plan(const command::Command& command) {
   const std::uint32_t payload = command::encode_payload(command);  // throws before a counter is used
   if (command::every_robot(command)) return broadcast_frames(payload);
-  if (!keyed()) return {plain_frame(payload)};
+  velocity_counter_.reset();
+  velocity_sequence_.reset();
+  if (!keyed()) {
+    TransmitFrame f = plain_frame(payload);
+    if (std::holds_alternative<command::Velocity>(command)) velocity_sequence_ = f.sequence;
+    return {std::move(f)};
+  }
   std::vector<TransmitFrame> frames;
   security::CounterStore& counters = *options_.counters;
   std::uint64_t counter = counters.next_counter();
@@ -143,19 +154,26 @@ std::vector<TransmitFrame> FastLink::plan(const command::Command& command) {
     counter = counters.next_counter();
   }
   frames.push_back(sealed_frame(payload, false, counter));
-  velocity_counter_.reset();
   if (std::holds_alternative<command::Velocity>(command)) velocity_counter_ = counter;
   return frames;
 }
 
-std::optional<Link::PlannedRenewal> FastLink::plan_renewal(std::span<Link* const> robots) {
-  // The robots that can be renewed: keyed links of this profile whose last frame was a velocity.
+std::vector<std::size_t> FastLink::renewable(std::span<Link* const> robots) const {
+  // Links of this profile, keyed as this one is, whose last frame planned was a velocity.
   std::vector<std::size_t> candidates;
   for (std::size_t i = 0; i < robots.size() && candidates.size() < reliability::kRenewalSlots; ++i) {
     const auto* link = dynamic_cast<const FastLink*>(robots[i]);
-    if (link && &link->profile() == &profile() && link->keyed() && link->velocity_counter_) candidates.push_back(i);
+    if (link && &link->profile() == &profile() && link->keyed() == keyed() &&
+        (keyed() ? link->velocity_counter_.has_value() : link->velocity_sequence_.has_value()))
+      candidates.push_back(i);
   }
+  return candidates;
+}
+
+std::optional<Link::PlannedRenewal> FastLink::plan_renewal(std::span<Link* const> robots) {
+  const std::vector<std::size_t> candidates = renewable(robots);
   if (candidates.empty()) return std::nullopt;
+  if (!keyed()) return plan_plain_renewal(robots, candidates);
   // One counter, new to every one of them.
   std::uint64_t counter = 0;
   for (const std::size_t i : candidates) counter = std::max(counter, robots[i]->options().counters->next_counter());
@@ -192,6 +210,31 @@ std::optional<Link::PlannedRenewal> FastLink::plan_renewal(std::span<Link* const
   f.audio = signal::synthesize_hopped_frame(profile(), symbols);
   f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
   f.next_frame_after_ms = f.tone_ms + profile().timing.gap_ms;  // no answer to wait for
+  return planned;
+}
+
+std::optional<Link::PlannedRenewal> FastLink::plan_plain_renewal(std::span<Link* const> robots,
+                                                                 const std::vector<std::size_t>& candidates) {
+  // One number, new to every one of them: each robot takes a renewal's number once.
+  std::uint64_t number = 0;
+  for (const std::size_t i : candidates)
+    number = std::max(number, static_cast<FastLink&>(*robots[i]).next_renewal_number_);
+  PlannedRenewal planned;
+  reliability::PlainRenewal renewal;
+  renewal.number = static_cast<std::uint32_t>(number & reliability::kPlainRenewalNumberMask);
+  for (const std::size_t i : candidates) {
+    auto& link = static_cast<FastLink&>(*robots[i]);
+    link.next_renewal_number_ = number + 1;
+    renewal.slots[planned.renewed.size()] = {link.options().address, *link.velocity_sequence_};
+    planned.renewed.push_back(i);
+  }
+  for (std::size_t slot = planned.renewed.size(); slot < renewal.slots.size(); ++slot)
+    renewal.slots[slot] = renewal.slots[0];
+  TransmitFrame& f = planned.frame;
+  f = frame_of(reliability::plain_renewal_pack(renewal));
+  f.sequence.reset();  // no answer names it
+  f.address = renewal.slots[0].address;
+  f.renewal = true;
   return planned;
 }
 

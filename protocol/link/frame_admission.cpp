@@ -1,7 +1,10 @@
 #include "link/frame_admission.h"
 
+#include <algorithm>
+
 #include "command/command_payload.h"
 #include "reliability/command_frame.h"
+#include "reliability/plain_renewal.h"
 #include "reliability/renewal_frame.h"
 #include "reliability/sealed_frame.h"
 #include "security/frame_mac.h"
@@ -103,6 +106,10 @@ std::optional<Reception> FrameAdmission::admit(const HeardHopFrame& heard) {
   // MAC by chance: a stop taken for a renewal would be neither executed nor answered).
   const bool my_command = sealed && address == options_.address && command_authentic(heard.bits);
   if (sealed && !my_command && admit_renewal(r)) return r;
+  if (!sealed) {
+    if (const auto renewal = reliability::plain_renewal_unpack(*reliability::command_frame_unpack(heard.bits.low64())))
+      return admit_plain_renewal(std::move(r), *renewal);
+  }
   if (address != options_.address) return std::nullopt;  // another robot's frame: not ours to answer either
   if (sealed)
     admit_sealed(r);
@@ -130,6 +137,32 @@ void FrameAdmission::admit_plain(Reception& r) {
     return;
   }
   take_command(r, *decoded.command);
+  if (const auto* velocity = std::get_if<command::Velocity>(&*decoded.command))
+    renewable_ = Renewable{frame.sequence, *velocity, r.start_ms, {}, false};
+}
+
+std::optional<Reception> FrameAdmission::admit_plain_renewal(Reception r, const reliability::PlainRenewal& renewal) {
+  const auto slot = std::find_if(renewal.slots.begin(), renewal.slots.end(),
+                                 [&](const reliability::PlainRenewalSlot& s) { return s.address == options_.address; });
+  if (slot == renewal.slots.end()) return std::nullopt;  // other robots' renewal
+  r.answered = false;                                    // up to three robots heard it: answers would sound together
+  r.sequence = slot->sequence;
+  if (options_.key && !options_.accept_unauthenticated) {
+    refuse_unchecked(
+        r, "an unauthenticated renewal, and this robot has a key (dtmf-agent --accept-unauthenticated lets them in)");
+    return r;
+  }
+  // Only a plain velocity: a plain renewal of a sealed one would let anyone keep a keyed robot moving.
+  if (!renewable_ || renewable_->sealed || renewable_->counter != slot->sequence) {
+    r.event = ReceptionEvent::Ignored;
+    r.detail = "a renewal of the velocity frame numbered " + std::to_string(slot->sequence) +
+               ", not the velocity this robot took last (it missed that frame or took a command since): renews nothing";
+    return r;
+  }
+  take_renewal(
+      r, renewal.number,
+      "renewal " + std::to_string(renewal.number) + " of the velocity numbered " + std::to_string(slot->sequence));
+  return r;
 }
 
 bool FrameAdmission::admit_plain_room_stop(Reception& r) {
@@ -183,7 +216,7 @@ bool FrameAdmission::admit_sealed_room_stop(Reception& r) {
 }
 
 std::optional<std::uint64_t> FrameAdmission::renewal_counter(const reliability::FrameBits& bits) const {
-  if (!options_.key || !renewable_) return std::nullopt;
+  if (!options_.key || !renewable_ || !renewable_->sealed) return std::nullopt;
   const auto renewal = reliability::renewal_frame_unpack(bits);
   if (!renewal) return std::nullopt;
   const std::uint64_t counter = security::complete_counter(renewable_->counter, renewal->counter_low);
@@ -206,26 +239,29 @@ bool FrameAdmission::admit_renewal(Reception& r) {
            "a renewal numbered as the velocity it renews (counter " + std::to_string(*counter) + "): forged");
     return true;
   }
-  if (r.start_ms - renewable_->start_ms > kRenewalHorizonMs) {
-    refuse(r, RefusalReason::Authentication,
-           "a renewal of the velocity of counter " + std::to_string(renewable_->counter) + " from " +
-               std::to_string(static_cast<int>((r.start_ms - renewable_->start_ms) / 1000)) + " s after it, past the " +
-               std::to_string(static_cast<int>(kRenewalHorizonMs / 1000)) +
-               " s a velocity is renewed for: renewals captured and played later");
-    return true;
-  }
   r.authenticated = true;
-  if (!renewable_->renewed.insert(*counter).second) {  // its echo, or played again: renewed already
+  take_renewal(r, *counter, "renewal of the velocity of counter " + std::to_string(renewable_->counter));
+  return true;
+}
+
+void FrameAdmission::take_renewal(Reception& r, std::uint64_t id, const std::string& what) {
+  if (r.start_ms - renewable_->start_ms > kRenewalHorizonMs) {
+    // A recording, for a keyed robot; for a plain one, it is not what its sender sends.
+    refuse(r, r.authenticated ? RefusalReason::Authentication : RefusalReason::Payload,
+           "a " + what + ", " + std::to_string(static_cast<int>((r.start_ms - renewable_->start_ms) / 1000)) +
+               " s after it, past the " + std::to_string(static_cast<int>(kRenewalHorizonMs / 1000)) +
+               " s a velocity is renewed for: renewals captured and played later");
+    return;
+  }
+  if (!renewable_->renewed.insert(id).second) {  // its echo, or played again: renewed already
     r.event = ReceptionEvent::Repeat;
-    r.detail = "repeat of renewal counter " + std::to_string(*counter) + ", not executed again";
-    return true;
+    r.detail = "repeat of " + what + ", not executed again";
+    return;
   }
   echoes_.remember(r.bits, r.heard_ms);
   r.command = renewable_->velocity;
   r.event = ReceptionEvent::Renewed;
-  r.detail = "renewal of the velocity of counter " + std::to_string(renewable_->counter) + ": " +
-             command::describe(*r.command);
-  return true;
+  r.detail = what + ": " + command::describe(*r.command);
 }
 
 bool FrameAdmission::command_authentic(const reliability::FrameBits& bits) const {
@@ -285,7 +321,7 @@ void FrameAdmission::admit_sealed(Reception& r) {
   }
   take_command(r, *decoded.command);
   if (const auto* velocity = std::get_if<command::Velocity>(&*decoded.command))
-    renewable_ = Renewable{counter, *velocity, r.start_ms, {}};
+    renewable_ = Renewable{counter, *velocity, r.start_ms, {}, true};
 }
 
 void FrameAdmission::take_command(Reception& r, const command::Command& command) {

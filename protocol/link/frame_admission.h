@@ -17,6 +17,9 @@
 // A stop for every robot is taken whatever its address and never answered: with a room key
 // only sealed under it, in synchronisation form with its whole counter, fresh by the room's
 // window (security/room_freshness.h); without one, plain, where the robot takes plain frames.
+// A plain joint renewal (reliability/plain_renewal.h), for robots without keys, is taken from
+// the slot that names this robot when it names the sequence number of the plain velocity
+// frame taken last: that velocity again, never answered; its number taken once per velocity.
 // A joint renewal (reliability/renewal_frame.h) is taken from whichever slot names this
 // robot and whose MAC holds under its key for the renewal's counter and the counter of the
 // velocity frame it took last: that velocity again, its lease from the renewal's start,
@@ -36,6 +39,7 @@
 #include "link/hop_frame_path.h"
 #include "link/link.h"
 #include "reliability/echo_memory.h"
+#include "reliability/plain_renewal.h"
 #include "reliability/sequence_filter.h"
 #include "security/frame_mac.h"
 #include "security/room_freshness.h"
@@ -70,17 +74,24 @@ class FrameAdmission {
   // Whether the frame is a joint renewal of this robot's velocity; if so, `r` says what
   // became of it.
   bool admit_renewal(Reception& r);
+  // The plain (unkeyed) joint renewal `renewal` (reliability/plain_renewal.h): what it did
+  // here, or nothing when no slot names this robot.
+  std::optional<Reception> admit_plain_renewal(Reception r, const reliability::PlainRenewal& renewal);
+  // The renewal `id` (its counter, or a plain renewal's number), of the velocity taken last:
+  // that velocity again, unless its frame began past the horizon or `id` was taken already.
+  void take_renewal(Reception& r, std::uint64_t id, const std::string& what);
   // The counter `bits` renews this robot's velocity with, if it is a renewal whose slot for
   // this robot holds.
   std::optional<std::uint64_t> renewal_counter(const reliability::FrameBits& bits) const;
 
-  // The sealed velocity frame taken last, while no other command has been taken since: what
-  // a renewal renews.
+  // The velocity frame taken last, while no other command has been taken since: what a
+  // renewal renews (a keyed renewal only a sealed one, a plain renewal only a plain one).
   struct Renewable {
-    std::uint64_t counter = 0;
+    std::uint64_t counter = 0;  // sealed: its counter; plain: its sequence number
     command::Velocity velocity;
     double start_ms = 0;              // when its frame began
-    std::set<std::uint64_t> renewed;  // the renewals' counters taken
+    std::set<std::uint64_t> renewed;  // the renewals taken: their counters, or plain renewals' numbers
+    bool sealed = false;
   };
   std::optional<Renewable> renewable_;
 

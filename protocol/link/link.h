@@ -134,16 +134,18 @@ class Link {
   // counter it confirmed is on record.
   virtual void confirmed(const TransmitFrame& frame);
   // One frame, unanswered, that renews the lease of the velocity each of `robots` (links of
-  // this profile, one per robot, this one among them) was sent last (fast, keyed:
-  // reliability/renewal_frame.h), and which of them it renews: at most three, in order; left
-  // out are robots whose last frame was no velocity and robots that could not complete the
-  // renewal's counter from that frame's (their next frame is in step). Nothing where the format
-  // has no such frame or none can be renewed.
+  // this profile, one per robot, this one among them) was sent last (fast:
+  // reliability/renewal_frame.h keyed, reliability/plain_renewal.h without keys), and which of
+  // them it renews: at most three, in order; left out are robots keyed otherwise than this
+  // link, robots whose last frame was no velocity and, keyed, robots that could not complete
+  // the renewal's counter from that frame's (their next frame is in step). Nothing where the
+  // format has no such frame (renews_jointly()) or none can be renewed.
   struct PlannedRenewal {
     TransmitFrame frame;
     std::vector<std::size_t> renewed;  // indices into `robots`
   };
   virtual std::optional<PlannedRenewal> plan_renewal(std::span<Link* const> robots);
+  virtual bool renews_jointly() const { return false; }
 
   // --- the robot ---
   virtual std::unique_ptr<FrameReceiver> receiver() const = 0;

@@ -22,11 +22,12 @@ enum class ReceptionEvent {
   Reset,         // seed words: the RESET word
   ModeSelected,  // seed words: a mode word
   Command,       // a command to execute now (completed by this word, or carried by this frame)
-  Ignored,       // seed words: a word the state machine ignored
+  Ignored,       // seed words: a word the state machine ignored; fast: a renewal of a velocity this robot
+                 // does not hold (never answered)
   Repeat,        // the frame executed last, again (a retransmission after a lost ACK): answered, not executed
   Synchronised,  // a counter synchronisation (authenticated frames): answered, no command
   Refused,       // intact, but not executed: answered NACK (see RefusalReason)
-  Renewed,       // a joint renewal (reliability/renewal_frame.h): the velocity last taken, its lease
+  Renewed,       // a joint renewal (reliability/renewal_frame.h, plain_renewal.h): the velocity last taken, its lease
                  // counted again from this frame's start; never answered
 };
 enum class RefusalReason {

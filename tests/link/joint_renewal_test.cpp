@@ -18,6 +18,7 @@
 #include "security/counter_store.h"
 #include "security/frame_mac.h"
 #include "security/freshness.h"
+#include "support/robot_ear.h"
 #include "support/test_key.h"
 
 using namespace dtmf;
@@ -48,15 +49,7 @@ Pair pair(std::uint8_t address, std::uint64_t first_counter = 1) {
 
 // What the robot made of `audio`, played after silence and followed by its answer's time.
 std::vector<link::Reception> hear(Pair& r, const std::vector<float>& audio) {
-  std::vector<float> track(static_cast<std::size_t>(p.samples_for_ms(100)), 0.0f);
-  track.insert(track.end(), audio.begin(), audio.end());
-  track.resize(track.size() + static_cast<std::size_t>(p.samples_for_ms(600)), 0.0f);
-  std::vector<link::Reception> got;
-  const auto block = static_cast<std::size_t>(r.robot->receiver_block_samples());
-  for (std::size_t at = 0; at + block <= track.size(); at += block) {
-    for (const auto& rec : r.receiver->feed(std::span<const float>(track).subspan(at, block))) got.push_back(rec);
-  }
-  return got;
+  return test_support::hear_alone(*r.robot, *r.receiver, audio);
 }
 
 // Sends `velocity` to the robot and has it take the frame (and the sender learn it did).

@@ -15,6 +15,7 @@
 #include "profile/link_profile.h"
 #include "security/counter_store.h"
 #include "security/link_key.h"
+#include "support/robot_ear.h"
 #include "support/test_key.h"
 
 using namespace dtmf;
@@ -48,15 +49,7 @@ std::unique_ptr<link::Link> robot(std::uint8_t address, std::shared_ptr<const se
 struct Ear {
   explicit Ear(const link::Link& listener) : robot(listener), receiver(listener.receiver()) {}
   std::vector<link::Reception> hear(const std::vector<float>& audio) {
-    std::vector<float> track(static_cast<std::size_t>(p.samples_for_ms(100)), 0.0f);
-    track.insert(track.end(), audio.begin(), audio.end());
-    track.resize(track.size() + static_cast<std::size_t>(p.samples_for_ms(600)), 0.0f);
-    std::vector<link::Reception> got;
-    const auto block = static_cast<std::size_t>(robot.receiver_block_samples());
-    for (std::size_t at = 0; at + block <= track.size(); at += block) {
-      for (const auto& r : receiver->feed(std::span<const float>(track).subspan(at, block))) got.push_back(r);
-    }
-    return got;
+    return test_support::hear_alone(robot, *receiver, audio);
   }
   const link::Link& robot;
   std::unique_ptr<link::FrameReceiver> receiver;
