@@ -9,7 +9,7 @@
 // survives a lost renewal, and a stale target is never sent again: only the newest is.
 // Nothing is sent once the client has been silent for kClientSilence_s, has ended the
 // stream, or a Stop overtook it; the lease then lapses on the robot.
-// Joint renewals (keyed robots: Transmitter::keep_renewed) renew the lease between frames
+// Joint renewals (fast links: Transmitter::keep_renewed) renew the lease between frames
 // while the stream is renewable(); a renewal counts as a frame sent for the half-lease rule,
 // so the stream's own frames then go out when the target changes, when the last was not
 // confirmed, and every kCheckEvery_s: renewals are not answered, and only an answer shows

@@ -70,7 +70,7 @@ class TeleopStream {
  private:
   void read_targets();
   grpc::Status drive_frames();
-  // Keeps the robot renewed jointly while the session is renewable (keyed links), and tells
+  // Keeps the robot renewed jointly while the session is renewable (fast links), and tells
   // the session when a renewal renewed it.
   void follow_renewals();
   // Sends one frame and streams its events; a status if the stream must end.

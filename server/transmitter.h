@@ -22,7 +22,7 @@
 // goes on links of its own, keyed with the room key (transmitter_room.cpp), and no robot
 // answers it. Before each frame it listens before it talks (transmitter_air.cpp): the
 // microphone's levels tell it whether another sender's frame or answer is on the air. While
-// Teleop streams drive keyed robots, it renews their velocity leases together, one frame for
+// Teleop streams drive robots, it renews their velocity leases together, one frame for
 // up to three robots, ahead of the queue (transmitter_renewal.cpp). The loudspeaker's
 // thread is transmitter_loop.cpp, the microphone's transmitter_ears.cpp, a command's frames
 // on air transmitter_send.cpp.
@@ -149,7 +149,7 @@ class Transmitter {
   // Teleop: keeps `robot`'s velocity lease renewed every `every_ms` by joint renewals under
   // `profile` (link::Link::plan_renewal: one unanswered frame for up to three robots), sent
   // ahead of the queue (a Stop still goes first), until stop_renewing(). False where that link
-  // cannot renew so (no key): the caller renews with velocity frames of its own.
+  // cannot renew so (the seed's): the caller renews with velocity frames of its own.
   bool keep_renewed(RobotIndex robot, const LinkProfile& profile, double every_ms);
   void stop_renewing(RobotIndex robot);
   // When the last joint renewal that renewed `robot` began, if one did.

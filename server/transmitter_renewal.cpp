@@ -20,7 +20,7 @@ constexpr double kRenewalSlackMs = 100;
 
 bool Transmitter::keep_renewed(RobotIndex robot, const LinkProfile& profile, double every_ms) {
   const link::Link& renewing = link_for(profile, robot);
-  if (!renewing.keyed()) return false;
+  if (!renewing.renews_jointly()) return false;
   {
     std::lock_guard lock(mutex_);
     Robot& r = robots_.at(robot);
@@ -68,7 +68,8 @@ void Transmitter::send_renewal(const std::vector<RobotIndex>& robots) {
   {
     std::lock_guard lock(mutex_);
     for (const RobotIndex r : robots) {
-      // Kept under one profile each; links of another profile than the first's are left out.
+      // Kept under one profile each; links of another profile than the first's, or keyed
+      // otherwise, are left out.
       if (const link::Link* l = robots_[r].renewal_link) links.push_back(const_cast<link::Link*>(l));
     }
   }
@@ -101,7 +102,14 @@ void Transmitter::send_renewal(const std::vector<RobotIndex>& robots) {
     job = std::make_shared<Job>(first, std::move(planned->frame), std::move(renewed), run_id_);
     ProgressEvent queued{ProgressEvent::Kind::Queued};
     queued.frame_count = 1;
-    emit(*job, queued);
+    try {
+      emit(*job, queued);
+    } catch (const std::exception& e) {
+      // Its row cannot be recorded: nothing goes on air that the log would not show. The
+      // streams renew their leases with frames of their own, which fail as visibly.
+      spdlog::error("{}: not sent, it cannot be recorded: {}", job->description(), e.what());
+      return;
+    }
     between = std::exchange(on_air_, job);
   }
   send_unanswered(*job);

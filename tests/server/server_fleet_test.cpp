@@ -16,6 +16,7 @@
 #include "live_system.h"
 #include "security/link_key.h"
 #include "sim/simulated_air.h"
+#include "support/wait_for.h"
 #include "teleop_client.h"
 #include "teleop_service.h"
 
@@ -23,6 +24,7 @@ using namespace dtmf;
 using namespace std::chrono_literals;
 using test_support::read_stream;
 using test_support::TeleopClient;
+using test_support::wait_until;
 
 namespace {
 
@@ -176,7 +178,9 @@ TEST(ServerFleet, AStopForEveryRobotStopsThemAllAtOnceAndEndsEveryStream) {
     TeleopClient beta(fleet.stub(), 0.05, 0, 2.0, "fast", "beta");
     ASSERT_TRUE(alpha.confirmed(0.1, 0, 10s)) << "alpha's stream drove nothing";
     ASSERT_TRUE(beta.confirmed(0.05, 0, 10s)) << "beta's stream drove nothing";
-    ASSERT_TRUE(fleet.alpha().moved() && fleet.beta().moved());
+    // The ACK sounds as the robot decides; its cmd_vel follows on its next publication (within
+    // 50 ms), which the sender's hearing the ACK can precede.
+    ASSERT_TRUE(wait_until([&] { return fleet.alpha().moved() && fleet.beta().moved(); }, 1s));
 
     v1::StopRequest stop;
     stop.set_all_robots(true);

@@ -81,7 +81,9 @@ TEST(ServerTeleop, DrivesAnArcThenReversesWithStatusAndEveryFrameStored) {
   EXPECT_NEAR(system.last_velocity().linear_mps, -0.05, 0.0002) << "the lease was renewed";
   const auto status = teleop.responses().back();
   EXPECT_GT(status.link_quality(), 0.9) << "a quiet room at 1 m";
-  EXPECT_GE(status.frames_in_window(), 3u) << "renewals at half the lease";
+  // The stream's own frames: the reverse; the lease since renewed by joint renewals
+  // (Transmitter::keep_renewed), unanswered, so not in the window.
+  EXPECT_GE(status.frames_in_window(), 1u);
   EXPECT_GT(status.lease_left_s(), 0);
   const auto closed_at = Clock::now();
   const grpc::Status closed = teleop.close();
@@ -198,7 +200,8 @@ TEST(ServerTeleop, AnExceptionFromTheTransmitterEndsTheStreamNotTheServer) {
   std::atomic<bool> armed{true};
   LiveSystemOptions options;
   options.before_recording = [&](const server::ProgressEvent& event) {
-    if (event.kind == server::ProgressEvent::Kind::Queued && armed && ++queued == 3)
+    // From the third on: a joint renewal's, on the loudspeaker's thread, or a frame's of the stream.
+    if (event.kind == server::ProgressEvent::Kind::Queued && armed && ++queued >= 3)
       throw std::runtime_error("the disk caught fire");
   };
   LiveSystem system(options);
@@ -214,7 +217,7 @@ TEST(ServerTeleop, AnExceptionFromTheTransmitterEndsTheStreamNotTheServer) {
     const grpc::Status ended = teleop.finish();
     EXPECT_EQ(ended.error_code(), grpc::StatusCode::INTERNAL) << ended.error_message();
     EXPECT_NE(ended.error_message().find("the disk caught fire"), std::string::npos) << ended.error_message();
-    EXPECT_EQ(queued.load(), 3);
+    EXPECT_GE(queued.load(), 3);
   }
   armed = false;
   // The server lives, and the slot is free.
