@@ -1,6 +1,7 @@
-// Database: one run of a sender driving two robots (migrations 010, 011). run_report(run)
+// Database: one run of a sender driving two robots (migrations 010, 011, 012). run_report(run)
 // covers the whole room, run_report(run, robot) one robot; a stop for every robot and a joint
-// renewal are counted apart (no robot answers them); a robot of another sender in the same room, at another address, is
+// renewal are counted apart (no robot answers them), and so are a renewal's receptions that
+// renewed nothing; a robot of another sender in the same room, at another address, is
 // no false positive of this run; RunReader and the runs view name the run's robots.
 #include <gtest/gtest.h>
 
@@ -88,7 +89,19 @@ struct FleetRun {
       store.write(r);
     }
     ++slot;
+    last_renewal_frame = a.frame;
   }
+
+  // The last renewal heard again by a robot that renews nothing with it (migration 012): its
+  // echo ('repeat'), or a plain renewal of a velocity the robot no longer holds ('ignored').
+  void renewal_not_taken(Store& store, const std::string& robot, int address, const std::string& event) {
+    ReceptionRow r = reception(robot, address, t0 + milliseconds((slot - 1) * kSlotMs + 300), "", last_renewal_frame);
+    r.event = event;
+    r.command.clear();
+    r.reply.reset();
+    store.write(r);
+  }
+  std::string last_renewal_frame;
 
   FrameAttemptRow attempt(const std::string& command_id, int position, WallTime start, const std::string& answer) {
     FrameAttemptRow a;
@@ -156,6 +169,8 @@ TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
     f.stop_every_robot(store);
     f.renewal(store);
     f.renewal(store);
+    f.renewal_not_taken(store, "alpha", 1, "repeat");
+    f.renewal_not_taken(store, "beta", 2, "ignored");
     // Another sender's robot in the same room took its own frame meanwhile: not this run's.
     store.write(f.reception("gamma", 5, f.t0 + milliseconds(3 * kSlotMs + 50), "turn", "777777"));
     ASSERT_TRUE(store.flush(std::chrono::seconds(30)));
@@ -179,6 +194,7 @@ TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
   EXPECT_EQ(room["every_robot_stops_executed"].as<int>(), 4) << "two copies, each executed by both robots";
   EXPECT_EQ(room["renewals_sent"].as<int>(), 2) << "joint renewals are no transmissions either";
   EXPECT_EQ(room["renewals_executed"].as<int>(), 4) << "two renewals, each taken by both robots";
+  EXPECT_EQ(room["renewals_not_taken"].as<int>(), 2) << "an echo, and a renewal of a velocity no longer held";
 
   const pqxx::row alpha = report("alpha"), beta = report("beta");
   EXPECT_EQ(alpha["robot"].as<std::string>(), "alpha");
@@ -190,10 +206,13 @@ TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
   EXPECT_EQ(beta["transmissions_sent"].as<int>(), 3);
   EXPECT_EQ(beta["successfully_matched"].as<int>(), 2);
   EXPECT_EQ(beta["dropped"].as<int>(), 1);
-  EXPECT_EQ(beta["false_positives"].as<int>(), 0);
+  EXPECT_EQ(beta["false_positives"].as<int>(), 0) << "a renewal beta renewed nothing with is no false positive";
+  EXPECT_EQ(alpha["false_positives"].as<int>(), 0);
+  EXPECT_EQ(alpha["renewals_not_taken"].as<int>(), 1);
   // The robots add up to the room.
-  for (const char* column : {"transmissions_sent", "transmissions_received", "successfully_matched", "dropped",
-                             "sender_confirmed", "every_robot_stops_executed", "renewals_executed"}) {
+  for (const char* column :
+       {"transmissions_sent", "transmissions_received", "successfully_matched", "dropped", "sender_confirmed",
+        "every_robot_stops_executed", "renewals_executed", "renewals_not_taken"}) {
     EXPECT_EQ(alpha[column].as<int>() + beta[column].as<int>(), room[column].as<int>()) << column;
   }
   EXPECT_EQ(report("gamma")["transmissions_sent"].as<int>(), 0) << "no command of this run named gamma";
