@@ -110,9 +110,10 @@ def _executions(load):
 def _air_share(profile, robots, _first):
     """The share of the air one sender used for its robots' Teleop streams (all of them)."""
     own_ms = 215.0 if profile.endswith("+key") else 153.75
+    joint_ms = 153.75 if profile.endswith("+key") else 102.5
     own = sum(r["renewals_per_s"] - r.get("joint_renewals_per_s", 0.0) for r in robots)
     joint = max(r.get("joint_renewals_per_s", 0.0) for r in robots)
-    return f"{(own * own_ms + joint * 153.75) / 10:.0f} % ({own:.1f} own, {joint:.1f} joint a second)"
+    return f"{(own * own_ms + joint * joint_ms) / 10:.0f} % ({own:.1f} own, {joint:.1f} joint a second)"
 
 
 def _two_senders_target(w, run):
@@ -161,6 +162,25 @@ def _load_target(w, load):
       f"duplicated, every report adds up | {figure} | {'yes' if met else 'no'} |")
 
 
+def _teleop_targets(w, run, keys):
+    """The three Teleop rows of the Fleet targets for one fleet_teleop run (`keys`: keyed or unkeyed)."""
+    robots = run["robots"]
+    slowest = min(r["renewals_per_s"] for r in robots)
+    ms = run["press_to_cmd_vel_ms"]
+    lapses = sum(r["lapses"] for r in robots)
+    wrong = sum(r["wrong"] for r in robots)
+    air = ("; the sender sends one frame at a time, and the joint renewals did not keep up"
+           if slowest < 2 else "")
+    w(f"| one sender, 3 robots, 3 Teleop streams, {keys}, seminar room: renewals per robot | ≥ 2 a second "
+      f"| slowest robot {slowest:.2f} a second{air} | {'yes' if slowest >= 2 else 'no'} |")
+    press_met = ms["median"] <= 300 and ms["p95"] <= 600
+    w(f"| the same: key press → that robot's cmd_vel | median ≤ 300 ms, p95 ≤ 600 ms | {ms['median']:.0f} / "
+      f"{ms['p95']:.0f} ms{'' if press_met else ': a press waits for the frames queued ahead of it, one per robot'}"
+      f" | {'yes' if press_met else 'no'} |")
+    w(f"| the same: lapses while a key is held; frames executed by the wrong robot | 0; 0 | {lapses}; {wrong} "
+      f"| {'yes' if lapses == 0 and wrong == 0 else 'no'} |")
+
+
 def fleet_section(w, data, profiles, ok, directory):
     w("## Fleet: a room of robots")
     w("")
@@ -186,12 +206,12 @@ def fleet_section(w, data, profiles, ok, directory):
         w("`dtmf-bench-fleet-teleop`: one sender drives robot1..robot3 (addresses 1–3, 1, 2 and 3 m from its "
           "loudspeaker) through the seminar room both ways, one Teleop stream each, as `dtmfctl teleop` drives, in "
           "real time; a key press (±0.01 m/s) every second on average, the robots in turn. *Renewals*: velocities "
-          "each robot executed per second, each renewing its lease: its stream's VELOCITY frames and, keyed, the "
+          "each robot executed per second, each renewing its lease: its stream's VELOCITY frames and the "
           "joint renewals (one unanswered frame for all three: docs/protocol.md §10, \"Renewing leases together\"), "
           "which *joint* counts apart; *lapses*: standstills while its stream held a non-zero target; "
           "*wrong*: velocities a robot executed from another robot's range. *Air*: the share of the air the sender "
           "used, its own frames at 215 ms each (a keyed frame and its tag chord; 153.75 ms unkeyed with its "
-          "answer under it) and the joint renewals at 153.75 ms.")
+          "answer under it) and the joint renewals at 153.75 ms keyed, 102.5 ms unkeyed.")
         w("")
         when = sorted({data[p]["fleet_teleop"].get("measured_utc", "at an unknown time") for p in teleop_shown})
         w(f"Measured {', '.join(when)}, {data[teleop_shown[0]]['fleet_teleop']['seconds']:.0f} s each.")
@@ -220,24 +240,14 @@ def fleet_section(w, data, profiles, ok, directory):
       f"each within 300 ms, none answered | {figure} | {'yes' if met else 'no'} |")
     keyed = next((data[p]["fleet_teleop"] for p in teleop_shown if p.endswith("+key")), None)
     if keyed:
-        robots = keyed["robots"]
-        slowest = min(r["renewals_per_s"] for r in robots)
-        ms = keyed["press_to_cmd_vel_ms"]
-        lapses = sum(r["lapses"] for r in robots)
-        wrong = sum(r["wrong"] for r in robots)
-        air = ("; the air carries one keyed frame and its tag chord about every 215 ms, 4.6 a second for the three "
-               "streams, and the sender sends one frame at a time")
-        w(f"| one sender, 3 robots, 3 Teleop streams, keyed, seminar room: renewals per robot | ≥ 2 a second "
-          f"| slowest robot {slowest:.2f} a second{air if slowest < 2 else ''} | {'yes' if slowest >= 2 else 'no'} |")
-        press_met = ms["median"] <= 300 and ms["p95"] <= 600
-        w(f"| the same: key press → that robot's cmd_vel | median ≤ 300 ms, p95 ≤ 600 ms | {ms['median']:.0f} / "
-          f"{ms['p95']:.0f} ms{'' if press_met else ': a press waits for the frames queued ahead of it, one per robot'}"
-          f" | {'yes' if press_met else 'no'} |")
-        w(f"| the same: lapses while a key is held; frames executed by the wrong robot | 0; 0 | {lapses}; {wrong} "
-          f"| {'yes' if lapses == 0 and wrong == 0 else 'no'} |")
+        _teleop_targets(w, keyed, "keyed")
     else:
         w("| one sender, 3 robots, 3 Teleop streams, keyed | renewals ≥ 2 a second, press → cmd_vel median ≤ 300 ms "
           "and p95 ≤ 600 ms, no lapse, 0 wrong | not run | no |")
+    # The target names keys; the same figures without them, against the same bars.
+    unkeyed = next((data[p]["fleet_teleop"] for p in teleop_shown if not p.endswith("+key")), None)
+    if unkeyed:
+        _teleop_targets(w, unkeyed, "unkeyed")
     _two_senders_target(w, two_senders)
     _load_target(w, load)
     w("")

@@ -111,6 +111,32 @@ class FleetTeleopRows(unittest.TestCase):
         self.assertIn("| slowest robot 2.70 a second | yes |", text)
         self.assertIn("| 165 / 310 ms | yes |", text)
 
+    def test_the_unkeyed_run_is_held_to_the_same_targets_with_its_own_air_time(self):
+        def run(renewals_per_s, joint_per_s, lapses):
+            robots = [dict(robot=f"robot{k}", renewals_per_s=renewals_per_s, joint_renewals_per_s=joint_per_s,
+                           presses=10, missed=0, lapses=lapses if k == 3 else 0, wrong=0,
+                           press_to_cmd_vel_ms=dict(median=100, p95=200, max=250, count=10)) for k in (1, 2, 3)]
+            return dict(robots=robots, seconds=120, press_to_cmd_vel_ms=dict(median=100, p95=200, max=250, count=30))
+        out = []
+        data = {"fast": {"fleet_teleop": run(1.92, 0.0, 1)}, "fast+key": {"fleet_teleop": run(2.7, 2.4, 0)}}
+        fleet_section.fleet_section(out.append, data, ["fast", "fast+key"], lambda d: "error" not in d,
+                                    tempfile.gettempdir() + "/no-such-bench-dir")
+        text = "\n".join(out)
+        self.assertIn("| one sender, 3 robots, 3 Teleop streams, keyed, seminar room: renewals per robot | ≥ 2 a second "
+                      "| slowest robot 2.70 a second | yes |", text)
+        self.assertIn("| one sender, 3 robots, 3 Teleop streams, unkeyed, seminar room: renewals per robot | ≥ 2 a "
+                      "second | slowest robot 1.92 a second; the sender sends one frame at a time, and the joint "
+                      "renewals did not keep up | no |", text)
+        self.assertIn("| 0; 0 | yes |", text)
+        self.assertIn("| 1; 0 | no |", text)
+        # Unkeyed: 3 × 1.92 own frames a second at 153.75 ms, no joint renewal: 89 %.
+        self.assertIn("| 89 % (5.8 own, 0.0 joint a second) |", text)
+        out = []
+        fleet_section.fleet_section(out.append, {"fast": {"fleet_teleop": run(2.8, 2.4, 0)}}, ["fast"],
+                                    lambda d: "error" not in d, tempfile.gettempdir() + "/no-such-bench-dir")
+        # 3 × 0.4 own frames at 153.75 ms and 2.4 joint renewals at 102.5 ms: 18 + 25 = 43 %.
+        self.assertIn("| 43 % (1.2 own, 2.4 joint a second) |", "\n".join(out))
+
 
 if __name__ == "__main__":
     unittest.main()
