@@ -159,9 +159,11 @@ std::optional<Reception> FrameAdmission::admit_plain_renewal(Reception r, const 
                ", not the velocity this robot took last (it missed that frame or took a command since): renews nothing";
     return r;
   }
+  // Past the horizon: not what its sender sends (it sends the velocity again every 5 s).
   take_renewal(
       r, renewal.number,
-      "renewal " + std::to_string(renewal.number) + " of the velocity numbered " + std::to_string(slot->sequence));
+      "renewal " + std::to_string(renewal.number) + " of the velocity numbered " + std::to_string(slot->sequence),
+      RefusalReason::Payload);
   return r;
 }
 
@@ -239,29 +241,30 @@ bool FrameAdmission::admit_renewal(Reception& r) {
            "a renewal numbered as the velocity it renews (counter " + std::to_string(*counter) + "): forged");
     return true;
   }
-  r.authenticated = true;
-  take_renewal(r, *counter, "renewal of the velocity of counter " + std::to_string(renewable_->counter));
+  if (take_renewal(r, *counter, "renewal of the velocity of counter " + std::to_string(renewable_->counter),
+                   RefusalReason::Authentication))
+    r.authenticated = true;
   return true;
 }
 
-void FrameAdmission::take_renewal(Reception& r, std::uint64_t id, const std::string& what) {
+bool FrameAdmission::take_renewal(Reception& r, std::uint64_t id, const std::string& what, RefusalReason late) {
   if (r.start_ms - renewable_->start_ms > kRenewalHorizonMs) {
-    // A recording, for a keyed robot; for a plain one, it is not what its sender sends.
-    refuse(r, r.authenticated ? RefusalReason::Authentication : RefusalReason::Payload,
+    refuse(r, late,
            "a " + what + ", " + std::to_string(static_cast<int>((r.start_ms - renewable_->start_ms) / 1000)) +
                " s after it, past the " + std::to_string(static_cast<int>(kRenewalHorizonMs / 1000)) +
                " s a velocity is renewed for: renewals captured and played later");
-    return;
+    return false;
   }
   if (!renewable_->renewed.insert(id).second) {  // its echo, or played again: renewed already
     r.event = ReceptionEvent::Repeat;
     r.detail = "repeat of " + what + ", not executed again";
-    return;
+    return true;
   }
   echoes_.remember(r.bits, r.heard_ms);
   r.command = renewable_->velocity;
   r.event = ReceptionEvent::Renewed;
   r.detail = what + ": " + command::describe(*r.command);
+  return true;
 }
 
 bool FrameAdmission::command_authentic(const reliability::FrameBits& bits) const {

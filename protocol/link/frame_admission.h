@@ -78,8 +78,9 @@ class FrameAdmission {
   // here, or nothing when no slot names this robot.
   std::optional<Reception> admit_plain_renewal(Reception r, const reliability::PlainRenewal& renewal);
   // The renewal `id` (its counter, or a plain renewal's number), of the velocity taken last:
-  // that velocity again, unless its frame began past the horizon or `id` was taken already.
-  void take_renewal(Reception& r, std::uint64_t id, const std::string& what);
+  // that velocity again, unless `id` was taken already (a repeat) or the velocity's frame
+  // began past the horizon (refused for `late`; false then).
+  bool take_renewal(Reception& r, std::uint64_t id, const std::string& what, RefusalReason late);
   // The counter `bits` renews this robot's velocity with, if it is a renewal whose slot for
   // this robot holds.
   std::optional<std::uint64_t> renewal_counter(const reliability::FrameBits& bits) const;
