@@ -70,14 +70,20 @@ def _load_rows(w, runs):
       "scheduling). *Overlapped*: frames that were on air while another sender's frame was, and how many of them "
       "went unanswered, next to the unanswered frames that overlapped nothing; *into an exchange*: frames started "
       "while another sender's exchange (its frame's start until its answer, or its 500 ms wait) that had begun "
-      "100 ms or more before was under way, which listening before talking should prevent (runs from before "
-      "2026-11-30 did not count them, and their senders did not listen). *Executed (wrong robot; unsent)*: frames "
+      "100 ms or more before was under way, and had begun while this sender listened, which listening before "
+      "talking must prevent; counted apart, those started into an exchange that began under the sender's own "
+      "(from 100 ms before its frame until 100 ms after its answer: its microphone, beside its loudspeaker, takes "
+      "what it hears then for its own) and those started within 100 ms of another's start (neither could hear the "
+      "other coming), as `tests/server/listen_before_talk_test.cpp` counts them. Runs from before 2026-11-30 did not "
+      "count them, and their senders did not listen; runs before 2026-11-30 16:00 UTC counted all three as into an "
+      "exchange but those that started within 100 ms. *Executed (wrong robot; unsent)*: frames "
       "the robots executed, those a sender had sent to another address, and those no sender sent "
       "(`bench/e2e/fleet_executions.sql`; runs from before 2026-11-30 did not count them).")
     w("")
     w("| run | agents | servers | time | database down | servers up after | agent CPU (mean / most) "
       "| receptions logged / stored | commands stored (confirmed; at the first try) | stored twice "
-      "| left in spill files | frames sent | overlapped (unanswered) | unanswered, no overlap | into an exchange "
+      "| left in spill files | frames sent | overlapped (unanswered) | unanswered, no overlap "
+      "| into an exchange (under its own; together) "
       "| executed (wrong robot; unsent) | failures | measured |")
     w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for title, load in runs.items():
@@ -90,7 +96,7 @@ def _load_rows(w, runs):
           f"{load.get('confirmed_first_try', '–')}) | {load['duplicates']} | {load['spill_left']} "
           f"| {load.get('frames', '–')} | {load.get('frames_overlapped', '–')} "
           f"({load.get('frames_overlapped_unanswered', '–')}) | {load.get('frames_clear_unanswered', '–')} "
-          f"| {load.get('frames_into_exchange', '–')} | {_executions(load)} | {len(load['failures'])} "
+          f"| {_into_exchange(load)} | {_executions(load)} | {len(load['failures'])} "
           f"| {load.get('measured_utc', '')} |")
     w("")
     failures = [f"- {title}: {failure}" for title, load in runs.items() for failure in load.get("failures", [])]
@@ -98,6 +104,14 @@ def _load_rows(w, runs):
         w(line)
     if failures:
         w("")
+
+
+def _into_exchange(load):
+    """Frames started into another's exchange, and apart those under the sender's own and together."""
+    if "frames_into_masked_exchange" not in load:
+        return str(load.get("frames_into_exchange", "–"))
+    return (f"{load['frames_into_exchange']} ({load['frames_into_masked_exchange']}; "
+            f"{load['frames_started_together']})")
 
 
 def _executions(load):
@@ -139,8 +153,18 @@ def _two_senders_target(w, run):
         verdict = "the confirmed share: yes; wrong executions: not counted" if confirmed_met else "no"
     w(f"| {target} | {confirmed:.2f} % of {run['commands']} confirmed (the sender's own retransmissions "
       f"included); {overlapped:.1f} % of frames overlapped the other sender's and {lost:.1f} % were lost to it"
-      f"{'; ' + str(run['frames_into_exchange']) + ' started into an exchange of the other' if 'frames_into_exchange' in run else ' (before the senders listened)'}"
+      f"{_into_exchange_text(run)}"
       f"{executions}{'' if full else '; a shorter run'} | {verdict} |")
+
+
+def _into_exchange_text(run):
+    if "frames_into_exchange" not in run:
+        return " (before the senders listened)"
+    text = f"; {run['frames_into_exchange']} started into an exchange of the other it could hear begin"
+    if "frames_into_masked_exchange" in run:
+        text += (f", {run['frames_into_masked_exchange']} into one that began under its own and "
+                 f"{run['frames_started_together']} within 100 ms of the other's start")
+    return text
 
 
 def _load_target(w, load):

@@ -38,7 +38,16 @@ bool Transmitter::wait_for_air(Job& job) {
     double at = std::max(now, channel_free_ms_);
     if (air_) at = std::max(at, air_->start_at(carrier_, now, use));
     if (at <= now) {
-      if (air_) air_->started(carrier_, now);
+      if (air_) {
+        // Why it may start now: what tells a start into another's exchange from one it could not hear.
+        const auto ago = [now](std::optional<double> t) { return t ? now - *t : -1.0; };
+        spdlog::debug(
+            "the air for command {}: starts at {:.0f} ms; another's sound {:.0f} ms ago, quiet for {:.0f} ms, "
+            "another's answer read {:.0f} ms ago (-1: never, or not now)",
+            job.id(), now, ago(carrier_.last_busy_ms()), ago(carrier_.quiet_since_ms()),
+            ago(carrier_.answered_exchange_ms()));
+        air_->started(carrier_, now);
+      }
       carrier_.own_begin(now);
       return true;
     }
@@ -70,6 +79,7 @@ AirShare Transmitter::air_share() const {
   AirShare share;
   share.busy_blocks = carrier_.busy_blocks();
   share.others_answers = carrier_.others_answers();
+  share.masked_answers = carrier_.masked_answers();
   if (air_) {
     share.deferred = air_->deferred();
     share.answered_waits = air_->answered_waits();

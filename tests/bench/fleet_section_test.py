@@ -54,6 +54,14 @@ class FleetLoadRows(unittest.TestCase):
                       "| 40 (20) | 3 | – | – | 0 |", text)
         self.assertIn("| 40 (20) | 3 | 2 | 410 (1; 0) | 0 |", section(load(into_exchange=2, executions=(410, 1, 0))))
 
+    def test_starts_under_the_senders_own_exchange_and_together_are_counted_apart(self):
+        classed = load(agents=4, servers=2, into_exchange=0)
+        classed.update(frames_into_masked_exchange=9, frames_started_together=4)
+        text = section(two_senders=classed)
+        self.assertIn("| 40 (20) | 3 | 0 (9; 4) |", text)
+        self.assertIn("0 started into an exchange of the other it could hear begin, 9 into one that began under its "
+                      "own and 4 within 100 ms of the other's start", target_row(text, "| two senders, "))
+
     def test_a_failure_misses_the_target_and_is_listed(self):
         text = section(load(failures=["agent3 logged 12 frames, the database holds 11"]))
         self.assertTrue(target_row(text).endswith("| no |"))

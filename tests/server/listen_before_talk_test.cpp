@@ -94,9 +94,11 @@ struct AirFigures {
   int masked = 0;         // ... which began under its own exchange (it could not hear that start)
 };
 
-bool within(Clock::time_point t, const std::vector<Exchange>& exchanges, double after_ms) {
+// Whether `t` fell under one of `exchanges`: from kHeardWithinMs before its frame's start (a
+// start that near ours is not heard before ours begins) until `after_ms` after its end.
+bool under(Clock::time_point t, const std::vector<Exchange>& exchanges, double after_ms) {
   for (const Exchange& x : exchanges) {
-    if (t >= x.start && ms_between(x.end, t) <= after_ms) return true;
+    if (ms_between(t, x.start) < kHeardWithinMs && ms_between(x.end, t) <= after_ms) return true;
   }
   return false;
 }
@@ -113,7 +115,7 @@ void count(const std::vector<Clock::time_point>& starts, const std::vector<Excha
                   ms_between(x.start, s), ms_between(x.start, x.end), ms_between(starts.front(), s));
       if (ms_between(x.start, s) < kHeardWithinMs)
         ++f.together;
-      else if (within(x.start, own, reliability::kOwnLatencyMs))
+      else if (under(x.start, own, reliability::kOwnLatencyMs))
         ++f.masked;
       else
         ++f.into_exchange;
