@@ -115,6 +115,7 @@ struct AirShare {
   std::uint64_t listens = 0;         // pauses made, alone, to hear whether others wait
   std::uint64_t busy_blocks = 0;     // microphone blocks heard busy with another's sound
   std::uint64_t others_answers = 0;  // answers the ear read that were another's
+  std::uint64_t masked_answers = 0;  // ... read under our own exchange: another's went on under it
 };
 
 class Transmitter {
@@ -226,6 +227,9 @@ class Transmitter {
   // The longest silence between a frame's end and its answer that any profile this sender
   // knows allows (ack_timeout_ms − chord_ms): the quiet it waits for after another's sound.
   double answer_silence_ms() const;
+  // Whether `answer`, read by `link`'s ear, came from a robot that is none of ours (only
+  // formats whose answers name their robot can tell).
+  bool another_robots(const link::Link& link, const link::Answer& answer) const;
   // The first answer to `frame` of `link` heard after `since_ms`, or nothing by `until_ms`.
   std::optional<HeardReply> wait_reply(const link::Link& link, const link::TransmitFrame& frame, double since_ms,
                                        double until_ms);

@@ -55,6 +55,15 @@ void Transmitter::listen() {
   }
 }
 
+bool Transmitter::another_robots(const link::Link& link, const link::Answer& answer) const {
+  // A tag chord names no robot, and the seed's answers name none either.
+  if (answer.tag_reading || !link.addresses_robots()) return false;
+  for (const Robot& r : robots_)
+    for (const link::Link* l : r.links)
+      if (l->addresses_robots() && l->options().address == answer.address) return false;
+  return true;
+}
+
 std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const link::Link& link, const link::TransmitFrame& frame,
                                                                double since_ms, double until_ms) {
   std::unique_lock lock(mutex_);
@@ -64,6 +73,14 @@ std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const link::Link&
       const HeardReply reply = replies_.front();
       replies_.pop_front();
       if (reply.steady_ms < since_ms || reply.answer.link != &link) continue;  // not an answer to this frame
+      if (another_robots(link, reply.answer.answer)) {
+        // Read under our exchange, where the microphone takes every sound for ours: another's
+        // exchange went on under it unheard (reliability/carrier_sense.h, answer_masked).
+        carrier_.answer_masked(reply.steady_ms);
+        spdlog::debug("an answer from robot {}, none of ours, while frame {} waits: another sender shares the air",
+                      reply.answer.answer.address, frame.sequence.value_or(0));
+        continue;
+      }
       if (!wait.answered_by(reply.answer.answer)) {
         if (reply.answer.answer.tag_reading) continue;  // a tag chord spelling another tag
         spdlog::debug("an ACK naming frame {} while frame {} waits: late, ignored",

@@ -149,13 +149,15 @@ int main(int argc, char** argv) {
         std::printf(
             "e2e %s: %llu of %d commands confirmed; latency median %.0f ms, p95 %.0f ms, max %.0f ms; "
             "%.2f bit/s net payload; frames ACKed at the first attempt %llu of %llu (%.2f %%), %llu retransmissions; "
-            "the air: %llu blocks heard busy, %llu frames deferred, %llu yields, %llu listening pauses\n",
+            "the air: %llu blocks heard busy, %llu answers of another's robot read under ours, %llu frames deferred, "
+            "%llu yields, %llu listening pauses\n",
             profile.name.c_str(), static_cast<unsigned long long>(confirmed), commands, percentile(latencies_ms, 0.5),
             percentile(latencies_ms, 0.95), percentile(latencies_ms, 1.0), throughput,
             static_cast<unsigned long long>(first_acked), static_cast<unsigned long long>(first_tx),
             100 * frame_success, static_cast<unsigned long long>(retransmissions),
-            static_cast<unsigned long long>(air.busy_blocks), static_cast<unsigned long long>(air.deferred),
-            static_cast<unsigned long long>(air.yields), static_cast<unsigned long long>(air.listens));
+            static_cast<unsigned long long>(air.busy_blocks), static_cast<unsigned long long>(air.masked_answers),
+            static_cast<unsigned long long>(air.deferred), static_cast<unsigned long long>(air.yields),
+            static_cast<unsigned long long>(air.listens));
         write_json(json_path, {{"benchmark", "e2e"},
                                {"profile", profile.name},
                                {"authenticated", authenticated},
@@ -177,6 +179,7 @@ int main(int argc, char** argv) {
                                {"frame_success_rate", frame_success},
                                {"retransmissions", retransmissions},
                                {"air_busy_blocks", air.busy_blocks},
+                               {"air_masked_answers", air.masked_answers},
                                {"air_deferred", air.deferred},
                                {"air_yields", air.yields},
                                {"air_listens", air.listens},

@@ -169,4 +169,9 @@ void CarrierSense::answer_read(double end_ms) {
   answer_tail_min_dbfs_ = loudest_dbfs(others_recent_);
 }
 
+void CarrierSense::answer_masked(double end_ms) {
+  ++masked_answers_;
+  last_busy_ms_ = std::max(last_busy_ms_.value_or(end_ms), end_ms);
+}
+
 }  // namespace dtmf::reliability

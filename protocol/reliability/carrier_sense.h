@@ -84,6 +84,13 @@ class CarrierSense {
   // sound rises kBusyOverFloorDb over the quietest the tail's envelope has been (as for our
   // own tail): a new frame.
   void answer_read(double end_ms);
+  // The sender's ear read, during our exchange, an answer from a robot that is none of ours
+  // (fast answers name their robot), ending at `end_ms`. Another's exchange went on under
+  // ours, where the microphone takes every sound for our own: two senders that started
+  // together and then send back to back hide each other's frames this way for as long as
+  // they run (neither ever hears the air busy). It counts as another's sound at `end_ms`, so
+  // the room is shared and our next frame defers and listens.
+  void answer_masked(double end_ms);
 
   // The last block heard busy (another's sound), if any; blocks of our wait count once it ended.
   std::optional<double> last_busy_ms() const { return last_busy_ms_; }
@@ -103,6 +110,8 @@ class CarrierSense {
   std::size_t busy_blocks() const { return busy_blocks_; }
   // How many answers read were another's (answer_read outside our exchange).
   std::size_t others_answers() const { return others_answers_; }
+  // How many answers another's robot gave were read under our own exchange (answer_masked).
+  std::size_t masked_answers() const { return masked_answers_; }
 
  private:
   bool ours(double level_dbfs, double end_ms);
@@ -124,6 +133,7 @@ class CarrierSense {
   std::optional<double> others_answer_ms_;
   bool answer_tail_open_ = false;  // since it, only its tail
   std::size_t others_answers_ = 0;
+  std::size_t masked_answers_ = 0;
   double answer_tail_min_dbfs_ = 0;
   std::deque<std::pair<double, double>> others_recent_;  // (end_ms, level) of the last kFloorSmoothMs not ours
   std::size_t busy_blocks_ = 0;

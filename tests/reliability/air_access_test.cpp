@@ -277,3 +277,31 @@ TEST(AirAccess, AfterALossInASharedRoomItBacksOffAtRandomAloneItDoesNot) {
   air.unanswered(sense, t);
   EXPECT_EQ(air.start_at(sense, t, AirUse::Command), t) << "a lone sender's retransmission waited";
 }
+
+// Two senders that started together and then send back to back: each one's frames sound under
+// the other's exchanges, where a microphone takes every sound for its own, so neither ever
+// hears the air busy, and they stay in step until a listening pause 20 s on (three senders on
+// the PulseAudio air: 102 of 562 frames started within 100 ms of another's). An answer of the
+// other's robot read under our exchange ends that: the next frame defers until the air has
+// been heard quiet for the whole hold, and the room now shared, our 3 s run yields.
+TEST(AirAccess, AnAnswerOfAnothersRobotReadUnderOurExchangeEndsTwoSendersInStep) {
+  CarrierSense sense;
+  AirAccess air(kQuietMs, 1);
+  double t = hear_for(sense, 0, 1000, kNoiseDbfs);
+  for (int k = 0; k < 20; ++k) {
+    ASSERT_EQ(air.start_at(sense, t, AirUse::Command), t) << "frame " << k;
+    t = exchange(sense, air, t, 150);  // ours and the other's frames, one sound
+  }
+  EXPECT_EQ(air.deferred(), 0u);
+  air.started(sense, t);
+  sense.own_begin(t);
+  t = hear_for(sense, t, 150, -10);
+  sense.answer_masked(t - 40);
+  sense.own_end(t);
+  EXPECT_GT(air.start_at(sense, t, AirUse::Command), t);
+  EXPECT_EQ(air.deferred(), 1u);
+  const double start = wait_for_air(sense, air, t, AirUse::Command);
+  EXPECT_GE(start - t, kQuietMs) << "it started before the air was heard quiet for the hold";
+  EXPECT_EQ(air.yields(), 1u);
+  EXPECT_LE(start - t, kOwnLatencyMs + kQuietMs + (kBackoffSlots + 2) * kSlotMs + 2 * kBlockMs);
+}

@@ -263,3 +263,22 @@ TEST(CarrierSense, AnAnswerReadDuringOurExchangeIsOursAndAfterItAnothers) {
   ASSERT_TRUE(sense.answered_exchange_ms());
   EXPECT_EQ(*sense.answered_exchange_ms(), 1600);
 }
+
+// Under our exchange every sound is ours, another sender's frames too; an answer that names a
+// robot none of ours (read by the sender, which knows its robots) is the sign of them.
+TEST(CarrierSense, AnAnswerOfAnothersRobotReadUnderOurExchangeIsAnothersSound) {
+  CarrierSense sense;
+  double t = hear_for(sense, 0, 1000, kNoiseDbfs);
+  sense.own_begin(t);
+  t = hear_for(sense, t, 100, -10);
+  sense.frame_ended(t);
+  t = hear_for(sense, t, 50, -10);  // the other's frame goes on, taken for our tail
+  EXPECT_FALSE(sense.last_busy_ms());
+  sense.answer_masked(t - 20);
+  sense.own_end(t);
+  ASSERT_TRUE(sense.last_busy_ms());
+  EXPECT_EQ(*sense.last_busy_ms(), t - 20);
+  EXPECT_EQ(sense.masked_answers(), 1u);
+  EXPECT_EQ(sense.others_answers(), 0u);
+  EXPECT_FALSE(sense.answered_exchange_ms()) << "the other's next frame may be under way: no short quiet";
+}
