@@ -14,6 +14,8 @@
 namespace dtmf::link {
 
 namespace {
+// A velocity's lease, from a frame that began at `start_ms` (the robot counts it so).
+double lease_end(const command::Velocity& velocity, double start_ms) { return start_ms + 1000 * velocity.lease_s; }
 
 void refuse(Reception& r, RefusalReason reason, std::string why) {
   r.event = ReceptionEvent::Refused;
@@ -138,7 +140,7 @@ void FrameAdmission::admit_plain(Reception& r) {
   }
   take_command(r, *decoded.command);
   if (const auto* velocity = std::get_if<command::Velocity>(&*decoded.command))
-    renewable_ = Renewable{frame.sequence, *velocity, r.start_ms, {}, false};
+    renewable_ = Renewable{frame.sequence, *velocity, r.start_ms, lease_end(*velocity, r.start_ms), {}, false};
 }
 
 std::optional<Reception> FrameAdmission::admit_plain_renewal(Reception r, const reliability::PlainRenewal& renewal) {
@@ -255,12 +257,20 @@ bool FrameAdmission::take_renewal(Reception& r, std::uint64_t id, const std::str
                " s a velocity is renewed for: renewals captured and played later");
     return false;
   }
+  if (r.start_ms > renewable_->lease_ends_ms) {
+    refuse(r, late,
+           "a " + what + ", " + std::to_string(static_cast<int>(r.start_ms - renewable_->lease_ends_ms)) +
+               " ms after the velocity's lease ran out: the robot stopped, and only a new velocity frame drives it "
+               "again");
+    return false;
+  }
   if (!renewable_->renewed.insert(id).second) {  // its echo, or played again: renewed already
     r.event = ReceptionEvent::Repeat;
     r.detail = "repeat of " + what + ", not executed again";
     return true;
   }
   echoes_.remember(r.bits, r.heard_ms);
+  renewable_->lease_ends_ms = lease_end(renewable_->velocity, r.start_ms);
   r.command = renewable_->velocity;
   r.event = ReceptionEvent::Renewed;
   r.detail = what + ": " + command::describe(*r.command);
@@ -324,7 +334,7 @@ void FrameAdmission::admit_sealed(Reception& r) {
   }
   take_command(r, *decoded.command);
   if (const auto* velocity = std::get_if<command::Velocity>(&*decoded.command))
-    renewable_ = Renewable{counter, *velocity, r.start_ms, {}, true};
+    renewable_ = Renewable{counter, *velocity, r.start_ms, lease_end(*velocity, r.start_ms), {}, true};
 }
 
 void FrameAdmission::take_command(Reception& r, const command::Command& command) {

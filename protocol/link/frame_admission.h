@@ -29,7 +29,10 @@
 // renewal that got through cannot make the sender's next frames stale. A velocity is renewed
 // for at most kRenewalHorizonMs after its own frame began: the sender sends the velocity
 // again, answered, every 5 s (server/teleop_session.h), and a recording of renewals the
-// robot missed cannot hold it longer than that.
+// robot missed cannot hold it longer than that. A renewal renews only a lease still running:
+// one that begins after the lease ran out (the robot stopped) renews nothing, so a renewal the
+// air delayed, or a recording of one, never sets a stopped robot moving again; only a new
+// velocity frame does.
 // Pure logic, but for the counter stores it is given.
 #pragma once
 
@@ -91,6 +94,7 @@ class FrameAdmission {
     std::uint64_t counter = 0;  // sealed: its counter; plain: its sequence number
     command::Velocity velocity;
     double start_ms = 0;              // when its frame began
+    double lease_ends_ms = 0;         // when its lease runs out, renewals taken counted
     std::set<std::uint64_t> renewed;  // the renewals taken: their counters, or plain renewals' numbers
     bool sealed = false;
   };

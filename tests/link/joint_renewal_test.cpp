@@ -74,7 +74,7 @@ std::vector<link::Link*> senders(std::vector<Pair>& robots) {
   return out;
 }
 
-const command::Velocity kAhead{0.5, 0.0, 1.0};
+const command::Velocity kAhead{0.5, 0.0, 2.0};  // the longest lease: these robots' clocks run on in silence
 const command::Velocity kLeft{0.25, 0.5, 1.0};
 const command::Velocity kBack{-0.5, 0.0, 1.0};
 
@@ -280,4 +280,31 @@ TEST(JointRenewal, ACommandThatAlsoReadsAsARenewalIsTheCommand) {
   EXPECT_EQ(r->event, link::ReceptionEvent::Command) << r->detail;
   EXPECT_TRUE(r->answered);
   EXPECT_EQ(r->counter, 2u);
+}
+
+// A renewal that begins after the velocity's lease ran out renews nothing: the robot stopped,
+// and a renewal the air delayed (or a recording of one) must not set it moving again
+// (TeleopE2E saw one heard 200 ms after the lease ended, once the server had been killed).
+TEST(JointRenewal, ARenewalAfterTheLeaseRanOutSetsNoStoppedRobotMoving) {
+  std::vector<Pair> robots;
+  robots.push_back(pair(1));
+  drive(robots[0], kLeft);  // a 1 s lease
+  const auto links = senders(robots);
+  const auto in_time = robots[0].sender->plan_renewal(links);
+  const auto too_late = robots[0].sender->plan_renewal(links);
+  ASSERT_TRUE(in_time && too_late);
+  ASSERT_TRUE(
+      renewed(hear(robots[0], in_time->frame.audio), std::get<command::Velocity>(robots[0].robot->as_received(kLeft))));
+  hear(robots[0], std::vector<float>(static_cast<std::size_t>(p.samples_for_ms(1000 * kLeft.lease_s)), 0.0f));
+  const auto played = hear(robots[0], too_late->frame.audio);
+  ASSERT_EQ(played.size(), 1u);
+  EXPECT_EQ(played[0].event, link::ReceptionEvent::Refused) << played[0].detail;
+  EXPECT_NE(played[0].detail.find("lease ran out"), std::string::npos) << played[0].detail;
+  EXPECT_FALSE(played[0].command);
+  EXPECT_FALSE(played[0].answered);
+  drive(robots[0], kLeft);  // a new velocity frame drives it again, and is renewed
+  const auto again = robots[0].sender->plan_renewal(links);
+  ASSERT_TRUE(again);
+  EXPECT_TRUE(
+      renewed(hear(robots[0], again->frame.audio), std::get<command::Velocity>(robots[0].robot->as_received(kLeft))));
 }
