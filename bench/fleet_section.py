@@ -74,16 +74,20 @@ def _load_rows(w, runs):
       "talking must prevent; counted apart, those started into an exchange that began under the sender's own "
       "(from 100 ms before its frame until 100 ms after its answer: its microphone, beside its loudspeaker, takes "
       "what it hears then for its own) and those started within 100 ms of another's start (neither could hear the "
-      "other coming), as `tests/server/listen_before_talk_test.cpp` counts them. Runs from before 2026-11-30 did not "
+      "other coming), as `tests/server/listen_before_talk_test.cpp` counts them; and, with three senders or more, "
+      "those started into an exchange *hidden* by a third sender's that began within 100 ms of it and whose answer "
+      "came before this start (the sender heard one stretch of sound end in an answer and took the exchange for "
+      "over; the hidden one, started with it, was mostly lost). Runs from before 2026-11-30 did not "
       "count them, and their senders did not listen; runs before 2026-11-30 16:00 UTC counted all three as into an "
-      "exchange but those that started within 100 ms. *Executed (wrong robot; unsent)*: frames "
+      "exchange but those that started within 100 ms, and runs before 2026-11-30 19:30 UTC counted hidden ones as "
+      "into an exchange. *Executed (wrong robot; unsent)*: frames "
       "the robots executed, those a sender had sent to another address, and those no sender sent "
       "(`bench/e2e/fleet_executions.sql`; runs from before 2026-11-30 did not count them).")
     w("")
     w("| run | agents | servers | time | database down | servers up after | agent CPU (mean / most) "
       "| receptions logged / stored | commands stored (confirmed; at the first try) | stored twice "
       "| left in spill files | frames sent | overlapped (unanswered) | unanswered, no overlap "
-      "| into an exchange (under its own; together) "
+      "| into an exchange (under its own; together; hidden) "
       "| executed (wrong robot; unsent) | failures | measured |")
     w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for title, load in runs.items():
@@ -107,11 +111,11 @@ def _load_rows(w, runs):
 
 
 def _into_exchange(load):
-    """Frames started into another's exchange, and apart those under the sender's own and together."""
+    """Frames started into another's exchange, and apart those under the sender's own, together and hidden."""
     if "frames_into_masked_exchange" not in load:
         return str(load.get("frames_into_exchange", "–"))
     return (f"{load['frames_into_exchange']} ({load['frames_into_masked_exchange']}; "
-            f"{load['frames_started_together']})")
+            f"{load['frames_started_together']}; {load.get('frames_into_hidden_exchange', '–')})")
 
 
 def _executions(load):
@@ -164,6 +168,9 @@ def _into_exchange_text(run):
     if "frames_into_masked_exchange" in run:
         text += (f", {run['frames_into_masked_exchange']} into one that began under its own and "
                  f"{run['frames_started_together']} within 100 ms of the other's start")
+    if run.get("frames_into_hidden_exchange"):
+        text += (f", {run['frames_into_hidden_exchange']} into one hidden by a third sender's answered exchange "
+                 "that began with it")
     return text
 
 

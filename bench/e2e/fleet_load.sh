@@ -188,25 +188,36 @@ mismatch=$(q "SELECT count(*) FROM test_runs r, run_report(r.id) room
 #     until 100 ms after its answer, or after its frame if none came): its microphone, beside
 #     its loudspeaker, takes what it hears then for its own, so it cannot hear that start. After
 #     two frames start together, the winner's next frames fall into the loser's wait so;
-#   - together: one that began less than 100 ms before (neither could hear the other coming).
-IFS='|' read -r attempts overlapped overlapped_lost clear_lost first_time into_exchange masked together < <(q "
-  WITH a AS (SELECT f.id, c.host, f.chord_started_at s, f.chord_ended_at e, f.answer,
+#   - together: one that began less than 100 ms before (neither could hear the other coming);
+#   - hidden: one that began within 100 ms of a third sender's exchange, whose answer came
+#     before this start: the sender heard one stretch of sound end in an answer it could read,
+#     and took the exchange for over (reliability/air_access.h, the short quiet after an
+#     answer read). The other, started with it, was mostly lost, and waits for an answer that
+#     will not come.
+IFS='|' read -r attempts overlapped overlapped_lost clear_lost first_time into_exchange masked together hidden < <(q "
+  WITH a AS (SELECT f.id, c.host, f.chord_started_at s, f.chord_ended_at e, f.answer, f.answered_at,
                     coalesce(f.answered_at, f.chord_started_at + interval '500 milliseconds') x_end,
                     coalesce(f.answered_at, f.chord_ended_at) + interval '100 milliseconds' own_end
              FROM frame_attempts f JOIN commands c ON c.id = f.command_id WHERE f.chord_ended_at IS NOT NULL),
        inside AS (SELECT a.id, b.s <= a.s - interval '100 milliseconds' heard_start,
                          EXISTS (SELECT 1 FROM a m WHERE m.host = a.host AND m.s < b.s + interval '100 milliseconds'
-                                                     AND b.s <= m.own_end) under_own
+                                                     AND b.s <= m.own_end) under_own,
+                         EXISTS (SELECT 1 FROM a c WHERE c.host NOT IN (a.host, b.host) AND c.answered_at <= a.s
+                                                     AND c.s > b.s - interval '100 milliseconds'
+                                                     AND c.s < b.s + interval '100 milliseconds') hidden
                   FROM a JOIN a b ON b.host <> a.host AND b.s <= a.s AND a.s < b.x_end),
        x AS (SELECT a.*, EXISTS (SELECT 1 FROM a b WHERE b.host <> a.host AND b.s < a.e AND a.s < b.e) o,
-                    EXISTS (SELECT 1 FROM inside n WHERE n.id = a.id AND n.heard_start AND NOT n.under_own) i,
+                    EXISTS (SELECT 1 FROM inside n WHERE n.id = a.id AND n.heard_start AND NOT n.under_own
+                                                     AND NOT n.hidden) i,
                     EXISTS (SELECT 1 FROM inside n WHERE n.id = a.id AND n.heard_start AND n.under_own) m,
+                    EXISTS (SELECT 1 FROM inside n WHERE n.id = a.id AND n.heard_start AND n.hidden) h,
                     EXISTS (SELECT 1 FROM inside n WHERE n.id = a.id) t FROM a)
   SELECT count(*), count(*) FILTER (WHERE o), count(*) FILTER (WHERE o AND answer IS DISTINCT FROM 'ack'),
          count(*) FILTER (WHERE NOT o AND answer IS DISTINCT FROM 'ack'),
          (SELECT count(*) FROM commands c WHERE outcome = 'confirmed'
             AND NOT EXISTS (SELECT 1 FROM frame_attempts f WHERE f.command_id = c.id AND f.attempt > 1)),
-         count(*) FILTER (WHERE i), count(*) FILTER (WHERE m AND NOT i), count(*) FILTER (WHERE t AND NOT m AND NOT i)
+         count(*) FILTER (WHERE i), count(*) FILTER (WHERE m AND NOT i),
+         count(*) FILTER (WHERE t AND NOT m AND NOT i AND NOT h), count(*) FILTER (WHERE h AND NOT m AND NOT i)
   FROM x")
 # Executions (bench/e2e/fleet_executions.sql): every frame a robot executed was sent to its
 # address by some sender. Targets: 0 executions by the wrong robot, 0 of frames no one sent.
@@ -222,7 +233,8 @@ echo "fleet_load: receptions logged $logged_total, stored $stored_total; command
   "confirmed $confirmed_total ($first_time at the first try); spill lines left $spilled"
 echo "fleet_load: frames sent $attempts, $overlapped overlapped another sender's ($overlapped_lost of them" \
   "unanswered); unanswered without an overlap $clear_lost; started into another's exchange $into_exchange," \
-  "into one that began under its own $masked, within 100 ms of another's start $together"
+  "into one that began under its own $masked, within 100 ms of another's start $together, into one hidden" \
+  "by a third's answered exchange that began with it $hidden"
 echo "fleet_load: frames executed $executed; by a robot they were not sent to $wrong_robot; sent by no sender $wrong_frame"
 if [ -n "$json" ]; then
   python3 - "$json" "${failures[@]}" <<EOF
@@ -234,7 +246,7 @@ json.dump({"agents": $agents, "servers": $servers, "seconds": $seconds, "outage_
            "spill_left": $spilled, "frames": $attempts, "frames_overlapped": $overlapped,
            "frames_overlapped_unanswered": $overlapped_lost, "frames_clear_unanswered": $clear_lost,
            "frames_into_exchange": $into_exchange, "frames_into_masked_exchange": $masked,
-           "frames_started_together": $together, "executed": $executed,
+           "frames_started_together": $together, "frames_into_hidden_exchange": $hidden, "executed": $executed,
            "executed_by_wrong_robot": $wrong_robot, "executed_unsent": $wrong_frame,
            "measured_utc": "$(date -u '+%Y-%m-%d %H:%M UTC')", "failures": sys.argv[2:]}, open(sys.argv[1], "w"))
 EOF

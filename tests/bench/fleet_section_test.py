@@ -58,9 +58,18 @@ class FleetLoadRows(unittest.TestCase):
         classed = load(agents=4, servers=2, into_exchange=0)
         classed.update(frames_into_masked_exchange=9, frames_started_together=4)
         text = section(two_senders=classed)
-        self.assertIn("| 40 (20) | 3 | 0 (9; 4) |", text)
+        self.assertIn("| 40 (20) | 3 | 0 (9; 4; –) |", text)
         self.assertIn("0 started into an exchange of the other it could hear begin, 9 into one that began under its "
-                      "own and 4 within 100 ms of the other's start", target_row(text, "| two senders, "))
+                      "own and 4 within 100 ms of the other's start;", target_row(text, "| two senders, "))
+
+    def test_starts_into_an_exchange_hidden_by_a_third_senders_are_counted_apart(self):
+        classed = load(into_exchange=0)
+        classed.update(frames_into_masked_exchange=13, frames_started_together=16, frames_into_hidden_exchange=3)
+        self.assertIn("| 40 (20) | 3 | 0 (13; 16; 3) |", section(classed))
+        two = load(agents=4, servers=2, into_exchange=0)
+        two.update(frames_into_masked_exchange=1, frames_started_together=2, frames_into_hidden_exchange=1)
+        self.assertIn("within 100 ms of the other's start, 1 into one hidden by a third sender's answered exchange "
+                      "that began with it", target_row(section(two_senders=two), "| two senders, "))
 
     def test_a_failure_misses_the_target_and_is_listed(self):
         text = section(load(failures=["agent3 logged 12 frames, the database holds 11"]))
