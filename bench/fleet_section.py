@@ -208,8 +208,11 @@ def _teleop_targets(w, run, keys):
     w(f"| the same: key press → that robot's cmd_vel | median ≤ 300 ms, p95 ≤ 600 ms | {ms['median']:.0f} / "
       f"{ms['p95']:.0f} ms{'' if press_met else ': a press waits for the frames queued ahead of it, one per robot'}"
       f" | {'yes' if press_met else 'no'} |")
-    w(f"| the same: lapses while a key is held; frames executed by the wrong robot | 0; 0 | {lapses}; {wrong} "
-      f"| {'yes' if lapses == 0 and wrong == 0 else 'no'} |")
+    # Whether a lapse was a wait for the air: runs before 2026-11-30 20:30 UTC did not count it.
+    waited = (f"; the sender deferred {run['air_deferred']} frames to another's sound (heard in "
+              f"{run['air_busy_blocks']} blocks)" if lapses and "air_deferred" in run else "")
+    w(f"| the same: lapses while a key is held; frames executed by the wrong robot | 0; 0 | {lapses}; {wrong}"
+      f"{waited} | {'yes' if lapses == 0 and wrong == 0 else 'no'} |")
 
 
 def fleet_section(w, data, profiles, ok, directory):

@@ -15,6 +15,8 @@
 //   presses   from the new target sent on its stream to the first cmd_vel sample at it;
 //   lapses    standstills on cmd_vel while its operator held a non-zero target (a lease ran out);
 //   wrong     velocities it executed outside its range (another robot's frames).
+// And the sender's air: blocks of another's sound it heard, and frames it deferred for them
+// (a lapse of every robot at once with none was a stalled process, not a wait for the air).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -189,11 +191,20 @@ int main(int argc, char** argv) {
           r["press_to_cmd_vel_ms"] = summary(f.press_ms);
           robots.push_back(r);
         }
+        // A lapse of every robot at once is the sender's: it waited for the air (another's sound
+        // heard, or its own taken for another's), or its process stalled (no wait counted).
+        const server::AirShare air = fleet.air_share();
+        std::printf("the sender's air: %llu blocks of another's sound heard, %llu frames deferred, %llu yields\n",
+                    static_cast<unsigned long long>(air.busy_blocks), static_cast<unsigned long long>(air.deferred),
+                    static_cast<unsigned long long>(air.yields));
         std::vector<double> all_ms;
         for (const auto& f : figures) all_ms.insert(all_ms.end(), f.press_ms.begin(), f.press_ms.end());
         nlohmann::json out = {
             {"authenticated", authenticated}, {"seconds", driven_s}, {"lease_s", lease_s}, {"robots", robots}};
         out["press_to_cmd_vel_ms"] = summary(all_ms);
+        out["air_busy_blocks"] = air.busy_blocks;
+        out["air_deferred"] = air.deferred;
+        out["air_yields"] = air.yields;
         out["rir"] = rir;
         out["measured_utc"] = utc_now_text();
         if (!json_path.empty()) write_json(json_path, out);

@@ -146,6 +146,14 @@ class FleetTeleopRows(unittest.TestCase):
                       "renewals did not keep up | no |", text)
         self.assertIn("| 0; 0 | yes |", text)
         self.assertIn("| 1; 0 | no |", text)
+        # With the sender's air counted, a lapse says whether the sender waited for the air.
+        counted = run(2.7, 2.4, 3)
+        counted.update(air_deferred=0, air_busy_blocks=0)
+        out = []
+        fleet_section.fleet_section(out.append, {"fast": {"fleet_teleop": counted}}, ["fast"],
+                                    lambda d: "error" not in d, tempfile.gettempdir() + "/no-such-bench-dir")
+        self.assertIn("| 3; 0; the sender deferred 0 frames to another's sound (heard in 0 blocks) | no |",
+                      "\n".join(out))
         # Unkeyed: 3 × 1.92 own frames a second at 153.75 ms, no joint renewal: 89 %.
         self.assertIn("| 89 % (5.8 own, 0.0 joint a second) |", text)
         out = []

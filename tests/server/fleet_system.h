@@ -82,6 +82,8 @@ class FleetSystem {
   FleetRobot& robot(std::size_t k) { return *robots_.at(k); }  // from 0
   std::size_t size() const { return robots_.size(); }
   const std::string& name(std::size_t k) const { return options_.names.at(k); }
+  // What the sender heard of others on the air, and how often it waited for them.
+  server::AirShare air_share() const { return transmitter_->air_share(); }
 
  private:
   FleetOptions options_;
