@@ -131,7 +131,8 @@ grpc::Status TeleopStream::drive_frames() {
 void TeleopStream::follow_renewals() {
   const bool renewable = session_->renewable(steady_s());
   if (renewable && !renewing_) {
-    renewing_ = transmitter_.keep_renewed(setup_.robot, *setup_.profile, renewal_every_ms(setup_.carried_lease_s));
+    renewing_ = transmitter_.keep_renewed(setup_.robot, *setup_.profile, renewal_every_ms(setup_.carried_lease_s),
+                                          1000 * setup_.carried_lease_s);
   } else if (!renewable && renewing_) {
     transmitter_.stop_renewing(setup_.robot);
     renewing_ = false;

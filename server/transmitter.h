@@ -147,11 +147,12 @@ class Transmitter {
   // has a key and the room links none; std::invalid_argument for a profile that names no
   // robot; and what submit() throws.
   std::shared_ptr<Job> submit_every_robot_stop(const LinkProfile* profile = nullptr);
-  // Teleop: keeps `robot`'s velocity lease renewed every `every_ms` by joint renewals under
-  // `profile` (link::Link::plan_renewal: one unanswered frame for up to three robots), sent
-  // ahead of the queue (a Stop still goes first), until stop_renewing(). False where that link
-  // cannot renew so (the seed's): the caller renews with velocity frames of its own.
-  bool keep_renewed(RobotIndex robot, const LinkProfile& profile, double every_ms);
+  // Teleop: keeps `robot`'s velocity lease (`lease_ms` from each frame's start) renewed every
+  // `every_ms` by joint renewals under `profile` (link::Link::plan_renewal: one unanswered
+  // frame for up to three robots), sent ahead of the queue (a Stop still goes first), until
+  // stop_renewing(). False where that link cannot renew so (the seed's): the caller renews
+  // with velocity frames of its own.
+  bool keep_renewed(RobotIndex robot, const LinkProfile& profile, double every_ms, double lease_ms);
   void stop_renewing(RobotIndex robot);
   // When the last joint renewal that renewed `robot` began, if one did.
   std::optional<std::chrono::steady_clock::time_point> last_renewed(RobotIndex robot) const;
@@ -202,6 +203,9 @@ class Transmitter {
   void send_renewal(const std::vector<RobotIndex>& robots);
   // Under mutex_: the robots whose renewal goes before the queue now (none while a Stop waits).
   std::vector<RobotIndex> renewals_due() const;
+  // When the wait for the answer to `job`'s frame, which ended at `frame_end_ms`, ends: its
+  // `deadline_ms`, or sooner, when a kept robot's renewal must go to be heard within its lease.
+  double answer_wait_end_ms(const Job& job, double frame_end_ms, double deadline_ms) const;
   // One frame of `job` through the retry controller, `attempt` its state (seed Fig. 8).
   struct FrameAttempt;
   // Each false when the command ended there (cancelled, the loudspeaker failed, no decision).
@@ -265,6 +269,9 @@ class Transmitter {
   std::deque<std::shared_ptr<Job>> queue_;
   std::shared_ptr<Job> on_air_;
   std::deque<HeardReply> replies_;
+  // The last answer from a robot none of ours read under our exchange, awaiting a second
+  // (wait_reply): its address and when it was heard. Guarded by mutex_.
+  std::optional<std::pair<unsigned, double>> masked_once_;
   std::optional<std::string> run_id_;
   std::string unavailable_;  // why the audio path failed, once it did
   bool stopping_ = false;

@@ -16,16 +16,22 @@ namespace {
 // at most 400 ms after the last (teleop_stream.cpp), well within a lease of 1 s, and a key
 // press's frame is worth more now.
 constexpr double kRenewalSlackMs = 100;
+// A renewal's frame (102.5 ms, keyed 153.75) and the capture latency (reliability::kOwnLatencyMs)
+// before its robot has heard it: it must be heard before the lease runs out.
+constexpr double kRenewalHeardMs = 250;
+// A wait for an answer lasts at least its answer's sound and this after the frame: the robots'
+// answers are heard 19-55 ms after their frames end (fleet_load.sh's runs; docs/protocol.md §9).
+constexpr double kAnswerSoonMs = 150;
 }  // namespace
 
-bool Transmitter::keep_renewed(RobotIndex robot, const LinkProfile& profile, double every_ms) {
+bool Transmitter::keep_renewed(RobotIndex robot, const LinkProfile& profile, double every_ms, double lease_ms) {
   const link::Link& renewing = link_for(profile, robot);
   if (!renewing.renews_jointly()) return false;
   {
     std::lock_guard lock(mutex_);
     Robot& r = robots_.at(robot);
     r.renewal_link = &renewing;
-    renewals_.keep(robot, every_ms, r.frame_started_ms.value_or(now_ms()));
+    renewals_.keep(robot, every_ms, lease_ms, r.frame_started_ms.value_or(now_ms()));
   }
   changed_.notify_all();
   return true;
@@ -50,6 +56,20 @@ std::vector<RobotIndex> Transmitter::renewals_due() const {
   if (std::holds_alternative<command::Stop>(queue_.front()->command())) return {};
   // A command waiting goes first (a key press: a new target) while the renewal can wait.
   return renewals_.due(now_ms() - kRenewalSlackMs, reliability::kRenewalSlots);
+}
+
+double Transmitter::answer_wait_end_ms(const Job& job, double frame_end_ms, double deadline_ms) const {
+  // Not the seed's word frames: their answers come up to 1.4 s after the chord.
+  if (job.frames().empty() || job.frames().front()->word) return deadline_ms;
+  std::lock_guard lock(mutex_);
+  const std::optional<double> lease_end_ms = renewals_.first_lease_end_ms();
+  if (!lease_end_ms) return deadline_ms;
+  // An answer lost holds the air until the deadline, and no renewal may interrupt a wait: a
+  // lost ACK after a key press once held it 500 ms past a renewal's time, and a robot stood
+  // still. The wait ends when the renewal must go to be heard within the lease; by then an
+  // answer that was coming has come.
+  const double soonest_ms = frame_end_ms + job.profile().timing.ack_ms + kAnswerSoonMs;
+  return std::min(deadline_ms, std::max(soonest_ms, *lease_end_ms - kRenewalHeardMs));
 }
 
 void Transmitter::renew_between_frames(const Job& job) {

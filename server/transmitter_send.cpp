@@ -179,12 +179,13 @@ bool Transmitter::transmit(Job& job, FrameAttempt& attempt) {
 
 void Transmitter::await_answer(Job& job, FrameAttempt& attempt) {
   reliability::RetryController& retry = attempt.retry;
-  const auto reply = wait_reply(job.link(), *attempt.frame, attempt.chord_start, *retry.deadline_ms());
+  const double frame_end_ms = attempt.chord_start + attempt.frame->tone_ms;
+  const auto reply = wait_reply(job.link(), *attempt.frame, attempt.chord_start,
+                                answer_wait_end_ms(job, frame_end_ms, *retry.deadline_ms()));
   ProgressEvent answer = attempt.event(Kind::NoAnswer, job);
   answer.chord_ended_at = attempt.chord_end;
   // Where our robot's answer sounded, or would have: what the microphone heard there is ours.
   const double answer_ms = job.profile().timing.ack_ms;
-  const double frame_end_ms = attempt.chord_start + attempt.frame->tone_ms;
   std::optional<double>& answer_delay_ms = robots_[robot_of(job.link())].answer_delay_ms;
   if (reply) {
     const auto kind = reply->answer.answer.ack ? reliability::Answer::Ack : reliability::Answer::Nack;
