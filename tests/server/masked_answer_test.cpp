@@ -61,7 +61,8 @@ link::LinkOptions robot_link(std::uint8_t address) {
   return o;
 }
 
-server::AirShare drive_while_an_intruder_answers_for(std::uint8_t intruder_address) {
+// The intruder answers under the first `answers` frames (all of them by default).
+server::AirShare drive_while_an_intruder_answers_for(std::uint8_t intruder_address, int answers = 1'000) {
   sim::ChannelConfig config;
   config.noise = sim::parse_noise("white", -70);
   sim::SimulatedAir air(fast.sample_rate_hz, config, 3);
@@ -87,10 +88,11 @@ server::AirShare drive_while_an_intruder_answers_for(std::uint8_t intruder_addre
                                       link::answer_lane(kIntruderSequence));
   std::atomic<bool> running = true;
   std::thread intruding([&] {
-    for (int seen = 0; running;) {
+    for (int seen = 0, played = 0; running;) {
       const int now = observer.wait_past(seen, 100ms);
       if (now == seen) continue;
       seen = now;
+      if (played++ >= answers) continue;
       std::this_thread::sleep_for(kIntoTheFrame);
       intruder.speaker->write(ack);
     }
@@ -124,6 +126,17 @@ TEST(MaskedAnswer, AnAnswerFromAnyOfOurRobotsIsNeverAnothers) {
   std::printf("address 2: %llu read under our exchanges, %llu outside them; %llu frames deferred\n",
               static_cast<unsigned long long>(share.masked_answers),
               static_cast<unsigned long long>(share.others_answers), static_cast<unsigned long long>(share.deferred));
+  EXPECT_EQ(share.masked_answers, 0u);
+  EXPECT_EQ(share.deferred, 0u);
+}
+
+// One answer naming a robot none of ours may be a misread of our own robot's: the fleet teleop
+// bench read one in 120 s with three robots, and deferring for it let every lease run out.
+// Only a second from the same robot within kMaskedAgainMs is another sender's.
+TEST(MaskedAnswer, OneAnswerFromARobotNoneOfOursIsNotYetAnothersSender) {
+  const server::AirShare share = drive_while_an_intruder_answers_for(5, 1);
+  std::printf("address 5, once: %llu read under our exchanges as another's; %llu frames deferred\n",
+              static_cast<unsigned long long>(share.masked_answers), static_cast<unsigned long long>(share.deferred));
   EXPECT_EQ(share.masked_answers, 0u);
   EXPECT_EQ(share.deferred, 0u);
 }
