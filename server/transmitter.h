@@ -201,6 +201,8 @@ class Transmitter {
   void renew_between_frames(const Job& job);
   // A joint renewal of `robots` (kept by keep_renewed), planned and played now.
   void send_renewal(const std::vector<RobotIndex>& robots);
+  // Under mutex_: whether every robot a renewal renews is still kept (no stream of theirs ended).
+  bool all_kept(const std::vector<Job::Renewed>& renewed) const;
   // Under mutex_: the robots whose renewal goes before the queue now (none while a Stop waits).
   std::vector<RobotIndex> renewals_due() const;
   // When the wait for the answer to `job`'s frame, which ended at `frame_end_ms`, ends: its

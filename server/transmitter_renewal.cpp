@@ -45,11 +45,10 @@ void Transmitter::stop_renewing(RobotIndex robot) {
     robots_.at(robot).renewal_link = nullptr;
     // A renewal still waiting for the air renews only robots whose streams go on: one that
     // went out after its stream ended once stopped a robot 1327 ms after its client was killed
-    // (dtmf-bench-teleop, bound 1200 ms). Played already, cancelling changes nothing.
-    if (on_air_ && on_air_->renewal() &&
-        std::none_of(on_air_->renewed().begin(), on_air_->renewed().end(),
-                     [this](const Job::Renewed& r) { return renewals_.kept(r.index); }))
-      on_air_->cancel();
+    // (dtmf-bench-teleop, bound 1200 ms). Its other robots are due again at once (send_renewal
+    // counts them renewed only when it plays): the next renewal leaves this one out. Played
+    // already, cancelling changes nothing.
+    if (on_air_ && on_air_->renewal() && !all_kept(on_air_->renewed())) on_air_->cancel();
   }
   changed_.notify_all();
 }
@@ -81,6 +80,10 @@ double Transmitter::answer_wait_end_ms(const Job& job, double frame_end_ms, doub
   // answer that was coming has come.
   const double soonest_ms = frame_end_ms + job.profile().timing.ack_ms + kAnswerSoonMs;
   return std::min(deadline_ms, std::max(soonest_ms, *lease_end_ms - kRenewalHeardMs));
+}
+
+bool Transmitter::all_kept(const std::vector<Job::Renewed>& renewed) const {
+  return std::all_of(renewed.begin(), renewed.end(), [this](const Job::Renewed& r) { return renewals_.kept(r.index); });
 }
 
 void Transmitter::renew_between_frames(const Job& job) {
@@ -117,19 +120,24 @@ void Transmitter::send_renewal(const std::vector<RobotIndex>& robots) {
       renewed.push_back({r, robots_[r].name, links[i]->options().address});
     }
   }
-  {
-    // Those left out (nothing to renew, a counter they could not complete) are not due again
-    // until their period has passed once more: their streams renew them with frames of their own.
+  const auto mark_started = [this](const std::vector<RobotIndex>& marked, const std::vector<Job::Renewed>& except) {
     std::lock_guard lock(mutex_);
     const double now = now_ms();
-    for (const RobotIndex r : robots) renewals_.frame_started(r, now);
-  }
+    for (const RobotIndex r : marked)
+      if (std::none_of(except.begin(), except.end(), [r](const Job::Renewed& e) { return e.index == r; }))
+        renewals_.frame_started(r, now);
+  };
+  // Those left out (nothing to renew, a counter they could not complete) are not due again
+  // until their period has passed once more: their streams renew them with frames of their own.
+  // Those renewed count from the frame's start (transmit()): a renewal cancelled while it waits
+  // for the air (stop_renewing) leaves them due.
+  mark_started(robots, renewed);
   if (renewed.empty()) return;
   link::Link& first = *links[planned->renewed.front()];
   std::shared_ptr<Job> job;
   std::shared_ptr<Job> between;  // the command whose frames it goes between, if any
   {
-    std::lock_guard lock(mutex_);
+    std::unique_lock lock(mutex_);
     job = std::make_shared<Job>(first, std::move(planned->frame), std::move(renewed), run_id_);
     ProgressEvent queued{ProgressEvent::Kind::Queued};
     queued.frame_count = 1;
@@ -139,8 +147,12 @@ void Transmitter::send_renewal(const std::vector<RobotIndex>& robots) {
       // Its row cannot be recorded: nothing goes on air that the log would not show. The
       // streams renew their leases with frames of their own, which fail as visibly.
       spdlog::error("{}: not sent, it cannot be recorded: {}", job->description(), e.what());
+      lock.unlock();
+      mark_started(robots, {});  // not due again at once, to fail again
       return;
     }
+    // A stream that ended while the frame was planned: the next renewal leaves its robot out.
+    if (!all_kept(job->renewed())) job->cancel();
     between = std::exchange(on_air_, job);
   }
   send_unanswered(*job);
