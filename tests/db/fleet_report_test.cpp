@@ -69,15 +69,21 @@ struct FleetRun {
   }
 
   // A joint renewal of alpha and beta (migration 011): no answer, taken by both.
-  void renewal(Store& store) {
+  // A joint renewal of alpha and beta's row, ending `outcome`.
+  CommandRow renewal_row(const std::string& outcome) const {
     CommandRow c;
     c.run_id = run.id;
     c.kind = "renewal";
     c.profile = "fast";
     c.requested_at = t0 + milliseconds(slot * kSlotMs);
-    c.outcome = "sent";
+    c.outcome = outcome;
     c.parameters = {{"robots", {"alpha", "beta"}}, {"addresses", {1, 2}}};
     c.host = "sender-a";
+    return c;
+  }
+
+  void renewal(Store& store) {
+    const CommandRow c = renewal_row("sent");
     store.write(c);
     FrameAttemptRow a = attempt(c.id, 0, c.requested_at, "");
     a.answer.reset();
@@ -91,6 +97,10 @@ struct FleetRun {
     ++slot;
     last_renewal_frame = a.frame;
   }
+
+  // A renewal cancelled while it waited for the air, a stream it renewed having ended
+  // (migration 013): its row, and no frame attempt.
+  void renewal_cancelled(Store& store) { store.write(renewal_row("cancelled")); }
 
   // The last renewal heard again by a robot that renews nothing with it (migration 012): its
   // echo ('repeat'), or a plain renewal of a velocity the robot no longer holds ('ignored').
@@ -169,6 +179,7 @@ TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
     f.stop_every_robot(store);
     f.renewal(store);
     f.renewal(store);
+    f.renewal_cancelled(store);
     f.renewal_not_taken(store, "alpha", 1, "repeat");
     f.renewal_not_taken(store, "beta", 2, "ignored");
     // Another sender's robot in the same room took its own frame meanwhile: not this run's.
@@ -192,7 +203,8 @@ TEST(FleetReport, TheRoomAndEachRobotAddUpAndStopsForEveryRobotStandApart) {
   EXPECT_EQ(room["sender_confirmed"].as<int>(), 7);
   EXPECT_EQ(room["every_robot_stops_sent"].as<int>(), 1);
   EXPECT_EQ(room["every_robot_stops_executed"].as<int>(), 4) << "two copies, each executed by both robots";
-  EXPECT_EQ(room["renewals_sent"].as<int>(), 2) << "joint renewals are no transmissions either";
+  EXPECT_EQ(room["renewals_sent"].as<int>(), 2)
+      << "joint renewals are no transmissions either, and the cancelled one never went on air";
   EXPECT_EQ(room["renewals_executed"].as<int>(), 4) << "two renewals, each taken by both robots";
   EXPECT_EQ(room["renewals_not_taken"].as<int>(), 2) << "an echo, and a renewal of a velocity no longer held";
 

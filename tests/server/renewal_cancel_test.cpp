@@ -25,11 +25,14 @@ using namespace std::chrono_literals;
 namespace {
 
 const LinkProfile& fast = profile_by_name("fast");
-constexpr double kRenewEveryMs = 400;  // as a Teleop stream with a lease of 1 s
-constexpr double kLeaseMs = 1000;
+// Longer than a Teleop stream's 400 ms, so that both robots are kept before the first falls
+// due: a renewal renews every robot kept, and two kept one after the other while the first was
+// due already went out as two renewals under ctest's load.
+constexpr double kRenewEveryMs = 2000;
+constexpr double kLeaseMs = 2.5 * kRenewEveryMs;
 constexpr auto kQuietFirst = 500ms;      // the carrier sense learns the room's floor
 constexpr auto kWaitingFor = 200ms;      // how long the renewal has waited for the air when a stream ends
-constexpr double kIntruderSoundS = 2.5;  // longer than a renewal's period, shorter than kMaxDeferMs
+constexpr double kIntruderSoundS = 3.0;  // from before a renewal is due until after it; under kMaxDeferMs
 constexpr double kIntruderHz = 1500;     // in the fast profile's band
 
 // The renewals the sender queued (each waits for the air there) and the ones it started, with
@@ -102,7 +105,7 @@ server::RobotLinks robot(std::string name, std::uint8_t address) {
 }
 
 struct Outcome {
-  std::uint64_t busy_before_keep = 0;            // blocks the sender heard busy before its renewals were due
+  std::uint64_t busy_before_due = 0;             // blocks the sender heard busy before a renewal was due
   std::optional<Renewals::Seen> waiting;         // the renewal that waited for the air
   std::optional<server::Outcome> waiting_ended;  // how it ended
   std::optional<Renewals::Seen> first_played;    // the first renewal that went on air
@@ -132,21 +135,21 @@ Outcome end_alphas_stream_while_a_renewal_waits(std::size_t kept) {
   std::this_thread::sleep_for(kQuietFirst);
   // A renewal renews the velocity its robot took last: one each, unanswered here.
   for (std::size_t r = 0; r < kept; ++r) {
-    auto job =
-        transmitter.submit(command::Velocity{0.1, 0, kLeaseMs / 1000}, server::Policy::Live, 1s, false, nullptr, r);
+    auto job = transmitter.submit(command::Velocity{0.1, 0, 1.0}, server::Policy::Live, 1s, false, nullptr, r);
     while (!job->finished_and_drained()) job->next_event(100ms);
   }
+  // The first is due kRenewEveryMs after alpha's velocity began: about 1.5 s from now.
+  for (std::size_t r = 0; r < kept; ++r)
+    EXPECT_TRUE(transmitter.keep_renewed(r, fast, kRenewEveryMs, kLeaseMs)) << "robot " << r;
   std::thread intruding([&] { intruder.speaker->write(tone(kIntruderSoundS)); });
   Outcome out;
   // The sender hears the air busy before a renewal is due.
-  for (int k = 0; k < 100 && out.busy_before_keep == 0; ++k) {
+  for (int k = 0; k < 100 && out.busy_before_due == 0; ++k) {
     std::this_thread::sleep_for(10ms);
-    out.busy_before_keep = transmitter.air_share().busy_blocks;
+    out.busy_before_due = transmitter.air_share().busy_blocks;
   }
-  for (std::size_t r = 0; r < kept; ++r)
-    EXPECT_TRUE(transmitter.keep_renewed(r, fast, kRenewEveryMs, kLeaseMs)) << "robot " << r;
 
-  out.waiting = observer.first_queued(1500ms);
+  out.waiting = observer.first_queued(3s);
   std::this_thread::sleep_for(kWaitingFor);
   transmitter.stop_renewing(0);
   if (out.waiting) out.waiting_ended = observer.ended(out.waiting->id, 3s);
@@ -163,7 +166,7 @@ Outcome end_alphas_stream_while_a_renewal_waits(std::size_t kept) {
 
 TEST(RenewalCancel, ARenewalWaitingForTheAirIsCancelledWhenItsOnlyStreamEnds) {
   const Outcome out = end_alphas_stream_while_a_renewal_waits(1);
-  ASSERT_GT(out.busy_before_keep, 0u) << "the sender never heard the intruder";
+  ASSERT_GT(out.busy_before_due, 0u) << "the sender never heard the intruder";
   ASSERT_TRUE(out.waiting) << "no renewal was due while the intruder held the air";
   ASSERT_TRUE(out.waiting_ended) << "the waiting renewal never ended";
   EXPECT_EQ(*out.waiting_ended, server::Outcome::Cancelled) << server::outcome_name(*out.waiting_ended);
@@ -173,7 +176,7 @@ TEST(RenewalCancel, ARenewalWaitingForTheAirIsCancelledWhenItsOnlyStreamEnds) {
 
 TEST(RenewalCancel, TheRenewalAfterTheCancelledOneLeavesTheEndedStreamsRobotOut) {
   const Outcome out = end_alphas_stream_while_a_renewal_waits(2);
-  ASSERT_GT(out.busy_before_keep, 0u) << "the sender never heard the intruder";
+  ASSERT_GT(out.busy_before_due, 0u) << "the sender never heard the intruder";
   ASSERT_TRUE(out.waiting) << "no renewal was due while the intruder held the air";
   EXPECT_EQ(out.waiting->robots, (std::vector<std::string>{"alpha", "beta"}));
   ASSERT_TRUE(out.waiting_ended) << "the waiting renewal never ended";
