@@ -104,7 +104,7 @@ server::RobotLinks robot(std::string name, std::uint8_t address) {
   return r;
 }
 
-struct Outcome {
+struct WhatTheAirSaw {
   std::uint64_t busy_before_due = 0;             // blocks the sender heard busy before a renewal was due
   std::optional<Renewals::Seen> waiting;         // the renewal that waited for the air
   std::optional<server::Outcome> waiting_ended;  // how it ended
@@ -115,7 +115,7 @@ struct Outcome {
 // Sends `kept` robots (of alpha and beta) a velocity and keeps them renewed while the intruder
 // holds the air; ends alpha's renewals while a renewal waits for the air, and keeps beta's (if
 // kept) until the air has been free again.
-Outcome end_alphas_stream_while_a_renewal_waits(std::size_t kept) {
+WhatTheAirSaw end_alphas_stream_while_a_renewal_waits(std::size_t kept) {
   sim::ChannelConfig config;
   config.noise = sim::parse_noise("white", -70);
   sim::SimulatedAir air(fast.sample_rate_hz, config, 3);
@@ -142,7 +142,7 @@ Outcome end_alphas_stream_while_a_renewal_waits(std::size_t kept) {
   for (std::size_t r = 0; r < kept; ++r)
     EXPECT_TRUE(transmitter.keep_renewed(r, fast, kRenewEveryMs, kLeaseMs)) << "robot " << r;
   std::thread intruding([&] { intruder.speaker->write(tone(kIntruderSoundS)); });
-  Outcome out;
+  WhatTheAirSaw out;
   // The sender hears the air busy before a renewal is due.
   for (int k = 0; k < 100 && out.busy_before_due == 0; ++k) {
     std::this_thread::sleep_for(10ms);
@@ -165,7 +165,7 @@ Outcome end_alphas_stream_while_a_renewal_waits(std::size_t kept) {
 }  // namespace
 
 TEST(RenewalCancel, ARenewalWaitingForTheAirIsCancelledWhenItsOnlyStreamEnds) {
-  const Outcome out = end_alphas_stream_while_a_renewal_waits(1);
+  const WhatTheAirSaw out = end_alphas_stream_while_a_renewal_waits(1);
   ASSERT_GT(out.busy_before_due, 0u) << "the sender never heard the intruder";
   ASSERT_TRUE(out.waiting) << "no renewal was due while the intruder held the air";
   ASSERT_TRUE(out.waiting_ended) << "the waiting renewal never ended";
@@ -175,7 +175,7 @@ TEST(RenewalCancel, ARenewalWaitingForTheAirIsCancelledWhenItsOnlyStreamEnds) {
 }
 
 TEST(RenewalCancel, TheRenewalAfterTheCancelledOneLeavesTheEndedStreamsRobotOut) {
-  const Outcome out = end_alphas_stream_while_a_renewal_waits(2);
+  const WhatTheAirSaw out = end_alphas_stream_while_a_renewal_waits(2);
   ASSERT_GT(out.busy_before_due, 0u) << "the sender never heard the intruder";
   ASSERT_TRUE(out.waiting) << "no renewal was due while the intruder held the air";
   EXPECT_EQ(out.waiting->robots, (std::vector<std::string>{"alpha", "beta"}));
