@@ -60,14 +60,32 @@ inline void add_room_key_flag(CLI::App& app, KeyFlags& flags, const std::string&
       ->envname(env_prefix + "_ROOM_KEY_FILE");
 }
 
+// Warns when the counter found on disk for `what` lies ahead of this machine's clock by more
+// than `slack` counters: a clock that ran fast wrote it, or this clock is behind; `then` says
+// what follows (docs/security.md, "Counters ahead of the clock").
+inline void warn_future_counter(const security::FileCounterStore& store, const std::string& what,
+                                std::uint64_t slack, const std::string& then) {
+  const auto stored = store.stored_counter();
+  const auto now = std::chrono::system_clock::now();
+  if (!stored || *stored <= security::clock_counter_floor(now) + slack) return;
+  spdlog::warn("{}: the counter kept in {} ({}) lies {:.0f} s ahead of this machine's clock: a clock that ran fast "
+               "wrote it, or this clock is behind (set it: timedatectl, NTP). {}",
+               what, store.directory().string(), *stored, security::seconds_ahead_of_clock(*stored, now), then);
+}
+
 // The sender's link for the stop every robot obeys: with --room-key, keyed with the room key,
 // its counters following the clock (security/room_freshness.h); without, plain.
 inline link::LinkOptions room_link_options(const KeyFlags& flags) {
   link::LinkOptions options;
   if (flags.room_key_file.empty()) return options;
   options.key = security::LinkKey::load(flags.room_key_file);
-  options.counters = security::FileCounterStore::open_sender(
-      flags.state_dir, *options.key, std::chrono::system_clock::now, security::CounterPace::Clock);
+  const auto counters = security::FileCounterStore::open_sender(flags.state_dir, *options.key,
+                                                                std::chrono::system_clock::now,
+                                                                security::CounterPace::Clock);
+  options.counters = counters;
+  warn_future_counter(*counters, "room key " + options.key->id_hex(), security::kSenderBlock,
+                      "Robots take room counters up to " + std::to_string(security::kClockMarginS) +
+                          " s ahead of their clocks; past that a stop still stops them, its counter not kept");
   spdlog::info("room key {} from {}: stops for every robot go authenticated", options.key->id_hex(),
                flags.room_key_file);
   return options;
@@ -80,7 +98,11 @@ inline link::LinkOptions link_options(const KeyFlags& flags, std::uint8_t addres
   options.address = address;
   if (flags.key_file.empty()) return options;
   options.key = security::LinkKey::load(flags.key_file);
-  options.counters = security::FileCounterStore::open_sender(flags.state_dir, *options.key);
+  const auto counters = security::FileCounterStore::open_sender(flags.state_dir, *options.key);
+  options.counters = counters;
+  warn_future_counter(*counters, "key " + options.key->id_hex(), security::kSenderBlock,
+                      "The robot refuses counters more than " + std::to_string(security::kClockMarginS) +
+                          " s ahead of its clock (a Stop still stops it)");
   spdlog::info("key {} from {}; counters in {}", options.key->id_hex(), flags.key_file, flags.state_dir);
   return options;
 }
@@ -93,8 +115,12 @@ inline link::LinkOptions robot_link_options(const KeyFlags& flags, std::uint8_t 
   options.address = address;
   if (!flags.room_key_file.empty()) {
     options.room_key = security::LinkKey::load(flags.room_key_file);
-    options.room_counters =
+    const auto room_counters =
         security::FileCounterStore::open_robot(flags.state_dir, *options.room_key, security::RobotKey::Room);
+    options.room_counters = room_counters;
+    warn_future_counter(*room_counters, "room key " + options.room_key->id_hex(), security::kClockMargin,
+                        "The room's window re-anchors to this clock at the next stop for every robot, so true "
+                        "stops are taken again (security/room_freshness.h)");
     spdlog::info("room key {} from {}: a stop for every robot is taken only under it (newest room counter {})",
                  options.room_key->id_hex(), flags.room_key_file, options.room_counters->last_accepted());
   }
@@ -103,6 +129,11 @@ inline link::LinkOptions robot_link_options(const KeyFlags& flags, std::uint8_t 
   const auto counters = security::FileCounterStore::open_robot(
       flags.state_dir, *options.key, flags.new_key ? security::RobotKey::New : security::RobotKey::Paired);
   options.counters = counters;
+  warn_future_counter(*counters, "key " + options.key->id_hex(), security::kSenderBlock,
+                      "Frames are refused until the sender's counters pass it, or, past " +
+                          std::to_string(security::kClockMarginS) +
+                          " s, until this clock does (a Stop still stops the robot); if the clocks are right, make "
+                          "a new key (dtmfctl keygen) and pair both sides again");
   if (flags.new_key) {
     spdlog::info(
         "key {} from {}: new, its counter state written in {} (accepted 0); start without --new-key from now on",

@@ -149,6 +149,14 @@ std::vector<TransmitFrame> FastLink::plan(const command::Command& command) {
   std::vector<TransmitFrame> frames;
   security::CounterStore& counters = *options_.counters;
   std::uint64_t counter = counters.next_counter();
+  if (std::holds_alternative<command::Stop>(command)) {
+    // A Stop carries its whole counter, its MAC over STOP: a robot out of step places it with
+    // no synchronisation first, so no unanswered synchronisation can keep it off the air, and
+    // it costs no extra frame (docs/protocol.md §10, "A Stop carries its counter").
+    TransmitFrame stop = sealed_frame(payload, true, counter);
+    stop.synchronisation = false;
+    return {std::move(stop)};
+  }
   if (!security::completable(counters.last_confirmed(), counter)) {
     frames.push_back(sealed_frame(0, true, counter));
     counter = counters.next_counter();
@@ -278,7 +286,7 @@ std::unique_ptr<FrameReceiver> FastLink::receiver() const {
 std::vector<float> FastLink::answer_audio(const Reception& r) const {
   if (!r.answered) return {};
   if (r.acknowledged() && r.counter && options_.key) {
-    const auto input = sealed_mac_input(r.bits, *r.counter);
+    const auto input = sealed_mac_input(r);
     const std::uint32_t mac = reliability::sealed_frame_unpack(r.bits)->mac;
     const double frame_end_ms =
         r.start_ms + 1000.0 * profile().hops().sealed_frame_samples() / profile().sample_rate_hz;

@@ -3,10 +3,11 @@
 #include <algorithm>
 
 #include "command/command_payload.h"
+#include "link/admission_verdicts.h"
 #include "reliability/command_frame.h"
 #include "reliability/plain_renewal.h"
-#include "reliability/renewal_frame.h"
 #include "reliability/sealed_frame.h"
+#include "security/counter_clock.h"
 #include "security/frame_mac.h"
 #include "security/freshness.h"
 #include "signal/hop_synthesizer.h"
@@ -14,21 +15,9 @@
 namespace dtmf::link {
 
 namespace {
-// A velocity's lease, from a frame that began at `start_ms` (the robot counts it so).
-double lease_end(const command::Velocity& velocity, double start_ms) { return start_ms + 1000 * velocity.lease_s; }
 
-void refuse(Reception& r, RefusalReason reason, std::string why) {
-  r.event = ReceptionEvent::Refused;
-  r.refusal = reason;
-  r.detail = std::move(why);
-}
-
-// A frame this robot cannot check may be another robot's (its own key, or none): refused
-// here, and left for that robot to answer.
-void refuse_unchecked(Reception& r, std::string why) {
-  refuse(r, RefusalReason::Authentication, std::move(why));
-  r.answered = false;
-}
+using admission::refuse;
+using admission::refuse_unchecked;
 
 // The address a frame's bits name, read even where its check failed (its top three bits).
 std::uint8_t address_read(const reliability::FrameBits& bits, int bit_count) {
@@ -36,20 +25,14 @@ std::uint8_t address_read(const reliability::FrameBits& bits, int bit_count) {
                                    reliability::kAddressMask);
 }
 
-}  // namespace
+// The payloads a frame in synchronisation form may stand for, which it does not carry: a
+// synchronisation's, and a Stop's (a Stop always carries its whole counter, so that a robot
+// out of step can place it: fast_link.cpp).
+constexpr std::uint32_t kSyncPayload = 0;
+const std::uint32_t kStopPayload = command::encode_payload(command::Stop{});
 
-namespace {
-
-security::FrameMacInput mac_input(const reliability::SealedFrame& f, std::uint64_t counter) {
-  return {f.address, static_cast<std::uint8_t>(f.form), counter, f.payload};
-}
-
-// A stop for every robot under the room key carries its whole counter (synchronisation form)
-// and no payload: its MAC covers the payload the room key's frames always mean.
-const std::uint32_t kRoomStopPayload = command::encode_payload(command::Stop{true});
-
-security::FrameMacInput room_mac_input(const reliability::SealedFrame& f) {
-  return {f.address, static_cast<std::uint8_t>(f.form), f.counter, kRoomStopPayload};
+security::FrameMacInput mac_input(const reliability::SealedFrame& f, std::uint64_t counter, std::uint32_t payload) {
+  return {f.address, static_cast<std::uint8_t>(f.form), counter, payload};
 }
 
 // The counter a frame stands for, after the last accepted: a synchronisation carries all of
@@ -62,9 +45,16 @@ std::uint64_t completed_counter(const reliability::SealedFrame& f, std::uint64_t
 
 }  // namespace
 
-security::FrameMacInput sealed_mac_input(const reliability::FrameBits& bits, std::uint64_t counter) {
-  const auto f = reliability::sealed_frame_unpack(bits);
-  return f ? mac_input(*f, counter) : security::FrameMacInput{};
+std::string admission::ahead_of_clock_words(std::uint64_t counter, std::uint64_t clock_counter) {
+  const double ahead_s =
+      static_cast<double>(counter - std::min(counter, clock_counter)) / security::kCountersPerSecond;
+  return std::to_string(static_cast<long long>(ahead_s)) + " s ahead of this robot's clock (the margin: " +
+         std::to_string(security::kClockMarginS) + " s)";
+}
+
+security::FrameMacInput sealed_mac_input(const Reception& r) {
+  const auto f = reliability::sealed_frame_unpack(r.bits);
+  return f && r.counter ? mac_input(*f, *r.counter, r.mac_payload) : security::FrameMacInput{};
 }
 
 FrameAdmission::FrameAdmission(const LinkProfile& profile, const LinkOptions& options)
@@ -140,148 +130,24 @@ void FrameAdmission::admit_plain(Reception& r) {
   }
   take_command(r, *decoded.command);
   if (const auto* velocity = std::get_if<command::Velocity>(&*decoded.command))
-    renewable_ = Renewable{frame.sequence, *velocity, r.start_ms, lease_end(*velocity, r.start_ms), {}, false};
+    renewable_ = Renewable{frame.sequence, *velocity, r.start_ms, admission::lease_end(*velocity, r.start_ms), {}, false};
 }
 
-std::optional<Reception> FrameAdmission::admit_plain_renewal(Reception r, const reliability::PlainRenewal& renewal) {
-  const auto slot = std::find_if(renewal.slots.begin(), renewal.slots.end(),
-                                 [&](const reliability::PlainRenewalSlot& s) { return s.address == options_.address; });
-  if (slot == renewal.slots.end()) return std::nullopt;  // other robots' renewal
-  r.answered = false;                                    // up to three robots heard it: answers would sound together
-  r.sequence = slot->sequence;
-  if (options_.key && !options_.accept_unauthenticated) {
-    refuse_unchecked(
-        r, "an unauthenticated renewal, and this robot has a key (dtmf-agent --accept-unauthenticated lets them in)");
-    return r;
-  }
-  // Only a plain velocity: a plain renewal of a sealed one would let anyone keep a keyed robot moving.
-  if (!renewable_ || renewable_->sealed || renewable_->counter != slot->sequence) {
-    r.event = ReceptionEvent::Ignored;
-    r.detail = "a renewal of the velocity frame numbered " + std::to_string(slot->sequence) +
-               ", not the velocity this robot took last (it missed that frame or took a command since): renews nothing";
-    return r;
-  }
-  // Past the horizon: not what its sender sends (it sends the velocity again every 5 s).
-  take_renewal(
-      r, renewal.number,
-      "renewal " + std::to_string(renewal.number) + " of the velocity numbered " + std::to_string(slot->sequence),
-      RefusalReason::Payload);
-  return r;
-}
-
-bool FrameAdmission::admit_plain_room_stop(Reception& r) {
-  const reliability::CommandFrame frame = *reliability::command_frame_unpack(r.bits.low64());
-  const auto decoded = command::decode_payload(frame.payload);
-  if (!decoded.command || !command::every_robot(*decoded.command)) return false;
-  r.sequence = frame.sequence;
-  r.answered = false;  // every robot heard it: no answer could say whose
-  if (options_.room_key) {
-    refuse(r, RefusalReason::Authentication,
-           "an unauthenticated stop for every robot, and this robot takes one only under the room key (--room-key)");
-  } else if (options_.key && !options_.accept_unauthenticated) {
-    refuse(r, RefusalReason::Authentication,
-           "an unauthenticated stop for every robot, and this robot has a key: a stop for every robot must come "
-           "under the room key (dtmf-agent --room-key)");
-  } else {
-    take_command(r, *decoded.command);
-  }
-  return true;
-}
-
-bool FrameAdmission::room_authentic(const reliability::SealedFrame& frame) const {
-  return options_.room_key && frame.form == reliability::SealedForm::Sync &&
-         security::frame_mac(*options_.room_key, room_mac_input(frame)) == frame.mac;
-}
-
-bool FrameAdmission::admit_sealed_room_stop(Reception& r) {
-  const reliability::SealedFrame frame = *reliability::sealed_frame_unpack(r.bits);
-  if (!room_authentic(frame)) return false;
-  r.answered = false;
-  r.counter = frame.counter;
-  switch (room_->check(frame.counter)) {
-    case security::Freshness::Stale:
-      refuse(r, RefusalReason::Authentication,
-             "a stop for every robot with room counter " + std::to_string(frame.counter) +
-                 ", older than the room's window: a frame captured and played again");
-      return true;
-    case security::Freshness::Repeat:  // the newest one's echo, or played again: stopped already
-      r.authenticated = true;
-      r.event = ReceptionEvent::Repeat;
-      r.detail = "repeat of room counter " + std::to_string(frame.counter) + ", not executed again";
-      return true;
-    case security::Freshness::New:
-      break;
-  }
-  options_.room_counters->accept(frame.counter);  // kept before the stop acts (only the newest is)
-  room_->take(frame.counter);
-  r.authenticated = true;
-  take_command(r, command::Stop{true});
-  return true;
-}
-
-std::optional<std::uint64_t> FrameAdmission::renewal_counter(const reliability::FrameBits& bits) const {
-  if (!options_.key || !renewable_ || !renewable_->sealed) return std::nullopt;
-  const auto renewal = reliability::renewal_frame_unpack(bits);
-  if (!renewal) return std::nullopt;
-  const std::uint64_t counter = security::complete_counter(renewable_->counter, renewal->counter_low);
-  const std::uint32_t mac =
-      security::frame_mac(*options_.key, security::renewal_mac_input(options_.address, counter, renewable_->counter)) >>
-      (32 - reliability::kRenewalMacBits);
-  for (const reliability::RenewalSlot& slot : renewal->slots) {
-    if (slot.address == options_.address && slot.mac == mac) return counter;
-  }
+std::optional<std::uint32_t> FrameAdmission::sealed_payload(const reliability::SealedFrame& frame,
+                                                            std::uint64_t counter) const {
+  if (!options_.key) return std::nullopt;
+  const auto holds = [&](std::uint32_t payload) {
+    return security::frame_mac(*options_.key, mac_input(frame, counter, payload)) == frame.mac;
+  };
+  if (frame.form == reliability::SealedForm::Command) return holds(frame.payload) ? std::optional(frame.payload) : std::nullopt;
+  if (holds(kSyncPayload)) return kSyncPayload;
+  if (holds(kStopPayload)) return kStopPayload;
   return std::nullopt;
-}
-
-bool FrameAdmission::admit_renewal(Reception& r) {
-  const auto counter = renewal_counter(r.bits);
-  if (!counter) return false;
-  r.answered = false;  // up to three robots heard it: answers would sound together
-  r.counter = *counter;
-  if (*counter == renewable_->counter) {  // a sender numbers a renewal after the velocity it renews
-    refuse(r, RefusalReason::Authentication,
-           "a renewal numbered as the velocity it renews (counter " + std::to_string(*counter) + "): forged");
-    return true;
-  }
-  if (take_renewal(r, *counter, "renewal of the velocity of counter " + std::to_string(renewable_->counter),
-                   RefusalReason::Authentication))
-    r.authenticated = true;
-  return true;
-}
-
-bool FrameAdmission::take_renewal(Reception& r, std::uint64_t id, const std::string& what, RefusalReason late) {
-  if (r.start_ms - renewable_->start_ms > kRenewalHorizonMs) {
-    refuse(r, late,
-           "a " + what + ", " + std::to_string(static_cast<int>((r.start_ms - renewable_->start_ms) / 1000)) +
-               " s after it, past the " + std::to_string(static_cast<int>(kRenewalHorizonMs / 1000)) +
-               " s a velocity is renewed for: renewals captured and played later");
-    return false;
-  }
-  if (r.start_ms > renewable_->lease_ends_ms) {
-    refuse(r, late,
-           "a " + what + ", " + std::to_string(static_cast<int>(r.start_ms - renewable_->lease_ends_ms)) +
-               " ms after the velocity's lease ran out: the robot stopped, and only a new velocity frame drives it "
-               "again");
-    return false;
-  }
-  if (!renewable_->renewed.insert(id).second) {  // its echo, or played again: renewed already
-    r.event = ReceptionEvent::Repeat;
-    r.detail = "repeat of " + what + ", not executed again";
-    return true;
-  }
-  echoes_.remember(r.bits, r.heard_ms);
-  renewable_->lease_ends_ms = lease_end(renewable_->velocity, r.start_ms);
-  r.command = renewable_->velocity;
-  r.event = ReceptionEvent::Renewed;
-  r.detail = what + ": " + command::describe(*r.command);
-  return true;
 }
 
 bool FrameAdmission::command_authentic(const reliability::FrameBits& bits) const {
   const auto frame = reliability::sealed_frame_unpack(bits);
-  if (!frame || !options_.key) return false;
-  const std::uint64_t counter = completed_counter(*frame, options_.counters->last_accepted());
-  return security::frame_mac(*options_.key, mac_input(*frame, counter)) == frame->mac;
+  return frame && options_.key && sealed_payload(*frame, completed_counter(*frame, options_.counters->last_accepted()));
 }
 
 bool FrameAdmission::authentic(const reliability::FrameBits& bits) const {
@@ -289,6 +155,8 @@ bool FrameAdmission::authentic(const reliability::FrameBits& bits) const {
   if (frame && room_authentic(*frame)) return true;
   return command_authentic(bits) || renewal_counter(bits);
 }
+
+std::uint64_t FrameAdmission::clock_counter() const { return security::clock_counter_floor(options_.wall_clock()); }
 
 void FrameAdmission::admit_sealed(Reception& r) {
   const reliability::SealedFrame frame = *reliability::sealed_frame_unpack(r.bits);
@@ -300,12 +168,26 @@ void FrameAdmission::admit_sealed(Reception& r) {
   const std::uint64_t last = counters.last_accepted();
   const std::uint64_t counter = completed_counter(frame, last);
   r.counter = counter;
-  if (security::frame_mac(*options_.key, mac_input(frame, counter)) != frame.mac) {
+  const auto payload = sealed_payload(frame, counter);
+  if (!payload) {
     refuse_unchecked(r, "its MAC fails for counter " + std::to_string(counter) +
                             ": forged, captured before the last frame accepted, or made under another key");
     return;
   }
-  switch (security::freshness_of(last, counter)) {
+  r.mac_payload = *payload;
+  const bool synchronisation = frame.form == reliability::SealedForm::Sync && *payload == kSyncPayload;
+  const auto decoded = command::decode_payload(*payload);
+  const std::uint64_t clock = clock_counter();
+  switch (security::freshness_of(last, counter, clock)) {
+    case security::Freshness::Ahead:
+      if (!synchronisation && decoded.command && std::holds_alternative<command::Stop>(*decoded.command)) {
+        take_stop_ahead(r, *decoded.command, clock);  // a stop is never refused for its time
+        return;
+      }
+      refuse(r, RefusalReason::Authentication,
+             "counter " + std::to_string(counter) + " lies " + admission::ahead_of_clock_words(counter, clock) +
+                 ": not taken nor kept. Is the sender's clock fast, or this robot's slow? Set both by NTP");
+      return;
     case security::Freshness::Stale:
       refuse(r, RefusalReason::Authentication,
              "counter " + std::to_string(counter) + " is older than the last accepted, " + std::to_string(last) +
@@ -321,20 +203,30 @@ void FrameAdmission::admit_sealed(Reception& r) {
   }
   counters.accept(counter);  // kept before the frame acts or is answered
   r.authenticated = true;
-  if (frame.form == reliability::SealedForm::Sync) {
+  if (synchronisation) {
     echoes_.remember(r.bits, r.heard_ms);
     r.event = ReceptionEvent::Synchronised;
     r.detail = "counter synchronised at " + std::to_string(counter);
     return;
   }
-  const auto decoded = command::decode_payload(frame.payload);
   if (!decoded.command) {
     refuse(r, RefusalReason::Payload, decoded.error);
     return;
   }
   take_command(r, *decoded.command);
+  if (frame.form == reliability::SealedForm::Sync) r.detail += " (its whole counter carried: in step from here)";
   if (const auto* velocity = std::get_if<command::Velocity>(&*decoded.command))
-    renewable_ = Renewable{counter, *velocity, r.start_ms, lease_end(*velocity, r.start_ms), {}, true};
+    renewable_ = Renewable{counter, *velocity, r.start_ms, admission::lease_end(*velocity, r.start_ms), {}, true};
+}
+
+// A Stop whose counter lies past this robot's clock: a sender whose clock runs fast (or this
+// robot's slow). Refusing it would leave the robot driving; its counter is not kept, so it
+// cannot make the true frames after it look old.
+void FrameAdmission::take_stop_ahead(Reception& r, const command::Command& stop, std::uint64_t clock) {
+  r.authenticated = true;
+  take_command(r, stop);
+  r.detail += "; counter " + std::to_string(*r.counter) + " lies " + admission::ahead_of_clock_words(*r.counter, clock) +
+              ": stopped, the counter not kept (is the sender's clock fast, or this robot's slow?)";
 }
 
 void FrameAdmission::take_command(Reception& r, const command::Command& command) {

@@ -8,7 +8,11 @@
 //       the counter completed from its low bits (a synchronisation carries all of it), the
 //       MAC checked over address, form, counter and payload; a counter not newer than the
 //       last accepted is the last frame again (answered, not executed) or refused; a new one
-//       is kept (security/counter_store.h) before the frame acts
+//       is kept (security/counter_store.h) before the frame acts; one more than
+//       kClockMarginS ahead of this robot's clock (security/counter_clock.h) is neither taken
+//       nor kept, and refused, unless the frame is a Stop, which stops the robot all the same
+//   a Stop carries its whole counter (synchronisation form, its MAC over STOP): a robot out of
+//       step places it with no synchronisation before it, and is in step after it
 // A frame for another robot is nobody's business here: no reception at all; nor is an echo of
 // a frame taken lately, other than the newest (reliability/echo_memory.h). A frame this robot
 // cannot check (another key's, sealed without a key, plain where only sealed ones are taken)
@@ -16,7 +20,8 @@
 // as this robot's (Reception::answered): another robot's answer must not sound over its own.
 // A stop for every robot is taken whatever its address and never answered: with a room key
 // only sealed under it, in synchronisation form with its whole counter, fresh by the room's
-// window (security/room_freshness.h); without one, plain, where the robot takes plain frames.
+// window (security/room_freshness.h), whose top is this robot's clock; one past it still
+// stops the robot, its counter not kept; without one, plain, where the robot takes plain frames.
 // A plain joint renewal (reliability/plain_renewal.h), for robots without keys, is taken from
 // the slot that names this robot when it names the sequence number of the plain velocity
 // frame taken last: that velocity again, never answered; its number taken once per velocity.
@@ -33,7 +38,8 @@
 // one that begins after the lease ran out (the robot stopped) renews nothing, so a renewal the
 // air delayed, or a recording of one, never sets a stopped robot moving again; only a new
 // velocity frame does.
-// Pure logic, but for the counter stores it is given.
+// Pure logic, but for the counter stores and the wall clock it is given. Parts:
+// room_stop_admission.cpp (the stop for every robot), renewal_admission.cpp (joint renewals).
 #pragma once
 
 #include <optional>
@@ -71,6 +77,12 @@ class FrameAdmission {
   bool admit_sealed_room_stop(Reception& r);
   // Whether the 80-bit frame `bits` is a command or synchronisation under this robot's key.
   bool command_authentic(const reliability::FrameBits& bits) const;
+  // The payload `frame`'s MAC holds for under this robot's key at `counter`: a command's own;
+  // in synchronisation form, a synchronisation's (0) or a Stop's.
+  std::optional<std::uint32_t> sealed_payload(const reliability::SealedFrame& frame, std::uint64_t counter) const;
+  // This robot's clock as a counter (security/counter_clock.h).
+  std::uint64_t clock_counter() const;
+  void take_stop_ahead(Reception& r, const command::Command& stop, std::uint64_t clock);
   // Whether `frame` is sealed under the room key: a stop for every robot.
   bool room_authentic(const reliability::SealedFrame& frame) const;
   void take_command(Reception& r, const command::Command& command);
@@ -108,7 +120,8 @@ class FrameAdmission {
   std::optional<security::RoomFreshness> room_;  // with a room key
 };
 
-// The MAC input of an 80-bit frame whose counter the robot completed as `counter`.
-security::FrameMacInput sealed_mac_input(const reliability::FrameBits& bits, std::uint64_t counter);
+// The MAC input of an authenticated frame the robot took: its counter as completed, and the
+// payload its MAC held for (Reception::mac_payload).
+security::FrameMacInput sealed_mac_input(const Reception& r);
 
 }  // namespace dtmf::link

@@ -10,10 +10,13 @@
 // fast_link.cpp with hop_frame_path.h), so adding or changing a profile touches protocol/
 // and the docs only. A link numbers the frames it plans (sequence numbers, or with a key its
 // freshness counter) and the robot's side remembers what it accepted: a link is one sender's
-// or one robot's, used from one thread at a time. No device, no clock: audio is rendered.
+// or one robot's, used from one thread at a time. No device, no clock of its own: audio is
+// rendered, and the robot's wall clock, which counters are checked against, is given.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -46,6 +49,10 @@ struct LinkOptions {
   // sender sends that stop on a link of its own whose `key` is the room key.
   std::shared_ptr<const security::LinkKey> room_key;
   std::shared_ptr<security::CounterStore> room_counters;
+  // The robot's clock (security/counter_clock.h): counters name times, and a frame whose
+  // counter lies more than kClockMarginS ahead of this clock is never taken nor kept (a Stop
+  // still stops). Given, as the audio is, so that tests can set it a day off.
+  std::function<std::chrono::system_clock::time_point()> wall_clock = std::chrono::system_clock::now;
   // A robot with a key that executes unauthenticated frames too (the seed profile's, which
   // cannot carry a MAC): the exception `dtmf-agent --accept-unauthenticated` makes.
   bool accept_unauthenticated = false;

@@ -53,6 +53,9 @@ struct Reception {
   bool authenticated = false;            // its MAC held under this robot's key
   std::optional<std::uint8_t> sequence;  // numbered unauthenticated frames
   std::optional<std::uint64_t> counter;  // authenticated frames: the counter completed
+  // Authenticated frames: the payload their MAC holds for. A frame in synchronisation form
+  // carries none: a synchronisation's is 0, a Stop's is STOP (a Stop carries its whole counter).
+  std::uint32_t mac_payload = 0;
   // Where a format's payload is one number and its commands span several frames (word
   // frames: the 12-bit word and the word state machine), the intact frame's payload and the
   // receiver's command state after it (empty where the frame was not given to it: refused).

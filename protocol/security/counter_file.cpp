@@ -1,7 +1,5 @@
 #include "security/counter_file.h"
 
-#include "security/owned_file.h"
-
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -16,16 +14,12 @@
 #include <string_view>
 
 #include "security/counter_text.h"
+#include "security/state_directory.h"
 #include "security/freshness.h"
 
 namespace dtmf::security {
 
 namespace {
-
-// 2026-01-01T00:00:00Z.
-constexpr std::chrono::seconds kEpoch{1767225600};
-// Longer than any file written here ("reserved N\nconfirmed M\n" with 11-digit values).
-constexpr std::size_t kLongestState = 4096;
 
 [[noreturn]] void fail(const std::string& what, const std::filesystem::path& path) {
   throw std::runtime_error(what + " " + path.string() + ": " + std::strerror(errno));
@@ -35,48 +29,7 @@ using counter_text::Damage;
 using counter_text::expect_end;
 using counter_text::take_line;
 
-// The file `name` in the directory, or nothing when there is none. Never read through a
-// symbolic link, and only a regular file.
-std::optional<std::string> read_state(int directory_fd, const std::filesystem::path& path, const std::string& name) {
-  // O_NONBLOCK: a FIFO in its place must not hang the program.
-  const int fd = ::openat(directory_fd, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) {
-    if (errno == ENOENT) return std::nullopt;
-    if (errno == ELOOP) throw Damage{"it is a symbolic link (a counter file is never read through one)"};
-    fail("cannot read the counter state", path);
-  }
-  struct stat status {};
-  if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) {
-    ::close(fd);
-    throw Damage{"it is not a regular file"};
-  }
-  std::string text;
-  char buffer[1024];
-  while (text.size() <= kLongestState) {
-    const ssize_t got = ::read(fd, buffer, sizeof buffer);
-    if (got < 0 && errno == EINTR) continue;
-    if (got < 0) {
-      const int error = errno;
-      ::close(fd);
-      errno = error;
-      fail("cannot read the counter state", path);
-    }
-    if (got == 0) break;
-    text.append(buffer, static_cast<std::size_t>(got));
-  }
-  ::close(fd);
-  if (text.size() > kLongestState) throw Damage{"it is longer than any counter state"};
-  return text;
-}
-
 }  // namespace
-
-std::uint64_t clock_counter_floor(std::chrono::system_clock::time_point now) {
-  const auto since = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()) -
-                     std::chrono::duration_cast<std::chrono::milliseconds>(kEpoch);
-  if (since.count() <= 0) return 1;
-  return 1 + static_cast<std::uint64_t>(since.count()) * kCountersPerSecond / 1000;
-}
 
 std::shared_ptr<FileCounterStore> FileCounterStore::open_sender(std::filesystem::path directory, const LinkKey& key,
                                                                 Clock clock, CounterPace pace) {
@@ -96,44 +49,7 @@ std::shared_ptr<FileCounterStore> FileCounterStore::open_robot(std::filesystem::
 
 FileCounterStore::FileCounterStore(std::filesystem::path directory, const LinkKey& key, Role role, Clock clock)
     : directory_(std::move(directory)), key_id_(key.id_hex()), role_(role), clock_(std::move(clock)) {
-  const std::string fix = " (give --state-dir a directory this user may write)";
-  std::error_code error;
-  if (!std::filesystem::is_directory(directory_, error)) {
-    std::filesystem::create_directories(directory_, error);
-    if (!error) std::filesystem::permissions(directory_, std::filesystem::perms::owner_all, error);
-    if (error) {
-      throw std::runtime_error("cannot make the state directory " + directory_.string() + ": " + error.message() + fix);
-    }
-  }
-  // The directory's own path is the operator's (systemd's StateDirectory= with DynamicUser=
-  // is a link to /var/lib/private/...), so it is followed; nothing in it ever is.
-  directory_fd_ = ::open(directory_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (directory_fd_ < 0) {
-    throw std::runtime_error("cannot open the state directory " + directory_.string() + ": " + std::strerror(errno) +
-                             fix);
-  }
-  struct stat status {};
-  std::string refusal;
-  if (::fstat(directory_fd_, &status) != 0) {
-    refusal = "cannot read the state directory " + directory_.string() + ": " + std::strerror(errno) + fix;
-  } else if (status.st_uid != ::geteuid()) {
-    refusal = "the state directory " + directory_.string() + " belongs to user " + std::to_string(status.st_uid) +
-              ", not to this one (" + std::to_string(::geteuid()) +
-              "): that user could change the counters in it. Give --state-dir a directory of this user's "
-              "(chown " +
-              std::to_string(::geteuid()) + " " + directory_.string() + "; chmod 700 " + directory_.string() + ")";
-  } else if ((status.st_mode & (S_IWGRP | S_IWOTH)) != 0) {
-    refusal = "the state directory " + directory_.string() + " has mode " + octal_mode(status.st_mode) +
-              ": its group or others may write in it, and so could put back an old counter (and old recordings "
-              "would be taken again). Make it this user's alone: chmod 700 " +
-              directory_.string();
-  } else if (::faccessat(directory_fd_, ".", W_OK, 0) != 0) {
-    refusal = "cannot write in the state directory " + directory_.string() + ": " + std::strerror(errno) + fix;
-  }
-  if (!refusal.empty()) {
-    ::close(directory_fd_);
-    throw std::runtime_error(refusal);
-  }
+  directory_fd_ = open_state_directory(directory_);
 }
 
 FileCounterStore::~FileCounterStore() {
@@ -208,8 +124,28 @@ void FileCounterStore::start_sender() {
                              " frames a second (docs/security.md, \"Recovering a lost counter\"); or make a new key "
                              "(dtmfctl keygen) and install it on both sides");
   }
+  stored_ = reserved_;
+  refuse_future_reservation(path);
   next_ = std::max(reserved_, clock_counter_floor(clock_()));
   reserved_ = next_;
+}
+
+// A reservation far ahead of this clock would make every frame a robot's future to refuse
+// (counter_clock.h); taken as found, one planted counter would disable the key for good.
+void FileCounterStore::refuse_future_reservation(const std::filesystem::path& path) const {
+  const auto now = clock_();
+  if (!ahead_of_clock(reserved_, now)) return;
+  const auto ahead_s = static_cast<long long>(seconds_ahead_of_clock(reserved_, now));
+  throw std::runtime_error(
+      "the counter state " + path.string() + " holds counter " + std::to_string(reserved_) + ", " +
+      std::to_string(ahead_s) + " s (" + std::to_string(ahead_s / 86400) +
+      " days) ahead of this machine's clock (its counter now: " + std::to_string(clock_counter_floor(now)) +
+      "); robots take no counter more than " + std::to_string(kClockMarginS) +
+      " s ahead of their own clocks, so nothing sent from it would be taken. If this machine's clock is behind, set "
+      "it (timedatectl; NTP). If the clock is right, a clock that ran fast (or someone) wrote it: remove the file, "
+      "and the counters start from the clock; with a robot's own key that took such counters before this check "
+      "existed, also make a new key (dtmfctl keygen) and pair both sides again (docs/security.md, \"Counters ahead "
+      "of the clock\")");
 }
 
 void FileCounterStore::start_robot(RobotKey start) {
@@ -249,6 +185,7 @@ void FileCounterStore::start_robot(RobotKey start) {
                              "dtmf-agent --new-key (with this key it would take old recordings again)");
   }
   last_accepted_ = *accepted;
+  stored_ = *accepted;
 }
 
 void FileCounterStore::write_sender() {
@@ -302,6 +239,13 @@ void FileCounterStore::accept(std::uint64_t counter) {
   std::lock_guard lock(mutex_);
   require(Role::Robot, "accept");
   if (counter <= last_accepted_) return;
+  write_file("robot-" + key_id_, "accepted " + std::to_string(counter) + "\n");
+  last_accepted_ = counter;
+}
+
+void FileCounterStore::reanchor(std::uint64_t counter) {
+  std::lock_guard lock(mutex_);
+  require(Role::Robot, "reanchor");
   write_file("robot-" + key_id_, "accepted " + std::to_string(counter) + "\n");
   last_accepted_ = counter;
 }

@@ -35,16 +35,13 @@
 #include <memory>
 #include <string>
 
+#include "security/counter_clock.h"
 #include "security/counter_store.h"
 #include "security/link_key.h"
 
 namespace dtmf::security {
 
-inline constexpr int kCountersPerSecond = 20;
 inline constexpr std::uint64_t kSenderBlock = 32;
-
-// The lowest counter the clock allows at `now`.
-std::uint64_t clock_counter_floor(std::chrono::system_clock::time_point now);
 
 // What a robot's store expects to find for its key.
 enum class RobotKey {
@@ -91,12 +88,19 @@ class FileCounterStore final : public CounterStore {
   void accept(std::uint64_t counter) override;
 
   const std::filesystem::path& directory() const { return directory_; }
+  // The counter found on disk at start (the sender's reservation, the robot's last accepted):
+  // programs warn when it lies ahead of their clock (counter_clock.h).
+  std::optional<std::uint64_t> stored_counter() const { return stored_; }
+  // The room key's: replaces the newest room counter kept with `counter`, even a lower one,
+  // when the room's window re-anchors to the clock (room_freshness.h).
+  void reanchor(std::uint64_t counter) override;
 
  private:
   enum class Role { Sender, Robot };
   FileCounterStore(std::filesystem::path directory, const LinkKey& key, Role role, Clock clock);
   void start_sender();
   void start_robot(RobotKey start);
+  void refuse_future_reservation(const std::filesystem::path& path) const;
   void take_lock(const std::string& role);
   void write_sender();
   void write_file(const std::string& name, const std::string& text) const;
@@ -111,6 +115,7 @@ class FileCounterStore final : public CounterStore {
   mutable std::mutex mutex_;
   std::uint64_t next_ = 0, reserved_ = 0, last_accepted_ = 0;
   std::optional<std::uint64_t> last_confirmed_;
+  std::optional<std::uint64_t> stored_;
   bool confirmed_unwritten_ = false;
 };
 

@@ -36,4 +36,9 @@ void MemoryCounterStore::accept(std::uint64_t counter) {
   last_accepted_ = std::max(last_accepted_, counter);
 }
 
+void MemoryCounterStore::reanchor(std::uint64_t counter) {
+  std::lock_guard lock(mutex_);
+  last_accepted_ = counter;
+}
+
 }  // namespace dtmf::security

@@ -34,6 +34,10 @@ class CounterStore {
   virtual std::uint64_t last_accepted() const = 0;
   // Records `counter` as accepted; it is kept before this returns (so before the frame acts).
   virtual void accept(std::uint64_t counter) = 0;
+  // The room key's alone (room_freshness.h): replaces the counter kept with `counter`, even a
+  // lower one, when the room's window re-anchors to the clock. Never a robot's own key's: a
+  // lower counter would let its old recordings in again.
+  virtual void reanchor(std::uint64_t counter) = 0;
 };
 
 class MemoryCounterStore final : public CounterStore {
@@ -46,6 +50,7 @@ class MemoryCounterStore final : public CounterStore {
   void confirmed(std::uint64_t counter) override;
   std::uint64_t last_accepted() const override;
   void accept(std::uint64_t counter) override;
+  void reanchor(std::uint64_t counter) override;
 
  private:
   mutable std::mutex mutex_;

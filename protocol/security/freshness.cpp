@@ -1,5 +1,7 @@
 #include "security/freshness.h"
 
+#include "security/counter_clock.h"
+
 namespace dtmf::security {
 
 std::uint64_t complete_counter(std::uint64_t last_accepted, std::uint32_t low) {
@@ -11,7 +13,8 @@ std::uint32_t counter_low_bits(std::uint64_t counter) {
   return static_cast<std::uint32_t>(counter & (kCounterWindow - 1));
 }
 
-Freshness freshness_of(std::uint64_t last_accepted, std::uint64_t counter) {
+Freshness freshness_of(std::uint64_t last_accepted, std::uint64_t counter, std::uint64_t clock_counter) {
+  if (counter > clock_counter + kClockMargin) return Freshness::Ahead;
   if (counter == 0 || counter < last_accepted) return Freshness::Stale;
   return counter == last_accepted ? Freshness::Repeat : Freshness::New;
 }

@@ -28,9 +28,12 @@ inline constexpr std::uint64_t kCounterLimit = std::uint64_t{1} << kCounterBits;
 std::uint64_t complete_counter(std::uint64_t last_accepted, std::uint32_t low);
 std::uint32_t counter_low_bits(std::uint64_t counter);
 
-enum class Freshness { New, Repeat, Stale };
-// `counter` against the last accepted one (0: none yet; counters start at 1).
-Freshness freshness_of(std::uint64_t last_accepted, std::uint64_t counter);
+// Ahead: more than kClockMargin ahead of the checking robot's clock (counter_clock.h): never
+// taken nor kept, whatever else holds.
+enum class Freshness { New, Repeat, Stale, Ahead };
+// `counter` against the last accepted one (0: none yet; counters start at 1) and the robot's
+// clock as a counter (counter_clock.h): Ahead before anything else.
+Freshness freshness_of(std::uint64_t last_accepted, std::uint64_t counter, std::uint64_t clock_counter);
 
 // Whether the robot can complete `counter` from its low bits, knowing only that it accepted
 // `last_confirmed` (or nothing on record).

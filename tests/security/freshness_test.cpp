@@ -14,16 +14,24 @@
 using namespace dtmf::security;
 namespace fs = std::filesystem;
 
+namespace {
+constexpr std::uint64_t kNow = 2000;  // the robot's clock as a counter
+}  // namespace
+
 TEST(Freshness, LowBitsCompleteToTheWindowAfterTheLastAccepted) {
   EXPECT_EQ(complete_counter(1000, counter_low_bits(1000)), 1000u) << "the last frame again";
   EXPECT_EQ(complete_counter(1000, counter_low_bits(1001)), 1001u);
   EXPECT_EQ(complete_counter(1000, counter_low_bits(1511)), 1511u) << "the window's far end";
   EXPECT_EQ(complete_counter(1000, counter_low_bits(1512)), 1000u) << "a window on: read as the last frame";
   EXPECT_EQ(complete_counter(1000, counter_low_bits(999)), 1511u) << "an older frame completes to a newer counter";
-  EXPECT_EQ(freshness_of(1000, 1000), Freshness::Repeat);
-  EXPECT_EQ(freshness_of(1000, 1001), Freshness::New);
-  EXPECT_EQ(freshness_of(1000, 999), Freshness::Stale);
-  EXPECT_EQ(freshness_of(0, 0), Freshness::Stale);
+  EXPECT_EQ(freshness_of(1000, 1000, kNow), Freshness::Repeat);
+  EXPECT_EQ(freshness_of(1000, 1001, kNow), Freshness::New);
+  EXPECT_EQ(freshness_of(1000, 999, kNow), Freshness::Stale);
+  EXPECT_EQ(freshness_of(0, 0, kNow), Freshness::Stale);
+  EXPECT_EQ(freshness_of(1000, kNow + kClockMargin, kNow), Freshness::New) << "the margin's end";
+  EXPECT_EQ(freshness_of(1000, kNow + kClockMargin + 1, kNow), Freshness::Ahead) << "past the robot's clock";
+  EXPECT_EQ(freshness_of(kNow + 2 * kClockMargin, kNow + 2 * kClockMargin, kNow), Freshness::Ahead)
+      << "ahead comes first, even where the last accepted lies ahead too";
 }
 
 TEST(Freshness, TheSenderSynchronisesWhenTheRobotCouldNotComplete) {

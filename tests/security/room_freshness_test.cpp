@@ -15,16 +15,20 @@
 
 using namespace dtmf::security;
 
+namespace {
+constexpr std::uint64_t kNow = 1'000'000;  // the robot's clock as a counter: every counter below lies within it
+}  // namespace
+
 TEST(RoomFreshness, TwoSendersStopsTakenOnceEachInEitherOrder) {
   RoomFreshness room(0);
   const std::uint64_t ahead = 1'000'000, behind = ahead - 20 * 30;  // a clock 30 s behind
-  ASSERT_EQ(room.check(ahead), Freshness::New);
+  ASSERT_EQ(room.check(ahead, kNow), Freshness::New);
   room.take(ahead);
-  EXPECT_EQ(room.check(behind), Freshness::New) << "a sender 30 s behind must still stop the robot";
+  EXPECT_EQ(room.check(behind, kNow), Freshness::New) << "a sender 30 s behind must still stop the robot";
   room.take(behind);
-  EXPECT_EQ(room.check(behind), Freshness::Repeat) << "the same stop played again";
-  EXPECT_EQ(room.check(ahead), Freshness::Repeat);
-  EXPECT_EQ(room.check(ahead + 1), Freshness::New);
+  EXPECT_EQ(room.check(behind, kNow), Freshness::Repeat) << "the same stop played again";
+  EXPECT_EQ(room.check(ahead, kNow), Freshness::Repeat);
+  EXPECT_EQ(room.check(ahead + 1, kNow), Freshness::New);
   EXPECT_EQ(room.newest(), ahead);
 }
 
@@ -32,27 +36,27 @@ TEST(RoomFreshness, OlderThanTheWindowIsStale) {
   RoomFreshness room(0);
   const std::uint64_t newest = 10 * kRoomWindow;
   room.take(newest);
-  EXPECT_EQ(room.check(newest - kRoomWindow), Freshness::Stale) << "an hour old: a recording";
-  EXPECT_EQ(room.check(newest - kRoomWindow + 1), Freshness::New);
-  EXPECT_EQ(room.check(0), Freshness::Stale);
+  EXPECT_EQ(room.check(newest - kRoomWindow, kNow), Freshness::Stale) << "an hour old: a recording";
+  EXPECT_EQ(room.check(newest - kRoomWindow + 1, kNow), Freshness::New);
+  EXPECT_EQ(room.check(0, kNow), Freshness::Stale);
 }
 
 TEST(RoomFreshness, AfterARestartNothingAtOrBelowTheNewestOnDiskIsTaken) {
   RoomFreshness room(5000);  // what the store kept
-  EXPECT_EQ(room.check(5000), Freshness::Stale);
-  EXPECT_EQ(room.check(4999), Freshness::Stale) << "whether it was taken before the restart is not known";
-  EXPECT_EQ(room.check(5001), Freshness::New);
+  EXPECT_EQ(room.check(5000, kNow), Freshness::Stale);
+  EXPECT_EQ(room.check(4999, kNow), Freshness::Stale) << "whether it was taken before the restart is not known";
+  EXPECT_EQ(room.check(5001, kNow), Freshness::New);
 }
 
 TEST(RoomFreshness, ForgettingTheOldestClosesTheWindowAtIt) {
   RoomFreshness room(0);
   const std::uint64_t first = 100'000;
   for (std::uint64_t i = 0; i <= kRoomRemembered; ++i) room.take(first + 2 * i);  // one more than remembered
-  EXPECT_EQ(room.check(first), Freshness::Stale) << "forgotten, so no longer known to be new";
-  EXPECT_EQ(room.check(first - 1), Freshness::Stale) << "below the forgotten one";
-  EXPECT_EQ(room.check(first + 1), Freshness::New) << "above it, never taken";
-  EXPECT_EQ(room.check(first + 3), Freshness::New) << "between remembered ones, never taken";
-  EXPECT_EQ(room.check(first + 2), Freshness::Repeat);
+  EXPECT_EQ(room.check(first, kNow), Freshness::Stale) << "forgotten, so no longer known to be new";
+  EXPECT_EQ(room.check(first - 1, kNow), Freshness::Stale) << "below the forgotten one";
+  EXPECT_EQ(room.check(first + 1, kNow), Freshness::New) << "above it, never taken";
+  EXPECT_EQ(room.check(first + 3, kNow), Freshness::New) << "between remembered ones, never taken";
+  EXPECT_EQ(room.check(first + 2, kNow), Freshness::Repeat);
 }
 
 TEST(RoomCounters, ARobotWithNoRoomStateStartsAtZeroAndKeepsTheNewest) {
