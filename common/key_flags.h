@@ -63,14 +63,15 @@ inline void add_room_key_flag(CLI::App& app, KeyFlags& flags, const std::string&
 // Warns when the counter found on disk for `what` lies ahead of this machine's clock by more
 // than `slack` counters: a clock that ran fast wrote it, or this clock is behind; `then` says
 // what follows (docs/security.md, "Counters ahead of the clock").
-inline void warn_future_counter(const security::FileCounterStore& store, const std::string& what,
-                                std::uint64_t slack, const std::string& then) {
+inline void warn_future_counter(const security::FileCounterStore& store, const std::string& what, std::uint64_t slack,
+                                const std::string& then) {
   const auto stored = store.stored_counter();
   const auto now = std::chrono::system_clock::now();
   if (!stored || *stored <= security::clock_counter_floor(now) + slack) return;
-  spdlog::warn("{}: the counter kept in {} ({}) lies {:.0f} s ahead of this machine's clock: a clock that ran fast "
-               "wrote it, or this clock is behind (set it: timedatectl, NTP). {}",
-               what, store.directory().string(), *stored, security::seconds_ahead_of_clock(*stored, now), then);
+  spdlog::warn(
+      "{}: the counter kept in {} ({}) lies {:.0f} s ahead of this machine's clock: a clock that ran fast "
+      "wrote it, or this clock is behind (set it: timedatectl, NTP). {}",
+      what, store.directory().string(), *stored, security::seconds_ahead_of_clock(*stored, now), then);
 }
 
 // The sender's link for the stop every robot obeys: with --room-key, keyed with the room key,
@@ -79,9 +80,8 @@ inline link::LinkOptions room_link_options(const KeyFlags& flags) {
   link::LinkOptions options;
   if (flags.room_key_file.empty()) return options;
   options.key = security::LinkKey::load(flags.room_key_file);
-  const auto counters = security::FileCounterStore::open_sender(flags.state_dir, *options.key,
-                                                                std::chrono::system_clock::now,
-                                                                security::CounterPace::Clock);
+  const auto counters = security::FileCounterStore::open_sender(
+      flags.state_dir, *options.key, std::chrono::system_clock::now, security::CounterPace::Clock);
   options.counters = counters;
   warn_future_counter(*counters, "room key " + options.key->id_hex(), security::kSenderBlock,
                       "Robots take room counters up to " + std::to_string(security::kClockMarginS) +

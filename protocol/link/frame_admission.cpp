@@ -46,10 +46,9 @@ std::uint64_t completed_counter(const reliability::SealedFrame& f, std::uint64_t
 }  // namespace
 
 std::string admission::ahead_of_clock_words(std::uint64_t counter, std::uint64_t clock_counter) {
-  const double ahead_s =
-      static_cast<double>(counter - std::min(counter, clock_counter)) / security::kCountersPerSecond;
-  return std::to_string(static_cast<long long>(ahead_s)) + " s ahead of this robot's clock (the margin: " +
-         std::to_string(security::kClockMarginS) + " s)";
+  const double ahead_s = static_cast<double>(counter - std::min(counter, clock_counter)) / security::kCountersPerSecond;
+  return std::to_string(static_cast<long long>(ahead_s)) +
+         " s ahead of this robot's clock (the margin: " + std::to_string(security::kClockMarginS) + " s)";
 }
 
 security::FrameMacInput sealed_mac_input(const Reception& r) {
@@ -130,7 +129,8 @@ void FrameAdmission::admit_plain(Reception& r) {
   }
   take_command(r, *decoded.command);
   if (const auto* velocity = std::get_if<command::Velocity>(&*decoded.command))
-    renewable_ = Renewable{frame.sequence, *velocity, r.start_ms, admission::lease_end(*velocity, r.start_ms), {}, false};
+    renewable_ =
+        Renewable{frame.sequence, *velocity, r.start_ms, admission::lease_end(*velocity, r.start_ms), {}, false};
 }
 
 std::optional<std::uint32_t> FrameAdmission::sealed_payload(const reliability::SealedFrame& frame,
@@ -139,7 +139,8 @@ std::optional<std::uint32_t> FrameAdmission::sealed_payload(const reliability::S
   const auto holds = [&](std::uint32_t payload) {
     return security::frame_mac(*options_.key, mac_input(frame, counter, payload)) == frame.mac;
   };
-  if (frame.form == reliability::SealedForm::Command) return holds(frame.payload) ? std::optional(frame.payload) : std::nullopt;
+  if (frame.form == reliability::SealedForm::Command)
+    return holds(frame.payload) ? std::optional(frame.payload) : std::nullopt;
   if (holds(kSyncPayload)) return kSyncPayload;
   if (holds(kStopPayload)) return kStopPayload;
   return std::nullopt;
@@ -225,7 +226,8 @@ void FrameAdmission::admit_sealed(Reception& r) {
 void FrameAdmission::take_stop_ahead(Reception& r, const command::Command& stop, std::uint64_t clock) {
   r.authenticated = true;
   take_command(r, stop);
-  r.detail += "; counter " + std::to_string(*r.counter) + " lies " + admission::ahead_of_clock_words(*r.counter, clock) +
+  r.detail += "; counter " + std::to_string(*r.counter) + " lies " +
+              admission::ahead_of_clock_words(*r.counter, clock) +
               ": stopped, the counter not kept (is the sender's clock fast, or this robot's slow?)";
 }
 

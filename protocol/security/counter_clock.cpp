@@ -20,7 +20,8 @@ bool ahead_of_clock(std::uint64_t counter, std::chrono::system_clock::time_point
 
 double seconds_ahead_of_clock(std::uint64_t counter, std::chrono::system_clock::time_point now) {
   const std::uint64_t floor = clock_counter_floor(now);
-  const double counters = counter >= floor ? static_cast<double>(counter - floor) : -static_cast<double>(floor - counter);
+  const double counters =
+      counter >= floor ? static_cast<double>(counter - floor) : -static_cast<double>(floor - counter);
   return counters / kCountersPerSecond;
 }
 

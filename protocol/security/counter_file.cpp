@@ -14,8 +14,8 @@
 #include <string_view>
 
 #include "security/counter_text.h"
-#include "security/state_directory.h"
 #include "security/freshness.h"
+#include "security/state_directory.h"
 
 namespace dtmf::security {
 

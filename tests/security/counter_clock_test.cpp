@@ -108,7 +108,8 @@ TEST(CounterClock, ASenderRefusesToStartFromACounterFarAheadOfItsClock) {
   write(dir.path / ("sender-" + key->id_hex()), "reserved " + std::to_string(kPlanted) + "\n");
   for (const CounterPace pace : {CounterPace::Frames, CounterPace::Clock}) {
     try {
-      FileCounterStore::open_sender(dir.path, *key, [] { return kToday; }, pace);
+      FileCounterStore::open_sender(
+          dir.path, *key, [] { return kToday; }, pace);
       ADD_FAILURE() << "a planted counter was taken";
     } catch (const std::runtime_error& error) {
       const std::string what = error.what();
