@@ -19,8 +19,6 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <thread>
 
 #include "audio_program.h"
@@ -33,6 +31,7 @@
 #include "physical/wav_file.h"
 #include "robot_roster.h"
 #include "secret_file.h"
+#include "shown_text.h"
 #include "store_recorder.h"
 #include "teleop_service.h"
 #include "utf8_refusal.h"
@@ -149,32 +148,29 @@ std::unique_ptr<grpc::Server> start_serving(const Flags& f, const std::shared_pt
   return server;
 }
 
-// The robots to drive: --robots FILE, else one robot from --robot-name, --robot-address,
-// --key and --robot.
+// The robots to drive: --robots FILE (read only if no one else may change it), else one robot
+// from --robot-name, --robot-address, --key and --robot. Every key is read and told apart from
+// the others and the room key before link_options() opens a counter store for any: one key
+// named twice is refused for what it is, not for the lock the second store finds taken.
 std::vector<dtmf::server::RobotLinks> robot_links(const Flags& f) {
   using namespace dtmf;
+  const std::vector<server::RobotEntry> entries =
+      f.robots_file.empty() ? std::vector<server::RobotEntry>{{f.robot_name, static_cast<std::uint8_t>(f.robot_address),
+                                                               f.keys.key_file, f.robot}}
+                            : server::read_robots(f.robots_file);
+  server::check_keys_apart(entries, f.keys.room_key_file, f.robots_file.empty() ? "--key" : f.robots_file);
   std::vector<server::RobotLinks> robots;
-  if (f.robots_file.empty()) {
-    server::RobotLinks r;
-    r.name = f.robot_name;
-    r.model = command::robot_model_by_name(f.robot);
-    r.links = link::make_links(program::link_options(f.keys, static_cast<std::uint8_t>(f.robot_address)));
-    robots.push_back(std::move(r));
-    return robots;
-  }
-  std::ifstream in(f.robots_file);
-  if (!in) throw std::runtime_error("cannot read --robots " + f.robots_file + ": " + std::strerror(errno));
-  std::stringstream text;
-  text << in.rdbuf();
-  for (const server::RobotEntry& e : server::parse_robots(text.str(), f.robots_file)) {
+  for (const server::RobotEntry& e : entries) {
     program::KeyFlags keys = f.keys;
     keys.key_file = e.key_file;
     server::RobotLinks r;
     r.name = e.name;
     r.model = command::robot_model_by_name(e.model);
     r.links = link::make_links(program::link_options(keys, e.address));
-    spdlog::info("robot {}: address {}, {}, {}", e.name, e.address, e.key_file.empty() ? "no key" : "key " + e.key_file,
-                 e.model);
+    if (!f.robots_file.empty()) {
+      spdlog::info("robot {}: address {}, {}, {}", server::shown(e.name), e.address,
+                   e.key_file.empty() ? "no key" : "key " + server::shown(e.key_file), e.model);
+    }
     robots.push_back(std::move(r));
   }
   return robots;

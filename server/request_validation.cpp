@@ -6,6 +6,8 @@
 #include <cstdio>
 
 #include "command/word_codec.h"
+#include "robot_roster.h"
+#include "shown_text.h"
 
 namespace dtmf::server {
 
@@ -63,6 +65,12 @@ void check_label(std::string_view field, std::string_view label) {
 
 CommandSettings command_settings(const v1::CommandOptions& options, const CommandSettings& defaults) {
   check_text("options.profile", options.profile(), kProfileLimit);
+  check_text("options.robot", options.robot(), kIdLimit);
+  // A name no robot can have is refused here, shown: the lookup's refusal prints the name as it is.
+  if (!options.robot().empty() && !robot_name_valid(options.robot())) {
+    throw RequestError("options.robot: " + shown(options.robot()) +
+                       " is no robot's name (1 to 32 letters, digits, - or _; dtmfctl robots lists them)");
+  }
   CommandSettings settings = defaults;
   if (options.has_on_unconfirmed()) {
     switch (options.on_unconfirmed()) {
@@ -89,8 +97,9 @@ CommandSettings command_settings(const v1::CommandOptions& options, const Comman
   if (!options.profile().empty()) {
     try {
       settings.profile = &profile_by_name(options.profile());
-    } catch (const std::invalid_argument& e) {
-      throw RequestError(std::string("options.profile: ") + e.what());
+    } catch (const std::invalid_argument&) {  // its text holds the name as it is: not shown
+      throw RequestError("options.profile: " + shown(options.profile()) + " is no profile; choose one of " +
+                         profile_names());
     }
   }
   return settings;

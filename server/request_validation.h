@@ -27,7 +27,9 @@ struct CommandSettings {
 // The command a request asks for; throws RequestError.
 command::Command drive_command(const v1::DriveRequest& request);
 command::Command turn_command(const v1::TurnRequest& request);
-// The request's options over the server's defaults; throws RequestError.
+// The request's options over the server's defaults; throws RequestError. Checks
+// options.robot too: its text (kIdLimit), and that it could be a robot's name
+// (robot_name_valid), not that a robot has it: the caller looks it up.
 CommandSettings command_settings(const v1::CommandOptions& options, const CommandSettings& defaults);
 reliability::Decision decision_of(const v1::DecideRequest& request);
 
@@ -38,7 +40,7 @@ struct TextLimit {
 };
 inline constexpr TextLimit kLabelLimit{100};
 inline constexpr TextLimit kNotesLimit{2000, true};
-inline constexpr TextLimit kIdLimit{64};  // command_id, run_id (uuids are 36)
+inline constexpr TextLimit kIdLimit{64};  // command_id, run_id (uuids are 36), robot names (32 at most)
 inline constexpr TextLimit kProfileLimit{32};
 
 // Throws RequestError naming `field` when `text` is not valid UTF-8, holds a NUL or another

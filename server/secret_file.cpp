@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 namespace dtmf::server {
 
@@ -30,21 +31,61 @@ struct Wipe {
   }
 };
 
-// Reads `path`; with `secret`, refuses it unless only its owner may read or write it, checked
-// on the open file before a byte is read. Errors name the file, never its content.
-std::string read_file(const std::string& path, const char* what, bool secret) {
+// What a file must be before a byte of it is read.
+struct Demands {
+  bool secret = false;                   // only its owner may read or write it
+  const TrustedFile* trusted = nullptr;  // this user's or root's, and only its owner may write it
+};
+
+// Why the open file `info` (`path`, named `file` in errors) must not be read, or "".
+std::string refusal_of(const struct stat& info, const std::string& file, const std::string& path, Demands demands) {
+  // A pipe (--auth-token-file <(...)) is fine for a secret; a directory or a device is not what
+  // was meant, and a trusted file must stay what was checked.
+  if (!S_ISREG(info.st_mode) && (demands.trusted || !S_ISFIFO(info.st_mode))) return file + " is not a regular file";
+  if (demands.secret && (info.st_mode & (S_IRWXG | S_IRWXO)) != 0) {
+    return file + " may be read or changed by others (mode " + octal_mode(info.st_mode) +
+           "); allow its owner only: chmod 600 " + path;
+  }
+  if (!demands.trusted) return "";
+  const std::string user = std::to_string(::geteuid());
+  if (info.st_uid != ::geteuid() && info.st_uid != 0) {
+    return file + " belongs to user " + std::to_string(info.st_uid) + ", neither this one (" + user +
+           ") nor root, and it decides " + demands.trusted->decides + "; make it this user's: chown " + user + " " +
+           path;
+  }
+  if ((info.st_mode & (S_IWGRP | S_IWOTH)) != 0) {
+    return file + " may be changed by others (mode " + octal_mode(info.st_mode) + "), and it decides " +
+           demands.trusted->decides + "; allow its owner only to write it: chmod go-w " + path;
+  }
+  return "";
+}
+
+// A trusted file's path that is a symbolic link: what to name instead.
+std::string link_refusal(const std::string& file, const std::string& path, const TrustedFile& kind) {
+  std::error_code error;
+  const std::filesystem::path target = std::filesystem::weakly_canonical(path, error);
+  const std::string fix = error ? std::string(kind.flag) + " \"$(readlink -f " + path + ")\""
+                                : std::string(kind.flag) + " " + target.string();
+  return file + " is a symbolic link" + (error ? "" : " (to " + target.string() + ")") +
+         ": whoever may change the link chooses the file, which decides " + kind.decides +
+         ". Name the file itself: " + fix;
+}
+
+// Reads `path` after checking the open file against `demands` (refusal_of), so that what is
+// checked is what is read. Errors name the file, never its content.
+std::string read_file(const std::string& path, const char* what, Demands demands) {
   const std::string file = std::string("the ") + what + " file '" + path + "'";
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
+  // A trusted file is never reached through a link, and a FIFO planted in its place does not
+  // hold the open until a writer comes.
+  const int flags = O_RDONLY | O_CLOEXEC | O_NOCTTY | (demands.trusted ? O_NOFOLLOW | O_NONBLOCK : 0);
+  const int fd = ::open(path.c_str(), flags);
+  if (fd < 0 && errno == ELOOP && demands.trusted) throw SecretFileError(link_refusal(file, path, *demands.trusted));
   if (fd < 0) throw SecretFileError("cannot read " + file + ": " + std::strerror(errno));
   const FileDescriptor open_file(fd);
   struct stat info {};
   if (::fstat(fd, &info) != 0) throw SecretFileError("cannot read " + file + ": " + std::strerror(errno));
-  // A pipe (--auth-token-file <(...)) is fine; a directory or a device is not what was meant.
-  if (!S_ISREG(info.st_mode) && !S_ISFIFO(info.st_mode)) throw SecretFileError(file + " is not a regular file");
-  if (secret && (info.st_mode & (S_IRWXG | S_IRWXO)) != 0) {
-    throw SecretFileError(file + " may be read or changed by others (mode " + octal_mode(info.st_mode) +
-                          "); allow its owner only: chmod 600 " + path);
-  }
+  if (const std::string refusal = refusal_of(info, file, path, demands); !refusal.empty())
+    throw SecretFileError(refusal);
   std::string text;
   Wipe wipe{text};
   if (S_ISREG(info.st_mode) && info.st_size >= 0 && static_cast<std::size_t>(info.st_size) <= kMaxFileBytes) {
@@ -77,9 +118,15 @@ std::string read_file(const std::string& path, const char* what, bool secret) {
 
 }  // namespace
 
-std::string read_secret_file(const std::string& path, const char* what) { return read_file(path, what, true); }
+std::string read_secret_file(const std::string& path, const char* what) {
+  return read_file(path, what, {.secret = true});
+}
 
-std::string read_public_file(const std::string& path, const char* what) { return read_file(path, what, false); }
+std::string read_public_file(const std::string& path, const char* what) { return read_file(path, what, {}); }
+
+std::string read_trusted_file(const std::string& path, const TrustedFile& kind) {
+  return read_file(path, kind.what, {.trusted = &kind});
+}
 
 std::string read_token_file(const std::string& path) {
   std::string token = read_secret_file(path, "auth token");

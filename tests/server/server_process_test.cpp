@@ -8,11 +8,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <future>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include <grpcpp/grpcpp.h>
 
@@ -291,6 +294,7 @@ class RobotsFileServerProcess : public ServerProcess {
   std::string extra_flags() override {
     std::ofstream(path("robots.json")) << R"([{"name": "alpha", "address": 1},
                                               {"name": "beta", "address": 2, "model": "waffle"}])";
+    ::chmod(path("robots.json").c_str(), 0644);  // whatever the umask: no one else may change it
     return "--robots " + path("robots.json");
   }
   test_support::CommandResult dtmfctl(const std::string& args) {
@@ -323,6 +327,72 @@ TEST_F(RobotsFileServerProcess, DtmfctlListsTheRobotsAndACommandMustNameOneItKno
   const auto sent = dtmfctl("--robot beta reset --on-unconfirmed continue --json");
   EXPECT_EQ(sent.exit_code, 0) << sent.out;
   EXPECT_NE(sent.out.find(R"("robot":"beta")"), std::string::npos) << sent.out;
+}
+
+// Issue 59: options.robot had no bound, and a name no robot has was echoed whole into the
+// status: 3 MB, newlines included. It is checked as the label is, before any robot is looked
+// up: one line, at most 64 characters; the refusal names the field and the bound, and shows
+// none of the text.
+TEST_F(RobotsFileServerProcess, AHugeOrMultilineRobotNameIsRefusedWithABoundedOneLineDetail) {
+  auto client = v1::TeleopService::NewStub(channel_);
+  std::string huge;
+  while (huge.size() < 3'000'000) huge += "gamma\n[info] a forged log line\n";
+  const auto reset = [&](const std::string& robot) {
+    grpc::ClientContext context;
+    v1::ResetRequest request;
+    request.mutable_options()->set_robot(robot);
+    auto reader = client->Reset(&context, request);
+    v1::ResetResponse response;
+    while (reader->Read(&response)) {
+    }
+    return reader->Finish();
+  };
+  const auto teleop = [&](const std::string& robot) {
+    grpc::ClientContext context;
+    auto stream = client->Teleop(&context);
+    v1::TeleopRequest first;
+    first.set_linear_mps(0.05);
+    first.set_lease_s(1);
+    first.mutable_options()->set_robot(robot);
+    stream->Write(first);
+    stream->WritesDone();
+    v1::TeleopResponse response;
+    while (stream->Read(&response)) {
+    }
+    return stream->Finish();
+  };
+  const std::pair<std::string, std::string> cases[] = {
+      {huge, "options.robot: holds the control character U+000A (one line only)"},
+      {std::string(65, 'g'), "options.robot: 65 characters, at most 64 allowed"},
+      {"gam\x1b[2Jma", "options.robot: holds the control character U+001B"},
+      // Right-to-left override: no control character, but no robot's name either; shown escaped.
+      {std::string("\xe2\x80\xae") + "ammag", R"(options.robot: "\xe2\x80\xaeammag" is no robot's name)"},
+  };
+  const auto printable = [](const std::string& text) {
+    return std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+  };
+  for (const auto& [robot, expected] : cases) {
+    for (const grpc::Status& status : {reset(robot), teleop(robot)}) {
+      const std::string& said = status.error_message();
+      EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << said.substr(0, 200);
+      EXPECT_EQ(said.rfind(expected, 0), 0u) << said.substr(0, 200);
+      EXPECT_LT(said.size(), 200u);
+      EXPECT_TRUE(printable(said)) << said.substr(0, 200);
+    }
+  }
+  // A profile name is shown the same way.
+  grpc::ClientContext context;
+  v1::ResetRequest request;
+  request.mutable_options()->set_profile(std::string("\xe2\x80\xae") + "fast");
+  auto reader = client->Reset(&context, request);
+  v1::ResetResponse response;
+  while (reader->Read(&response)) {
+  }
+  const grpc::Status profile = reader->Finish();
+  EXPECT_EQ(profile.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(profile.error_message().rfind(R"(options.profile: "\xe2\x80\xaefast" is no profile)", 0), 0u)
+      << profile.error_message();
+  EXPECT_TRUE(printable(profile.error_message())) << profile.error_message();
 }
 
 TEST(ServerFlags, UsageErrorsAndABusyPortAreClear) {
@@ -431,11 +501,86 @@ TEST(ServerFlags, ABadRobotsFileStopsTheServerNamingWhatIsWrong) {
   const std::string file = write_file(dir / "robots.json", R"([{"name": "alpha", "address": 9}])", 0644);
   const auto bad = start_server("--robots " + file);
   EXPECT_EQ(bad.exit_code, 2) << bad.out;
-  EXPECT_NE(bad.out.find("robot 1 (alpha): address 9 is outside 0..7"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("robot 1 \"alpha\": address 9 is outside 0..7"), std::string::npos) << bad.out;
   // The one robot's flags and a robots file exclude each other.
   const std::string good = write_file(dir / "good.json", R"([{"name": "alpha", "address": 1}])", 0644);
   const auto both = start_server("--robots " + good + " --robot-address 3");
   EXPECT_EQ(both.exit_code, 2) << both.out;
   EXPECT_NE(both.out.find("--robot-address"), std::string::npos) << both.out;
+  fs::remove_all(dir);
+}
+
+// Issue 59: the robots file decides which key each robot gets, and was trusted as found: one
+// that others may write (0666) was taken silently, and whoever wrote it could drop a robot's
+// key, so that robot was sent frames it refuses, Stop included. It is now checked as the
+// files that hold secrets are, and more: no group or others may write it, it must be this
+// user's or root's, and not a symbolic link. Each refusal says what is wrong and the fix.
+TEST(ServerFlags, ARobotsFileOthersMayChangeStopsTheServerWithTheFix) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("server-robots-trust-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string json = R"([{"name": "alpha", "address": 1}])";
+  for (const mode_t mode : {0666u, 0620u, 0602u}) {
+    const std::string file = write_file(dir / "robots.json", json, mode);
+    const auto r = start_server("--robots " + file);
+    EXPECT_EQ(r.exit_code, 1) << r.out;
+    char shown[8];
+    std::snprintf(shown, sizeof shown, "%04o", static_cast<unsigned>(mode));
+    EXPECT_NE(r.out.find(std::string("mode ") + shown), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("chmod go-w " + file), std::string::npos) << r.out;
+  }
+  const std::string file = write_file(dir / "robots.json", json, 0644);
+  const fs::path link = dir / "link.json";
+  fs::create_symlink(file, link);
+  const auto linked = start_server("--robots " + link.string());
+  EXPECT_EQ(linked.exit_code, 1) << linked.out;
+  EXPECT_NE(linked.out.find("symbolic link"), std::string::npos) << linked.out;
+  EXPECT_NE(linked.out.find("--robots " + file), std::string::npos) << linked.out;
+  if (::geteuid() == 0) {  // only root can give a file away
+    ASSERT_EQ(::chown(file.c_str(), 4242, 4242), 0);
+    const auto theirs = start_server("--robots " + file);
+    EXPECT_EQ(theirs.exit_code, 1) << theirs.out;
+    EXPECT_NE(theirs.out.find("belongs to user 4242"), std::string::npos) << theirs.out;
+    EXPECT_NE(theirs.out.find("chown 0 " + file), std::string::npos) << theirs.out;
+  }
+  fs::remove_all(dir);
+}
+
+// Issue 59: a key file named for two robots, or a robot's key that is the room key, was
+// refused for the wrong reason: the second counter store found the first one's lock ("another
+// process keeps its sender counter ..."). The keys are compared when read, before any counter
+// store is opened, and the refusal names both entries and why a key is one robot's alone.
+TEST(ServerFlags, AKeySharedByTwoRobotsOrWithTheRoomIsRefusedForWhatItIs) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("server-robots-keys-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const auto key = [&](const std::string& name) {
+    const std::string file = (dir / name).string();
+    EXPECT_EQ(test_support::run_command(std::string(DTMFCTL_PATH) + " keygen " + file).exit_code, 0);
+    return file;
+  };
+  const std::string a = key("a.key"), b = key("b.key");
+  const std::string a_copy = (dir / "a-copy.key").string();
+  ASSERT_EQ(test_support::run_command("cp -p " + a + " " + a_copy).exit_code, 0);
+  const auto robots = [&](const std::string& name, const std::string& key_a, const std::string& key_b) {
+    return write_file(dir / name,
+                      R"([{"name": "alpha", "address": 1, "key": ")" + key_a +
+                          R"("}, {"name": "beta", "address": 2, "key": ")" + key_b + R"("}])",
+                      0644);
+  };
+  struct Case {
+    std::string flags;
+    std::vector<std::string> said;
+  };
+  const Case cases[] = {
+      {"--robots " + robots("one-file.json", a, a), {R"(robots "alpha" and "beta")", "one key"}},
+      {"--robots " + robots("one-key.json", a, a_copy), {R"(robots "alpha" and "beta")", "one key"}},
+      {"--robots " + robots("room.json", a, b) + " --room-key " + b, {R"(robot "beta")", "the room key"}},
+      {"--key " + a + " --room-key " + a_copy, {R"(robot "robot")", "the room key"}},
+  };
+  for (const Case& c : cases) {
+    const auto r = start_server(c.flags + " --state-dir " + (dir / "state").string());
+    EXPECT_EQ(r.exit_code, 2) << c.flags << ": " << r.out;
+    for (const std::string& said : c.said) EXPECT_NE(r.out.find(said), std::string::npos) << said << " in " << r.out;
+    EXPECT_EQ(r.out.find("another process"), std::string::npos) << r.out;
+  }
   fs::remove_all(dir);
 }
