@@ -85,6 +85,19 @@ bool Job::cancelled() {
   return cancelled_;
 }
 
+void Job::overtake() {
+  {
+    std::lock_guard lock(mutex_);
+    cancelled_ = overtaken_ = true;
+  }
+  changed_.notify_all();
+}
+
+bool Job::overtaken() {
+  std::lock_guard lock(mutex_);
+  return overtaken_;
+}
+
 bool Job::decide(reliability::Decision decision) {
   {
     std::lock_guard lock(mutex_);

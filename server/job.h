@@ -15,6 +15,7 @@
 #include "command/command.h"
 #include "link/link.h"
 #include "profile/link_profile.h"
+#include "reliability/air_access.h"
 #include "reliability/retry_controller.h"
 #include "rows.h"
 
@@ -42,7 +43,8 @@ struct ProgressEvent {
     Confirmed,
     Continued,
     Failed,
-    Sent  // an unanswered command's frames all played
+    Sent,          // an unanswered command's frames all played
+    WaitingForAir  // a frame's attempt began to wait for the air (listen before talk): why
   };
   explicit ProgressEvent(Kind k) : kind(k) {}
   Kind kind;
@@ -60,6 +62,13 @@ struct ProgressEvent {
   Outcome outcome = Outcome::Pending;             // Confirmed, Continued, Failed: how the command ended
   std::optional<store::WallTime> chord_ended_at;  // Ack, Nack, NoAnswer: when this attempt's chord ended
   std::optional<store::WallTime> answered_at;     // Ack, Nack: when the answer was heard
+  // Listen before talk (reliability/air_access.h). WaitingForAir: why ("sound 14 dB over the
+  // room's floor"), and the longest it may still wait; Transmitting, Retransmitting: how long
+  // this attempt waited (0: at once), and why if it did.
+  std::string air_wait_reason;
+  double air_wait_left_ms = 0;
+  double air_wait_ms = 0;
+  bool air_wait_bounded = false;  // ... and the command's bound, not a free air, ended it
 };
 
 class Job {
@@ -107,9 +116,14 @@ class Job {
   std::string outcome_detail();
 
   // Transmitter side.
+  // Its waits for the air, all its frames' together (the transmitter's thread only).
+  reliability::AirWait& air_wait() { return air_wait_; }
   void emit(ProgressEvent event);
   void finish(Outcome outcome, std::string detail = {});
   bool cancelled();
+  // A Stop overtakes the command on air (Transmitter::enqueue): cancelled, and said so.
+  void overtake();
+  bool overtaken();
   // Opens the question before it is announced, so that a caller who answers
   // the AWAITING_DECISION event at once finds it open; then waits for decide()
   // (or cancel). await_decision() gives nullopt on timeout or cancel.
@@ -127,6 +141,7 @@ class Job {
   std::optional<std::string> run_id_;
   std::string robot_;
   std::vector<Renewed> renewed_;
+  reliability::AirWait air_wait_;
 
   std::mutex mutex_;
   std::condition_variable changed_;
@@ -134,6 +149,7 @@ class Job {
   Outcome outcome_ = Outcome::Pending;
   std::string outcome_detail_;
   bool cancelled_ = false;
+  bool overtaken_ = false;
   bool awaiting_decision_ = false;
   std::optional<reliability::Decision> decision_;
 };

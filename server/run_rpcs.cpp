@@ -60,6 +60,8 @@ void fill_report(v1::GetReportResponse& response, const store::RunReport& report
   response.set_every_robot_stops_executed(report.every_robot_stops_executed);
   response.set_renewals_sent(report.renewals_sent);
   response.set_renewals_executed(report.renewals_executed);
+  response.set_air_waits(report.air_waits);
+  response.set_air_wait_total_ms(report.air_wait_total_ms);
   using R = v1::GetReportResponse;
   const auto measure = [&](const std::optional<double>& value, void (R::*setter)(double)) {
     if (value) (response.*setter)(*value);
@@ -74,6 +76,7 @@ void fill_report(v1::GetReportResponse& response, const store::RunReport& report
   measure(report.latency_avg_ms, &R::set_latency_avg_ms);
   measure(report.latency_min_ms, &R::set_latency_min_ms);
   measure(report.latency_max_ms, &R::set_latency_max_ms);
+  measure(report.air_wait_max_ms, &R::set_air_wait_max_ms);
   for (const auto& frame : report.frames) fill_frame(*response.add_frames(), frame);
 }
 

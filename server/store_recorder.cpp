@@ -67,6 +67,8 @@ store::FrameAttemptRow attempt_row(const Job& job, const ProgressEvent& event) {
   row.frame_width = frame.bit_count;
   row.tones_hz = frame.tones_hz;
   row.chord_started_at = event.time;
+  row.air_wait_ms = event.air_wait_ms;
+  if (!event.air_wait_reason.empty()) row.air_wait_reason = event.air_wait_reason;
   return row;
 }
 
@@ -106,6 +108,7 @@ std::vector<TransmissionRecord::Row> TransmissionRecord::on_event(const Job& job
       break;
     }
     case Kind::AwaitingDecision:
+    case Kind::WaitingForAir:  // its attempt's row, when its chord starts, says how long it waited
       break;
     case Kind::Confirmed:
     case Kind::Continued:

@@ -34,6 +34,8 @@ v1::FrameEvent frame_event(ProgressEvent::Kind kind) {
       return v1::FRAME_EVENT_FAILED;
     case K::Sent:
       return v1::FRAME_EVENT_SENT;
+    case K::WaitingForAir:
+      return v1::FRAME_EVENT_WAITING_FOR_AIR;
   }
   return v1::FRAME_EVENT_UNSPECIFIED;
 }
@@ -62,6 +64,9 @@ void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event, cons
   }
   if (event.response_time_ms) out.set_response_time_ms(*event.response_time_ms);
   out.set_detail(event.detail);
+  out.set_air_wait_reason(event.air_wait_reason);
+  out.set_air_wait_left_ms(event.air_wait_left_ms);
+  out.set_air_wait_ms(event.air_wait_ms);
   out.set_queue_position(static_cast<std::uint32_t>(event.queue_position));
   out.set_time_unix_ms(std::chrono::duration_cast<std::chrono::milliseconds>(event.time.time_since_epoch()).count());
 }

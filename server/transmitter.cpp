@@ -202,25 +202,20 @@ std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy
 std::shared_ptr<Job> Transmitter::enqueue(link::Link& link, const command::Command& command, Policy policy,
                                           std::chrono::milliseconds decision_timeout, bool to_front) {
   std::shared_ptr<Job> job;
+  std::vector<std::shared_ptr<Job>> overtaken;
+  const bool stop = std::holds_alternative<command::Stop>(command);
   {
     std::lock_guard lock(mutex_);
     job = std::make_shared<Job>(link, command, policy, decision_timeout, run_id_);
     if (!command::every_robot(command)) job->set_robot(robots_[robot_of(link)].name);
     if (stopping_) throw TransmitterUnavailable("the server is shutting down");
     if (!unavailable_.empty()) throw TransmitterUnavailable(unavailable_);
-    if (queue_.size() >= options_.max_queue) {
+    // A stop is never refused for a full queue: it goes first, and what it stops waits behind it.
+    if (queue_.size() >= options_.max_queue && !stop) {
       throw QueueFull("the transmit queue is full (" + std::to_string(options_.max_queue) +
                       " commands wait); retry later, or send Stop, which goes first");
     }
-    // A stop ends what it stops: no renewal of a lease goes out for it after the stop.
-    if (std::holds_alternative<command::Stop>(command)) {
-      for (RobotIndex r = 0; r < robots_.size(); ++r) {
-        if (command::every_robot(command) || robot_of(link) == r) {
-          renewals_.drop(r);
-          robots_[r].renewal_link = nullptr;
-        }
-      }
-    }
+    if (stop) overtaken = stop_overtakes(link, command);
     // Queued is emitted before the worker can see the job, so that it comes first.
     ProgressEvent queued{Kind::Queued};
     queued.frame_count = job->frame_count();
@@ -231,6 +226,7 @@ std::shared_ptr<Job> Transmitter::enqueue(link::Link& link, const command::Comma
     else
       queue_.push_back(job);
   }
+  for (const auto& o : overtaken) o->overtake();  // outside the lock: a job's own lock comes after ours
   changed_.notify_all();
   return job;
 }

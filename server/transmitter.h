@@ -223,7 +223,11 @@ class Transmitter {
   void play(const link::TransmitFrame& frame, double start_ms);
   // Waits until the loudspeaker is free and the air is ours (listen before talk), then marks
   // our exchange as begun; false if the job was cancelled or the transmitter stops meanwhile.
-  bool wait_for_air(Job& job);
+  // When the air holds the frame, it emits `waiting` (the attempt's event) as WaitingForAir,
+  // with why; the job's air_wait() then holds how long it waited.
+  bool wait_for_air(Job& job, ProgressEvent waiting);
+  // Tells the operator (and the record) that `job`'s frame waits for the air: `wait` says why.
+  void tell_waiting(Job& job, ProgressEvent waiting, const reliability::AirWait& wait, double now_ms);
   // Our frame ended: the microphone listens while we wait for its answer.
   void frame_ended();
   // Our exchange (a frame and its answer's wait) is over; `answer`: when our robot's answer
@@ -244,6 +248,9 @@ class Transmitter {
   const link::Link& authenticated_link(RobotIndex robot = 0) const;
   // The robot whose link `link` is.
   RobotIndex robot_of(const link::Link& link) const;
+  // Under the lock: what a Stop for `link`'s robot (or every robot) ends (transmitter_stop.cpp).
+  std::vector<std::shared_ptr<Job>> stop_overtakes(const link::Link& link, const command::Command& stop);
+  void end_cancelled(Job& job);  // UNAVAILABLE while shutting down, else CANCELLED (a caller, a Stop)
 
   struct Robot {
     std::string name;
@@ -277,6 +284,8 @@ class Transmitter {
   std::optional<std::string> run_id_;
   std::string unavailable_;  // why the audio path failed, once it did
   bool stopping_ = false;
+  // A Stop is queued behind a command on air, which it overtakes: waits for an answer end.
+  bool stop_waiting_ = false;
   double channel_free_ms_ = 0;
   reliability::CarrierSense carrier_;  // fed by listen(), guarded by mutex_
   std::optional<reliability::AirAccess> air_;

@@ -27,16 +27,42 @@ double Transmitter::answer_silence_ms() const {
   return longest;
 }
 
-bool Transmitter::wait_for_air(Job& job) {
+namespace {
+reliability::AirUse air_use(const Job& job) {
   using reliability::AirUse;
-  const AirUse use = std::holds_alternative<command::Stop>(job.command()) ? AirUse::Stop
-                     : job.policy() == Policy::Live || job.renewal()      ? AirUse::Renewal
-                                                                          : AirUse::Command;
+  if (const auto* stop = std::get_if<command::Stop>(&job.command()))
+    return stop->every_robot ? AirUse::EveryRobotStop : AirUse::Stop;
+  return job.policy() == Policy::Live || job.renewal() ? AirUse::Renewal : AirUse::Command;
+}
+}  // namespace
+
+void Transmitter::tell_waiting(Job& job, ProgressEvent waiting, const reliability::AirWait& wait, double now_ms) {
+  waiting.kind = ProgressEvent::Kind::WaitingForAir;
+  waiting.air_wait_reason = reliability::air_wait_text(wait.reason);
+  // The most it may still wait: a stop's own bound, or what is left of its command's.
+  waiting.air_wait_left_ms = air_use(job) == reliability::AirUse::Stop
+                                 ? reliability::kMaxStopWaitMs
+                                 : std::max(0.0, reliability::kMaxDeferToUnknownMs - wait.total_ms(now_ms));
+  waiting.detail = "waiting for the air: " + waiting.air_wait_reason;
+  waiting.time = wall(now_ms);
+  // A command's wait for the operator's log; a Teleop frame's or renewal's, several a second
+  // in a shared room, for debugging only.
+  const bool live = job.renewal() || job.policy() == Policy::Live;
+  spdlog::log(live ? spdlog::level::debug : spdlog::level::info,
+              "{} (command {}, frame {}, attempt {}): {} (at most {:.1f} s more)", job.description(), job.id(),
+              waiting.frame_index, waiting.attempt, waiting.detail, waiting.air_wait_left_ms / 1000);
+  emit(job, std::move(waiting));
+}
+
+bool Transmitter::wait_for_air(Job& job, ProgressEvent waiting) {
+  const reliability::AirUse use = air_use(job);
+  reliability::AirWait& wait = job.air_wait();
   std::unique_lock lock(mutex_);
   while (true) {
     const double now = now_ms();
     double at = std::max(now, channel_free_ms_);
-    if (air_) at = std::max(at, air_->start_at(carrier_, now, use));
+    const bool was_waiting = wait.since_ms.has_value();
+    if (air_) at = std::max(at, air_->start_at(carrier_, now, use, wait));
     if (at <= now) {
       if (air_) {
         // Why it may start now: what tells a start into another's exchange from one it could not hear.
@@ -46,12 +72,20 @@ bool Transmitter::wait_for_air(Job& job) {
             "another's answer read {:.0f} ms ago (-1: never, or not now)",
             job.id(), now, ago(carrier_.last_busy_ms()), ago(carrier_.quiet_since_ms()),
             ago(carrier_.answered_exchange_ms()));
-        air_->started(carrier_, now);
+        air_->started(carrier_, now, wait);
       }
       carrier_.own_begin(now);
       return true;
     }
     if (stopping_ || job.cancelled()) return false;
+    if (!was_waiting && wait.since_ms) {
+      // Told outside the lock: the observer writes a record, the caller's stream reads it.
+      const reliability::AirWait told = wait;
+      lock.unlock();
+      tell_waiting(job, waiting, told, now);
+      lock.lock();
+      continue;
+    }
     changed_.wait_for(lock, std::chrono::duration<double, std::milli>(std::min(at - now, kCancelCheckMs)));
   }
 }

@@ -102,7 +102,7 @@ std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const link::Link&
       }
       return reply;
     }
-    if (stopping_ || now_ms() >= until_ms) return std::nullopt;
+    if (stopping_ || stop_waiting_ || now_ms() >= until_ms) return std::nullopt;  // a Stop overtakes the wait
     changed_.wait_for(lock, std::chrono::duration<double, std::milli>(std::min(until_ms - now_ms(), 50.0)));
   }
 }

@@ -56,6 +56,7 @@ void Transmitter::run() {
         job = queue_.front();
         queue_.pop_front();
         on_air_ = job;
+        if (std::holds_alternative<command::Stop>(job->command())) stop_waiting_ = false;
       }
     }
     if (!renew.empty()) {

@@ -2,6 +2,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "transmitter.h"
 
@@ -10,6 +11,30 @@ namespace dtmf::server {
 namespace {
 using Kind = ProgressEvent::Kind;
 using reliability::RetryState;
+
+// Why a job ended cancelled: its caller, or a Stop that overtook it.
+std::string cancelled_detail(Job& job) {
+  return job.overtaken() ? "overtaken by a Stop, which went on the air at once: its answer was not awaited (the "
+                           "robot may have executed it); send it again after the stop"
+                         : "cancelled by the caller";
+}
+
+// How long the attempt `sending` starts waited for the air, and why: on its event, for the
+// operator and the record; and said aloud when the command's bound sent it into the sound.
+void tell_air_wait(Job& job, ProgressEvent& sending) {
+  const reliability::AirWait& wait = job.air_wait();
+  if (wait.last_ms <= 0) return;
+  sending.air_wait_ms = wait.last_ms;
+  sending.air_wait_reason = reliability::air_wait_text(wait.reason);
+  if (wait.held_ms < reliability::kMaxDeferToUnknownMs) return;
+  sending.air_wait_bounded = true;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "the air held this command %.1f s, the most a command waits: it goes out into the sound",
+                wait.held_ms / 1000);
+  sending.detail = text;
+  spdlog::warn("{} (command {}): {} ({})", job.description(), job.id(), text, sending.air_wait_reason);
+}
 
 }  // namespace
 
@@ -60,6 +85,16 @@ struct Transmitter::FrameAttempt {
   }
 };
 
+void Transmitter::end_cancelled(Job& job) {
+  bool stopping;
+  {
+    std::lock_guard lock(mutex_);
+    stopping = stopping_;
+  }
+  end(job, stopping ? Outcome::Unavailable : Outcome::Cancelled,
+      stopping ? "the server is shutting down" : cancelled_detail(job));
+}
+
 void Transmitter::send_unanswered(Job& job) {
   for (int index = 0; index < job.frame_count(); ++index) {
     FrameAttempt attempt{index, job.frames()[static_cast<std::size_t>(index)],
@@ -85,6 +120,10 @@ void Transmitter::send(Job& job) {
                          std::nullopt};
     attempt.retry.start();
     while (!attempt.retry.finished()) {
+      if (job.cancelled()) {  // by its caller, a Stop that overtook it, or the shutdown: not one more frame
+        end_cancelled(job);
+        return;
+      }
       switch (attempt.retry.state()) {
         case RetryState::TransmitPending:
           if (!transmit(job, attempt)) return;
@@ -119,14 +158,8 @@ bool Transmitter::transmit(Job& job, FrameAttempt& attempt) {
   if (attempt.index > 0 || attempt.chord_start != 0) renew_between_frames(job);
   // One chord on air at a time, with the profile's silence between chords, and none into
   // another sender's exchange.
-  if (job.cancelled() || !wait_for_air(job)) {
-    bool stopping;
-    {
-      std::lock_guard lock(mutex_);
-      stopping = stopping_;
-    }
-    end(job, stopping ? Outcome::Unavailable : Outcome::Cancelled,
-        stopping ? "the server is shutting down" : "cancelled by the caller");
+  if (job.cancelled() || !wait_for_air(job, attempt.event(Kind::WaitingForAir, job))) {
+    end_cancelled(job);
     return false;
   }
   const link::TransmitFrame& frame = *attempt.frame;
@@ -149,6 +182,7 @@ bool Transmitter::transmit(Job& job, FrameAttempt& attempt) {
   }
   ProgressEvent sending = attempt.event(retry.attempt() == 1 ? Kind::Transmitting : Kind::Retransmitting, job);
   sending.time = wall(attempt.chord_start);
+  tell_air_wait(job, sending);
   emit(job, sending);
   if (frame.counter) {
     // The MAC's input but the key and payload, before the frame sounds (stderr is
@@ -225,7 +259,7 @@ bool Transmitter::decide(Job& job, FrameAttempt& attempt) {
     decision = job.await_decision();
     if (!decision) {
       end(job, job.cancelled() ? Outcome::Cancelled : Outcome::Failed,
-          job.cancelled() ? "cancelled by the caller" : "no decision within the decision timeout");
+          job.cancelled() ? cancelled_detail(job) : "no decision within the decision timeout");
       return false;
     }
   }

@@ -7,6 +7,8 @@ namespace dtmf::cli {
 
 std::string event_name(v1::FrameEvent event) {
   std::string name = v1::FrameEvent_Name(event);
+  // A newer server's event this client does not know has no name: its number then.
+  if (name.rfind("FRAME_EVENT_", 0) != 0) return "event_" + std::to_string(static_cast<int>(event));
   name = name.substr(std::string("FRAME_EVENT_").size());
   for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return name;
@@ -29,6 +31,11 @@ std::string describe(const v1::Progress& p) {
     case v1::FRAME_EVENT_QUEUED:
       std::snprintf(text, sizeof text, "%s: queued (%u ahead)", p.command().c_str(), p.queue_position());
       return text;
+    case v1::FRAME_EVENT_WAITING_FOR_AIR:
+      // The sender listens before it talks; it says what holds the frame, and for how long at most.
+      std::snprintf(text, sizeof text, "%s: frame %u/%u waiting for the air: %s (at most %.1f s)", p.command().c_str(),
+                    p.frame_index() + 1, p.frame_count(), p.air_wait_reason().c_str(), p.air_wait_left_ms() / 1000);
+      return text;
     case v1::FRAME_EVENT_CONFIRMED:
     case v1::FRAME_EVENT_CONTINUED:
     case v1::FRAME_EVENT_FAILED:
@@ -45,6 +52,11 @@ std::string describe(const v1::Progress& p) {
   }
   if (p.event() == v1::FRAME_EVENT_TRANSMITTING || p.event() == v1::FRAME_EVENT_RETRANSMITTING) {
     state += " (attempt " + std::to_string(p.attempt()) + ")";
+    if (p.air_wait_ms() > 0) {
+      char waited[48];
+      std::snprintf(waited, sizeof waited, " after %.1f s waiting for the air", p.air_wait_ms() / 1000);
+      state += waited;
+    }
   }
   std::string tones;
   for (double hz : p.tones_hz()) {
@@ -71,8 +83,9 @@ std::string describe(const v1::Progress& p) {
 // Events after which the frame's line is complete.
 bool closes_line(v1::FrameEvent e) {
   return e == v1::FRAME_EVENT_ACK || e == v1::FRAME_EVENT_NACK || e == v1::FRAME_EVENT_NO_ANSWER ||
-         e == v1::FRAME_EVENT_AWAITING_DECISION || e == v1::FRAME_EVENT_QUEUED || e == v1::FRAME_EVENT_CONFIRMED ||
-         e == v1::FRAME_EVENT_CONTINUED || e == v1::FRAME_EVENT_FAILED || e == v1::FRAME_EVENT_SENT;
+         e == v1::FRAME_EVENT_AWAITING_DECISION || e == v1::FRAME_EVENT_QUEUED ||
+         e == v1::FRAME_EVENT_WAITING_FOR_AIR || e == v1::FRAME_EVENT_CONFIRMED || e == v1::FRAME_EVENT_CONTINUED ||
+         e == v1::FRAME_EVENT_FAILED || e == v1::FRAME_EVENT_SENT;
 }
 
 }  // namespace
@@ -105,6 +118,9 @@ void ProgressView::show(const v1::Progress& p, const std::optional<SequencePosit
     if (p.event() == v1::FRAME_EVENT_ACK || p.event() == v1::FRAME_EVENT_CONFIRMED)
       event["answer_authenticated"] = p.answer_authenticated();
     if (!p.detail().empty()) event["detail"] = p.detail();
+    if (!p.air_wait_reason().empty()) event["air_wait_reason"] = p.air_wait_reason();
+    if (p.event() == v1::FRAME_EVENT_WAITING_FOR_AIR) event["air_wait_left_ms"] = p.air_wait_left_ms();
+    if (p.air_wait_ms() > 0) event["air_wait_ms"] = p.air_wait_ms();
     if (sequence) {
       event["run_id"] = sequence->run_id;
       event["frames_done"] = sequence->frames_done;

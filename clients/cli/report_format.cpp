@@ -73,6 +73,10 @@ nlohmann::ordered_json report_json(const v1::GetReportResponse& r) {
   fields["every_robot_stops_executed"] = r.every_robot_stops_executed();
   fields["renewals_sent"] = r.renewals_sent();
   fields["renewals_executed"] = r.renewals_executed();
+  // Waits for the air (listen before talk).
+  fields["air_waits"] = r.air_waits();
+  fields["air_wait_total_ms"] = r.air_wait_total_ms();
+  fields["air_wait_max_ms"] = optional(r.has_air_wait_max_ms(), r.air_wait_max_ms());
   return fields;
 }
 
@@ -106,6 +110,7 @@ void print_table(const v1::GetReportResponse& r) {
         n(r.every_robot_stops_executed()));
   if (r.renewals_sent() > 0)
     row("Joint renewals sent", n(r.renewals_sent()), "Taken by robots", n(r.renewals_executed()));
+  row("Frames that waited for the air", n(r.air_waits()), "Waited for the air in all", ms(true, r.air_wait_total_ms()));
   std::printf("\n");
   row("Average response time", ms(r.has_response_time_avg_ms(), r.response_time_avg_ms()), "Average latency",
       ms(r.has_latency_avg_ms(), r.latency_avg_ms()));
@@ -113,6 +118,8 @@ void print_table(const v1::GetReportResponse& r) {
       ms(r.has_latency_min_ms(), r.latency_min_ms()));
   row("Max response time", ms(r.has_response_time_max_ms(), r.response_time_max_ms()), "Max latency",
       ms(r.has_latency_max_ms(), r.latency_max_ms()));
+  // A command's waits for the air, its frames together: at most 8.7 s (docs/protocol.md §9).
+  row("Longest a command waited (air)", ms(r.has_air_wait_max_ms(), r.air_wait_max_ms()), "", "");
 }
 
 void print_csv(const v1::GetReportResponse& r) {

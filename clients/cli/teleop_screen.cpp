@@ -36,6 +36,8 @@ const char* event_name(v1::FrameEvent event) {
       return "no answer";
     case v1::FRAME_EVENT_FAILED:
       return "failed";
+    case v1::FRAME_EVENT_WAITING_FOR_AIR:
+      return "waiting for the air";
     default:
       return "";
   }

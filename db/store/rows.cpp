@@ -97,20 +97,24 @@ nlohmann::json to_json(const CommandRow& r) {
 }
 
 nlohmann::json to_json(const FrameAttemptRow& r) {
-  return {{"id", r.id},
-          {"run_id", optional_json(r.run_id)},
-          {"command_id", r.command_id},
-          {"position", r.position},
-          {"attempt", r.attempt},
-          {"word", optional_json(r.word)},
-          {"frame", r.frame},
-          {"frame_width", r.frame_width},
-          {"authenticated", r.authenticated},
-          {"tones_hz", r.tones_hz},
-          {"chord_started_at", iso_time(r.chord_started_at)},
-          {"chord_ended_at", optional_time(r.chord_ended_at)},
-          {"answer", optional_json(r.answer)},
-          {"answered_at", optional_time(r.answered_at)}};
+  nlohmann::json row = {{"id", r.id},
+                        {"run_id", optional_json(r.run_id)},
+                        {"command_id", r.command_id},
+                        {"position", r.position},
+                        {"attempt", r.attempt},
+                        {"word", optional_json(r.word)},
+                        {"frame", r.frame},
+                        {"frame_width", r.frame_width},
+                        {"authenticated", r.authenticated},
+                        {"tones_hz", r.tones_hz},
+                        {"chord_started_at", iso_time(r.chord_started_at)},
+                        {"chord_ended_at", optional_time(r.chord_ended_at)},
+                        {"answer", optional_json(r.answer)},
+                        {"answered_at", optional_time(r.answered_at)}};
+  // Migration 014's columns: a database before it ignores them (store_rows writes the columns it has).
+  row["air_wait_ms"] = optional_json(r.air_wait_ms);
+  row["air_wait_reason"] = optional_json(r.air_wait_reason);
+  return row;
 }
 
 nlohmann::json to_json(const ReceptionRow& r) {

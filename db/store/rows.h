@@ -70,6 +70,10 @@ struct FrameAttemptRow {
   std::optional<WallTime> chord_ended_at;
   std::optional<std::string> answer;  // ack, nack, none
   std::optional<WallTime> answered_at;
+  // Migration 014: how long it waited for the air before its chord (listen before talk; 0: at
+  // once), and why ("sound 14 dB over the room's floor"; none when it did not wait).
+  std::optional<double> air_wait_ms;
+  std::optional<std::string> air_wait_reason;
 };
 
 struct ReceptionRow {

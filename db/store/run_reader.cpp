@@ -86,6 +86,9 @@ void fill_figures(RunReport& report, const pqxx::row& r) {
   report.every_robot_stops_executed = count("every_robot_stops_executed");
   report.renewals_sent = count("renewals_sent");
   report.renewals_executed = count("renewals_executed");
+  report.air_waits = count("air_waits");
+  report.air_wait_total_ms = measure("air_wait_total_ms").value_or(0);
+  report.air_wait_max_ms = measure("air_wait_max_ms");
 }
 
 // pqxx's own errors become DatabaseError, which says what to do.

@@ -60,6 +60,11 @@ struct RunReport {
   std::int64_t every_robot_stops_sent = 0, every_robot_stops_executed = 0;
   // Joint renewals (migration 011): sent naming this robot (all, for the room), and taken.
   std::int64_t renewals_sent = 0, renewals_executed = 0;
+  // Waits for the air (migration 014): frames that waited, all their waits, and the longest
+  // any one command waited, its frames together (none: no command waited).
+  std::int64_t air_waits = 0;
+  double air_wait_total_ms = 0;
+  std::optional<double> air_wait_max_ms;
 };
 
 // Which run: the newest (monostate), by id, or by number.

@@ -62,9 +62,13 @@ void CarrierSense::own_end(double at_ms, std::optional<AirSpan> answer) {
   if (own_on_) tail_from(at_ms);
   own_on_ = waiting_ = false;
   own_ended_ms_ = at_ms;
-  for (const double busy_ms : provisional_) {
+  for (const auto& [busy_ms, over_db] : provisional_) {
     if (answer && busy_ms >= answer->from_ms && busy_ms <= answer->to_ms) continue;  // our robot's
-    last_busy_ms_ = std::max(last_busy_ms_.value_or(busy_ms), busy_ms);
+    if (!last_busy_ms_ || busy_ms >= *last_busy_ms_) {
+      last_busy_ms_ = busy_ms;
+      last_busy_over_floor_db_ = over_db;
+      last_busy_masked_ = false;
+    }
     ++busy_blocks_;
   }
   provisional_.clear();
@@ -140,10 +144,12 @@ void CarrierSense::hear(double level_dbfs, double end_ms) {
   if (!ours_now) follow_answer_tail(level_dbfs, end_ms);
   if (!busy_now_) return;
   if (waiting_) {
-    provisional_.push_back(end_ms);
+    provisional_.emplace_back(end_ms, level_dbfs - floor_dbfs_);
     return;
   }
   last_busy_ms_ = end_ms;
+  last_busy_over_floor_db_ = level_dbfs - floor_dbfs_;
+  last_busy_masked_ = false;
   ++busy_blocks_;
 }
 
@@ -171,7 +177,9 @@ void CarrierSense::answer_read(double end_ms) {
 
 void CarrierSense::answer_masked(double end_ms) {
   ++masked_answers_;
-  last_busy_ms_ = std::max(last_busy_ms_.value_or(end_ms), end_ms);
+  if (last_busy_ms_ && *last_busy_ms_ > end_ms) return;
+  last_busy_ms_ = end_ms;
+  last_busy_masked_ = true;
 }
 
 }  // namespace dtmf::reliability

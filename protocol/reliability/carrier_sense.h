@@ -94,6 +94,10 @@ class CarrierSense {
 
   // The last block heard busy (another's sound), if any; blocks of our wait count once it ended.
   std::optional<double> last_busy_ms() const { return last_busy_ms_; }
+  // How far that block stood over the room's floor then (dB), for the operator; and whether
+  // it was no block but another's robot's answer read under our exchange (answer_masked).
+  double last_busy_over_floor_db() const { return last_busy_over_floor_db_; }
+  bool last_busy_masked() const { return last_busy_masked_; }
   // Whether the last block heard was busy.
   bool busy_now() const { return busy_now_; }
   // Since when the air has been quiet: no sound of ours, its tail fallen into the noise, and
@@ -126,8 +130,11 @@ class CarrierSense {
   std::optional<double> tail_from_ms_;                 // our last sound ended here
   std::deque<std::pair<double, double>> tail_recent_;  // (end_ms, level) of its last kFloorSmoothMs
   double tail_min_dbfs_ = 0;                           // the quietest since (envelope; while waiting, a block)
-  std::vector<double> provisional_;                    // busy blocks heard while we wait (their end_ms)
+  // Busy blocks heard while we wait: (end_ms, dB over the floor).
+  std::vector<std::pair<double, double>> provisional_;
   std::optional<double> last_busy_ms_;
+  double last_busy_over_floor_db_ = 0;
+  bool last_busy_masked_ = false;
   bool busy_now_ = false;
   std::optional<double> quiet_since_ms_;
   std::optional<double> others_answer_ms_;

@@ -6,6 +6,9 @@
 #include <array>
 #include <stdexcept>
 
+#include "security/counter_clock.h"
+#include "security/counter_store.h"
+
 namespace dtmf::test_support {
 
 namespace {
@@ -30,9 +33,17 @@ link::LinkOptions keyed_at(std::uint8_t address, const FleetOptions& o, bool rob
   link::LinkOptions l;
   l.address = address;
   l.first_sequence = o.first_sequence;
+  if (robot_side) l.wall_clock = [offset = o.robot_clock_offset] { return std::chrono::system_clock::now() + offset; };
   if (o.keys == FleetKeys::None) return l;
   l.key = fleet_key(address);
-  if (o.keys == FleetKeys::OwnAndRoom && robot_side) l.room_key = fleet_key(kRoomKeySeed);
+  // Counters that name today, as a sender's do (security/counter_clock.h).
+  const std::uint64_t today = security::clock_counter_floor(std::chrono::system_clock::now());
+  l.counters = robot_side ? std::make_shared<security::MemoryCounterStore>(1, 0)
+                          : std::make_shared<security::MemoryCounterStore>(today);
+  if (o.keys == FleetKeys::OwnAndRoom && robot_side) {
+    l.room_key = fleet_key(kRoomKeySeed);
+    l.room_counters = std::make_shared<security::MemoryCounterStore>(1, o.robot_room_kept);
+  }
   return l;
 }
 
@@ -114,6 +125,7 @@ FleetSystem::FleetSystem(FleetOptions options)
   std::vector<sim::SimulatedAir::Station> stations;
   for (std::size_t k = 0; k < options_.names.size(); ++k)
     stations.push_back(air_.add_station(options_.names[k], options_.positions_m[k]));
+  if (options_.stranger_m) stranger_ = air_.add_station("stranger", *options_.stranger_m);
   air_.start();
   for (std::size_t k = 0; k < stations.size(); ++k)
     robots_.push_back(std::make_unique<FleetRobot>(
@@ -129,10 +141,16 @@ FleetSystem::FleetSystem(FleetOptions options)
   }
   for (std::size_t k = 0; k < robots.size(); ++k) robots[k].model = model_of(k);
   link::LinkOptions room;
-  if (options_.keys == FleetKeys::OwnAndRoom) room.key = fleet_key(kRoomKeySeed);
+  if (options_.keys == FleetKeys::OwnAndRoom) {
+    room.key = fleet_key(kRoomKeySeed);
+    room.counters = std::make_shared<security::MemoryCounterStore>(
+        security::clock_counter_floor(std::chrono::system_clock::now() + options_.room_clock_offset));
+  }
+  server::TransmitterOptions transmitter;
+  transmitter.max_queue = options_.max_queue;
   transmitter_ = std::make_unique<server::Transmitter>(std::move(robots), fast(), std::move(sender.speaker),
-                                                       std::move(sender.microphone), *recorder_,
-                                                       server::TransmitterOptions{}, link::make_links(room));
+                                                       std::move(sender.microphone), *recorder_, transmitter,
+                                                       link::make_links(room));
   service_ = std::make_unique<server::TeleopService>(*transmitter_, *store_, server::ServiceOptions{});
   grpc::ServerBuilder builder;
   builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port_);

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -34,6 +35,12 @@ struct FleetOptions {
   FleetKeys keys = FleetKeys::None;
   std::string rir_file;             // a measured room (pink noise -50 dBFS); empty: free field, white -70 dBFS
   std::uint8_t first_sequence = 0;  // every sender link's: so that robots' numbers collide
+  // Faults a stop must get through (stop_always_server_test.cpp):
+  std::chrono::seconds robot_clock_offset{0};  // each robot's wall clock against the sender's
+  std::uint64_t robot_room_kept = 0;           // the newest room counter each robot kept
+  std::chrono::seconds room_clock_offset{0};   // the clock the sender's room counters follow
+  std::size_t max_queue = 32;                  // the transmitter's queue
+  std::optional<double> stranger_m;            // a station with a loudspeaker of its own, this far out
 };
 
 // One cmd_vel sample a robot published, and when.
@@ -82,12 +89,17 @@ class FleetSystem {
   FleetRobot& robot(std::size_t k) { return *robots_.at(k); }  // from 0
   std::size_t size() const { return robots_.size(); }
   const std::string& name(std::size_t k) const { return options_.names.at(k); }
+  // A station's loudspeaker silenced (its answers lost), or sounding again.
+  void mute(const std::string& station, bool muted) { air_.mute(station, muted); }
+  // The stranger's loudspeaker (FleetOptions::stranger_m): what it plays, everyone hears.
+  physical::AudioSink& stranger() { return *stranger_.speaker; }
   // What the sender heard of others on the air, and how often it waited for them.
   server::AirShare air_share() const { return transmitter_->air_share(); }
 
  private:
   FleetOptions options_;
   sim::SimulatedAir air_;
+  sim::SimulatedAir::Station stranger_;
   std::vector<std::unique_ptr<FleetRobot>> robots_;
   std::unique_ptr<store::Store> store_;
   std::unique_ptr<server::StoreRecorder> recorder_;

@@ -184,14 +184,19 @@ TEST(Server, StopOvertakesQueuedCommands) {
   ASSERT_TRUE(queued.wait_for(v1::FRAME_EVENT_QUEUED));  // the turn waits behind it
   v1::StopRequest stop;
   const auto stopped = read_stream<v1::StopResponse>([&](grpc::ClientContext& c) { return client->Stop(&c, stop); });
-  EXPECT_TRUE(first.finish().status.ok());
   EXPECT_TRUE(stopped.status.ok());
-  EXPECT_TRUE(queued.finish().status.ok());
+  // The drive on air ends when its chord does, and the turn queued for the same robot never
+  // plays: behind the stop it would set the robot moving again (issue 59).
+  for (const auto& overtaken : {first.finish().status, queued.finish().status}) {
+    EXPECT_EQ(overtaken.error_code(), grpc::StatusCode::CANCELLED);
+    EXPECT_NE(overtaken.error_message().find("overtaken by a Stop"), std::string::npos) << overtaken.error_message();
+  }
   const auto words = system.words_heard();
-  ASSERT_EQ(words.size(), 8u);
-  EXPECT_EQ(words[1], static_cast<int>(command::Mode::DriveForward));
-  EXPECT_EQ(words[4], static_cast<int>(command::Mode::Stop));  // before the turn queued earlier
-  EXPECT_EQ(words[6], static_cast<int>(command::Mode::Turn));
+  ASSERT_GE(words.size(), 3u);
+  EXPECT_LE(words.size(), 4u) << "the drive's words on air when the stop came, then the stop's";
+  EXPECT_EQ(words[words.size() - 2], 0);  // the stop's RESET
+  EXPECT_EQ(words.back(), static_cast<int>(command::Mode::Stop));
+  for (const int w : words) EXPECT_NE(w, static_cast<int>(command::Mode::Turn)) << "the queued turn played";
 }
 
 TEST(Server, ACancelledCallsQueuedFramesNeverPlay) {

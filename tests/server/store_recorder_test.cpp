@@ -179,3 +179,29 @@ TEST(StoreRecorder, AJointRenewalIsOneRowNamingItsRobotsInItsParametersAndEndsSe
   ASSERT_EQ(ended.size(), 1u);
   EXPECT_EQ(command_in(ended[0]).outcome, "sent");
 }
+
+// Listen before talk (migration 014): a WaitingForAir event writes nothing; the attempt's row,
+// when its chord starts, keeps how long it waited and why, and 0 for one that went at once.
+TEST(StoreRecorder, AWaitForTheAirIsKeptWithTheAttemptThatWaited) {
+  const auto job = drive_job(fast_profile());
+  TransmissionRecord record("sender-pc");
+  record.on_event(*job, event(Kind::Queued));
+  ProgressEvent waiting = event(Kind::WaitingForAir, 0, 1, job.get());
+  waiting.air_wait_reason = "sound 14 dB over the room's floor";
+  EXPECT_TRUE(record.on_event(*job, waiting).empty());
+
+  ProgressEvent sending = event(Kind::Transmitting, 0, 1, job.get());
+  sending.air_wait_ms = 1234.5;
+  sending.air_wait_reason = waiting.air_wait_reason;
+  auto rows = record.on_event(*job, sending);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(attempt_in(rows[1]).air_wait_ms, 1234.5);
+  EXPECT_EQ(attempt_in(rows[1]).air_wait_reason, "sound 14 dB over the room's floor");
+  EXPECT_EQ(store::to_json(attempt_in(rows[1]))["air_wait_ms"], 1234.5);
+
+  record.on_event(*job, event(Kind::NoAnswer, 0, 1));
+  rows = record.on_event(*job, event(Kind::Retransmitting, 0, 2, job.get()));
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(attempt_in(rows[0]).air_wait_ms, 0);
+  EXPECT_FALSE(attempt_in(rows[0]).air_wait_reason);
+}

@@ -31,6 +31,8 @@ def main() -> int:
             for step in robot.run_sequence(args.label, args.notes):
                 run_id = step.run_id
                 p = step.progress
+                if p.event == FrameEvent.WAITING_FOR_AIR:  # another's sound, or turn-taking, holds the frame
+                    print(f"[{step.frames_done:2}/{step.frames_total}] {p.waiting_for_air}", flush=True)
                 if p.event in (FrameEvent.ACK, FrameEvent.NACK, FrameEvent.NO_ANSWER):
                     answer = f"{p.event.name} after {p.response_time_ms:.0f} ms" if p.response_time_ms else p.event.name
                     print(f"[{step.frames_done:2}/{step.frames_total}] {p.frame_bits}  {answer}", flush=True)

@@ -23,7 +23,14 @@ class FrameEvent(enum.Enum):
     CONTINUED = pb.FRAME_EVENT_CONTINUED
     FAILED = pb.FRAME_EVENT_FAILED
     SENT = pb.FRAME_EVENT_SENT  # a stop for every robot played whole: no robot answers it
+    # The frame waits for the air (the server listens before it talks): Progress.air_wait_reason says why.
+    WAITING_FOR_AIR = pb.FRAME_EVENT_WAITING_FOR_AIR
     UNSPECIFIED = pb.FRAME_EVENT_UNSPECIFIED
+
+    @classmethod
+    def _missing_(cls, value):
+        # An event of a newer server than this package: UNSPECIFIED, not an error mid-command.
+        return cls.UNSPECIFIED
 
     @property
     def is_final(self) -> bool:
@@ -68,6 +75,16 @@ class Progress:
     # ACK, which anyone within earshot can play (never a keyed confirmation).
     answer_authenticated: bool = False
     robot: str = ""                 # the robot the command is for (its name on the server)
+    # WAITING_FOR_AIR: why ("sound 14 dB over the room's floor", "yielding to another sender")
+    # and the longest it may still wait; TRANSMITTING / RETRANSMITTING: how long it waited.
+    air_wait_reason: str = ""
+    air_wait_left_ms: float = 0.0
+    air_wait_ms: float = 0.0
+
+    @property
+    def waiting_for_air(self) -> str:
+        """What dtmfctl shows for WAITING_FOR_AIR: "waiting for the air: <why>"; "" otherwise."""
+        return f"waiting for the air: {self.air_wait_reason}" if self.event == FrameEvent.WAITING_FOR_AIR else ""
 
     @classmethod
     def from_proto(cls, p: pb.Progress) -> "Progress":
@@ -78,7 +95,9 @@ class Progress:
                    detail=p.detail, queue_position=p.queue_position, time_unix_ms=p.time_unix_ms,
                    profile=p.profile, sequence=p.sequence if p.HasField("sequence") else None,
                    authenticated=p.authenticated, synchronisation=p.synchronisation,
-                   answer_authenticated=p.answer_authenticated, robot=p.robot)
+                   answer_authenticated=p.answer_authenticated, robot=p.robot,
+                   air_wait_reason=p.air_wait_reason, air_wait_left_ms=p.air_wait_left_ms,
+                   air_wait_ms=p.air_wait_ms)
 
 
 @dataclass(frozen=True)
