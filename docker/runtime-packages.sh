@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Runs in docker/Dockerfile's build stage: checks that a runtime image's package list holds
-# every library its programs link, as Debian's own packaging computes it (dpkg-shlibdeps on
-# the binaries, which maps each NEEDED library to the package that ships it).
+# Runs in docker/Dockerfile's build stage, and in the suite's docker.runtime_packages test on
+# its own build: checks that a runtime image's package list holds every library its programs
+# link, as Debian's own packaging computes it (dpkg-shlibdeps on the binaries, which maps each
+# NEEDED library to the package that ships it).
 #   runtime-packages IMAGE "PACKAGES" PATH...
 # PATH: a program, or a directory searched for ELF files. A needed package is satisfied when
 # PACKAGES names it (or names a package that provides it, e.g. a virtual spdlog name), or
-# when the bare base image has it (/base-packages, written by the build stage's first step).
+# when the bare base image has it (/base-packages, written by the build stage's first step;
+# the test, with no image to ask, sets BASE_PACKAGES_FILE to tests/docker/bookworm-slim-packages).
 # Prints what IMAGE needs; exits 1 naming each package missing from PACKAGES.
 set -euo pipefail
 
@@ -38,6 +40,16 @@ for p in $declared; do
 done
 base=" $(tr '\n' ' ' <"${BASE_PACKAGES_FILE:-/base-packages}") "
 
+# The package to add for a name: itself, or for a virtual one (a library's shlibs file may name
+# one: spdlog's is libspdlog1.10-fmt9) the package here that provides it, the name to list.
+package_of() {
+  local by
+  [[ $(dpkg-query -W -f='${db:Status-Abbrev}' "$1" 2>/dev/null) == i* ]] && { echo "$1"; return; }
+  by=$(dpkg-query -W -f='${Package}\t${Provides}\n' | sed 's/([^)]*)//g' |
+    awk -F'\t' -v n="$1" '{ k = split($2, p, /[ ,]+/); for (i = 1; i <= k; i++) if (p[i] == n) { print $1; exit } }') || true
+  echo "${by:-$1}${by:+ (which provides $1)}"
+}
+
 needed=() missing=()
 IFS=',' read -ra groups <<<"$depends"
 for group in "${groups[@]}"; do
@@ -51,12 +63,17 @@ for group in "${groups[@]}"; do
     if [[ $satisfying == *" $name "* || $base == *" $name "* ]]; then ok=1; break; fi
   done
   needed+=("${alternatives[0]%%:*}")
-  [ $ok = 1 ] || missing+=("$(echo "${alternatives[*]}" | sed 's/ / or /g')")
+  if [ $ok = 0 ]; then
+    add=""
+    for name in "${alternatives[@]}"; do add+="${add:+ or }$(package_of "${name%%:*}")"; done
+    missing+=("$add")
+  fi
 done
 
 echo "runtime-packages: $image (${#binaries[@]} ELF files) links: ${needed[*]}"
 if [ ${#missing[@]} -gt 0 ]; then
-  echo "runtime-packages: FAIL: the $image image would lack ${missing[*]}:" \
+  list=$(printf '%s, ' "${missing[@]}")
+  echo "runtime-packages: FAIL: the $image image would lack ${list%, }:" \
     "add it to ${image^^}_PACKAGES at the top of docker/Dockerfile" >&2
   exit 1
 fi
