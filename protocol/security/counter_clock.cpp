@@ -15,7 +15,7 @@ std::uint64_t clock_counter_floor(std::chrono::system_clock::time_point now) {
 }
 
 bool ahead_of_clock(std::uint64_t counter, std::chrono::system_clock::time_point now) {
-  return counter > clock_counter_floor(now) + kClockMargin;
+  return counter_ahead(counter, clock_counter_floor(now));
 }
 
 double seconds_ahead_of_clock(std::uint64_t counter, std::chrono::system_clock::time_point now) {

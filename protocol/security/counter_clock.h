@@ -26,6 +26,11 @@ inline constexpr std::uint64_t kClockMargin = std::uint64_t{kClockMarginS} * kCo
 // The lowest counter the clock allows at `now`: 1 + kCountersPerSecond per second since
 // 2026-01-01 (1 before then).
 std::uint64_t clock_counter_floor(std::chrono::system_clock::time_point now);
+// Whether `counter` lies more than kClockMargin past `clock_counter` (the clock as a counter):
+// the one rule every check of a counter's time uses.
+constexpr bool counter_ahead(std::uint64_t counter, std::uint64_t clock_counter) {
+  return counter > clock_counter + kClockMargin;
+}
 // Whether `counter` lies more than kClockMargin ahead of what the clock allows at `now`.
 bool ahead_of_clock(std::uint64_t counter, std::chrono::system_clock::time_point now);
 // How many seconds `counter` lies ahead of the clock at `now` (negative: behind it).

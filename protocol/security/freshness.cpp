@@ -14,7 +14,7 @@ std::uint32_t counter_low_bits(std::uint64_t counter) {
 }
 
 Freshness freshness_of(std::uint64_t last_accepted, std::uint64_t counter, std::uint64_t clock_counter) {
-  if (counter > clock_counter + kClockMargin) return Freshness::Ahead;
+  if (counter_ahead(counter, clock_counter)) return Freshness::Ahead;
   if (counter == 0 || counter < last_accepted) return Freshness::Stale;
   return counter == last_accepted ? Freshness::Repeat : Freshness::New;
 }
