@@ -63,14 +63,18 @@ void check_label(std::string_view field, std::string_view label) {
   check_text(field, label, kLabelLimit);
 }
 
-CommandSettings command_settings(const v1::CommandOptions& options, const CommandSettings& defaults) {
-  check_text("options.profile", options.profile(), kProfileLimit);
-  check_text("options.robot", options.robot(), kIdLimit);
+void check_robot_name(std::string_view field, const std::string& name) {
+  check_text(field, name, kIdLimit);
   // A name no robot can have is refused here, shown: the lookup's refusal prints the name as it is.
-  if (!options.robot().empty() && !robot_name_valid(options.robot())) {
-    throw RequestError("options.robot: " + shown(options.robot()) +
+  if (!name.empty() && !robot_name_valid(name)) {
+    throw RequestError(std::string(field) + ": " + shown(name) +
                        " is no robot's name (1 to 32 letters, digits, - or _; dtmfctl robots lists them)");
   }
+}
+
+CommandSettings command_settings(const v1::CommandOptions& options, const CommandSettings& defaults) {
+  check_text("options.profile", options.profile(), kProfileLimit);
+  check_robot_name("options.robot", options.robot());
   CommandSettings settings = defaults;
   if (options.has_on_unconfirmed()) {
     switch (options.on_unconfirmed()) {

@@ -47,6 +47,8 @@ inline constexpr TextLimit kProfileLimit{32};
 // control character (C0, DEL, C1; in multiline fields tab and line breaks are fine), or is
 // longer than the limit.
 void check_text(std::string_view field, std::string_view text, TextLimit limit);
+// A robot's name in `field`: within kIdLimit, and a name a robot could have (or empty).
+void check_robot_name(std::string_view field, const std::string& name);
 // A label: check_text, and not empty.
 void check_label(std::string_view field, std::string_view label);
 

@@ -30,7 +30,8 @@ class TeleopSession;
 // A command's progress event as the API streams it.
 void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event, const std::string& robot);
 
-class TeleopService final : public v1::TeleopService::Service {
+// WatchAir is a callback method (watch_air_rpc.h: a reactor, no thread of its own); the rest are synchronous.
+class TeleopService final : public v1::TeleopService::WithCallbackMethod_WatchAir<v1::TeleopService::Service> {
  public:
   TeleopService(Transmitter& transmitter, store::Store& store, ServiceOptions options);
 
@@ -48,6 +49,8 @@ class TeleopService final : public v1::TeleopService::Service {
   grpc::Status ListRuns(grpc::ServerContext*, const v1::ListRunsRequest*, v1::ListRunsResponse*) override;
   grpc::Status GetReport(grpc::ServerContext*, const v1::GetReportRequest*, v1::GetReportResponse*) override;
   grpc::Status ListRobots(grpc::ServerContext*, const v1::ListRobotsRequest*, v1::ListRobotsResponse*) override;
+  grpc::ServerWriteReactor<v1::WatchAirResponse>* WatchAir(grpc::CallbackServerContext*,
+                                                           const v1::WatchAirRequest* request) override;
 
  private:
   // Queues `command` and writes its progress through `write` until it ends.

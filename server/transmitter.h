@@ -25,7 +25,8 @@
 // Teleop streams drive robots, it renews their velocity leases together, one frame for
 // up to three robots, ahead of the queue (transmitter_renewal.cpp). The loudspeaker's
 // thread is transmitter_loop.cpp, the microphone's transmitter_ears.cpp, a command's frames
-// on air transmitter_send.cpp.
+// on air transmitter_send.cpp. What it puts on the air and hears there it publishes to its
+// air's fan-out (air_fanout.h, transmitter_watch.cpp), for anyone to watch (WatchAir).
 #pragma once
 
 #include <atomic>
@@ -38,6 +39,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "air_fanout.h"
 #include "command/robot_model.h"
 #include "job.h"
 #include "physical/audio_io.h"
@@ -47,6 +49,7 @@
 #include "reliability/carrier_sense.h"
 #include "renewal_schedule.h"
 #include "reply_listeners.h"
+#include "signal/spectrum_columns.h"
 
 namespace dtmf::server {
 
@@ -177,6 +180,8 @@ class Transmitter {
   const command::RobotModel& model_of(RobotIndex robot) const { return robots_.at(robot).model; }
   std::vector<RobotStatus> robots() const;
   AirShare air_share() const;
+  // What it puts on the air and hears there, as it happens (air_event.h), for watchers.
+  AirFanout& air_events() { return air_events_; }
   // The profile a command asking for `requested` (nullptr: the default) goes out under: that
   // one, unless this transmitter has a key and it carries no MAC. Then a Stop goes under the
   // first profile that does, and any other command is refused (UnauthenticatedRefused)
@@ -214,8 +219,17 @@ class Transmitter {
   bool transmit(Job& job, FrameAttempt& attempt);
   void await_answer(Job& job, FrameAttempt& attempt);
   bool decide(Job& job, FrameAttempt& attempt);
-  // To the observer, then to the job's caller.
+  // To the observer, then to the job's caller, then to the air's watchers.
   void emit(Job& job, ProgressEvent event);
+  // The air's events (transmitter_watch.cpp): what `event` of `job` shows of the air; an
+  // answer the microphone read; a block's level (the air heard busy or quiet again) and its
+  // spectrum, while someone watches it.
+  void publish_air(const Job& job, const ProgressEvent& event);
+  void publish_heard(const HeardAnswer& heard, double audio_ms, double level_dbfs);
+  void publish_levels(std::span<const float> block, double end_audio_ms, bool busy, double level_dbfs,
+                      double floor_dbfs);
+  // The microphone's sample clock at `steady_ms` of the transmitter's steady clock.
+  double audio_ms_of(double steady_ms) const;
   // Emits the command's last event and ends it.
   void end(Job& job, Outcome outcome, const std::string& detail);
   store::WallTime wall(double steady_ms) const;
@@ -292,6 +306,14 @@ class Transmitter {
   RenewalSchedule renewals_;  // guarded by mutex_
 
   std::unique_ptr<ReplyListeners> ears_;  // every link's answer ear, fed by listen() alone
+  AirFanout air_events_;
+  // The steady clock less the microphone's sample clock, as of its last block (listen()).
+  std::atomic<double> mic_offset_ms_{0};
+  // The microphone reader's own: whether the air was last heard busy, and the spectrum's tap
+  // (made while someone watches it) with the audio time it began at.
+  bool air_busy_ = false;
+  std::unique_ptr<signal::SpectrumColumns> columns_;
+  double columns_start_ms_ = 0;
   std::thread worker_;
   std::thread listener_;
 };

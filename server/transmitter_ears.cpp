@@ -40,16 +40,24 @@ void Transmitter::listen() {
     if (got == 0) return;  // the input ended (a file, or a stopped simulated air)
     audio_ms += 1000.0 * static_cast<double>(got) / profile_.sample_rate_hz;
     const double now = now_ms();
-    const double level_dbfs = reliability::block_level_dbfs(std::span<const float>(block.data(), got));
+    mic_offset_ms_ = now - audio_ms;
+    const std::span<const float> heard_block(block.data(), got);
+    const double level_dbfs = reliability::block_level_dbfs(heard_block);
+    bool busy = false;
+    double floor_dbfs = 0;
     {
       std::lock_guard lock(mutex_);
       const bool waiting = carrier_.own_on();
       carrier_.hear(level_dbfs, now);
-      if (carrier_.busy_now())
+      busy = carrier_.busy_now();
+      floor_dbfs = carrier_.floor_dbfs();
+      if (busy)
         spdlog::debug("the air at {:.0f} ms: {:.1f} dBFS over a floor of {:.1f}: another's sound{}", now, level_dbfs,
-                      carrier_.floor_dbfs(), waiting ? " (while our exchange goes on: counted if not our answer)" : "");
+                      floor_dbfs, waiting ? " (while our exchange goes on: counted if not our answer)" : "");
     }
-    for (const HeardAnswer& heard : listener.feed(std::span<const float>(block.data(), got))) {
+    publish_levels(heard_block, audio_ms, busy, level_dbfs, floor_dbfs);
+    for (const HeardAnswer& heard : listener.feed(heard_block)) {
+      publish_heard(heard, heard.answer.heard_ms, level_dbfs);
       std::lock_guard lock(mutex_);
       // The block just read ends now; the reply was heard a little earlier.
       const double heard_at_ms = now - (audio_ms - heard.answer.heard_ms);

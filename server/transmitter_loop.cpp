@@ -20,6 +20,7 @@ void Transmitter::shutdown() {
   changed_.notify_all();
   if (worker_.joinable()) worker_.join();
   if (listener_.joinable()) listener_.join();
+  air_events_.close();  // after the threads: nothing more is published
 }
 
 void Transmitter::play(const link::TransmitFrame& frame, double start_ms) {

@@ -47,6 +47,7 @@ store::WallTime Transmitter::wall(double steady_ms) const {
 
 void Transmitter::emit(Job& job, ProgressEvent event) {
   observer_.observe(job, event);
+  publish_air(job, event);
   job.emit(std::move(event));
 }
 

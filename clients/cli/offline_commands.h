@@ -29,5 +29,7 @@ void add_live_commands(CLI::App& app, Action& run, const GlobalOptions& global);
 void add_run_commands(CLI::App& app, Action& run, const GlobalOptions& global);
 // teleop: live driving from the keyboard in a full-screen view (teleop_command.cpp).
 void add_teleop_command(CLI::App& app, Action& run, const GlobalOptions& global);
+// watch: the air as the server puts it there and hears it (watch_command.cpp).
+void add_watch_command(CLI::App& app, Action& run, const GlobalOptions& global);
 
 }  // namespace dtmf::cli

@@ -246,3 +246,33 @@ TEST_F(DtmfctlLive, SequenceShowsProgressAndEndsWithTheSeedsReport) {
     }
   }
 }
+
+TEST_F(DtmfctlLive, WatchShowsTheAirAsADriveGoesOut) {
+  const fs::path out = kDir / "watch.jsonl";
+  // The first spectrum column says the watch is open; then a drive, watched for 4 s in all.
+  const auto r = run_command(ctl("watch --json --spectrum --columns-per-s 2 --bins 16 --seconds 4") + " > " +
+                             out.string() + " & w=$!; i=0; until [ -s " + out.string() +
+                             " ] || [ $i -ge 100 ]; do sleep 0.05; i=$((i+1)); done; " +
+                             ctl("drive --speed 30 --duration 1 --profile fast") + " < /dev/null && wait $w");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  std::ifstream file(out);
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  std::vector<std::string> kinds;
+  for (const auto& line : whole_json_lines(text)) {
+    for (const char* kind : {"frame_played", "frame_answered", "command_ended", "spectrum"})
+      if (line.contains(kind)) kinds.emplace_back(kind);
+    if (line.contains("spectrum")) {
+      EXPECT_EQ(line["spectrum"]["level_dbfs"].size(), 16u) << line;
+    }
+    if (line.contains("frame_answered")) {
+      EXPECT_EQ(line["frame_answered"]["answer"], "ack") << line;
+    }
+  }
+  for (const char* kind : {"frame_played", "frame_answered", "command_ended"})
+    EXPECT_EQ(std::count(kinds.begin(), kinds.end(), kind), 1) << kind << "\n" << text;
+  EXPECT_GE(std::count(kinds.begin(), kinds.end(), "spectrum"), 6) << text;  // 2 a second for 4 s
+  // A bad value is a usage error naming it.
+  const auto bad = run_command(ctl("watch --bins 9999"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--bins"), std::string::npos) << bad.out;
+}

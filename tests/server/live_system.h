@@ -82,6 +82,8 @@ class LiveSystem {
   std::vector<PublishedVelocity> velocities(std::size_t from = 0);
   // How the sender shared the air: a lone sender defers to no one and never yields.
   server::AirShare air_share() const { return transmitter_->air_share(); }
+  // Who watches the sender's air now (WatchAir streams among them).
+  std::size_t air_watchers() const { return transmitter_->air_events().watchers(); }
   // The sound devices go away (a USB sound card unplugged): the room stops.
   void pull_the_plug() { air_.stop(); }
   // The sender's loudspeaker goes silent (or sounds again): the link is lost from now on, the

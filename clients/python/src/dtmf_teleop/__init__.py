@@ -10,7 +10,8 @@ from .errors import (BadRequest, Cancelled, NotConfirmed, NotFound, QueueFull, S
                      Unauthenticated)
 from .events import Decision, FrameEvent, Progress, SequenceProgress, TeleopStatus, Unconfirmed
 from .teleop import TeleopStream
+from .watch import AirWatch
 
-__all__ = ["Client", "CommandCall", "DEFAULT_TARGET", "BadRequest", "Cancelled", "NotConfirmed", "NotFound",
+__all__ = ["AirWatch", "Client", "CommandCall", "DEFAULT_TARGET", "BadRequest", "Cancelled", "NotConfirmed", "NotFound",
            "QueueFull", "ServerUnreachable", "TeleopError", "Unauthenticated", "Decision", "FrameEvent", "Progress",
            "SequenceProgress", "TeleopStatus", "TeleopStream", "Unconfirmed"]

@@ -26,6 +26,7 @@ from ._stubs.grpc.health.v1 import health_pb2, health_pb2_grpc
 from .events import Decision, FrameEvent, Progress, SequenceProgress, TeleopStatus, Unconfirmed
 from .records import message_to_dict
 from .teleop import REPEAT_S, TeleopStream
+from .watch import AirWatch
 
 DEFAULT_TARGET = "localhost:50051"
 
@@ -199,6 +200,16 @@ class Client:
         """The robots the server drives: name, address (0..7), key_id (empty without a
         key), model, and last_answered_unix_ms (0: no answer since the server started)."""
         return [message_to_dict(r) for r in self._unary(self._stub.ListRobots, pb.ListRobotsRequest()).robots]
+
+    def watch(self, *, spectrum: bool = False, columns_per_s: float = 0.0, bins: int = 0) -> AirWatch:
+        """The air as the server puts it there and hears it, as it happens (WatchAir): frames
+        played, answers heard and taken, waits for the air, the air busy, commands ended; with
+        spectrum=True, the microphone's spectrum in columns (columns_per_s: 0 is 10, at most 50;
+        bins: 0 is 128, at most 512). With Client(robot=...), that robot's events and the
+        room's. Iterate the AirWatch for dicts (watch.py); cancel() ends it."""
+        request = pb.WatchAirRequest(robot=self.robot or "", spectrum=spectrum, columns_per_s=columns_per_s,
+                                     bins=bins)
+        return AirWatch(self._stub.WatchAir(request, metadata=self._metadata), self.target)
 
     def health(self) -> str:
         """The server's health: "SERVING" or "NOT_SERVING" (its audio device is gone)."""
