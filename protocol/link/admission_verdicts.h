@@ -1,27 +1,15 @@
-// The robot's verdicts on a frame, shared by the parts of FrameAdmission (frame_admission.cpp,
-// room_stop_admission.cpp, renewal_admission.cpp): a refusal and its reason, and a refusal of
-// a frame this robot cannot check, left for the robot it may be for. Header-only, internal.
+// Words and sums the parts of FrameAdmission share (frame_admission.cpp,
+// room_stop_admission.cpp, renewal_admission.cpp): a velocity's lease end, and how far a
+// counter lies past the clock, for the log. What becomes of a frame is the rules' to say
+// (admission_rules.h), not these. Header-only, internal.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
-#include "link/reception.h"
+#include "command/command.h"
 
 namespace dtmf::link::admission {
-
-inline void refuse(Reception& r, RefusalReason reason, std::string why) {
-  r.event = ReceptionEvent::Refused;
-  r.refusal = reason;
-  r.detail = std::move(why);
-}
-
-// A frame this robot cannot check may be another robot's (its own key, or none): refused
-// here, and left for that robot to answer.
-inline void refuse_unchecked(Reception& r, std::string why) {
-  refuse(r, RefusalReason::Authentication, std::move(why));
-  r.answered = false;
-}
 
 // A velocity's lease, from a frame that began at `start_ms` (the robot counts it so).
 inline double lease_end(const command::Velocity& velocity, double start_ms) {

@@ -38,6 +38,12 @@
 // one that begins after the lease ran out (the robot stopped) renews nothing, so a renewal the
 // air delayed, or a recording of one, never sets a stopped robot moving again; only a new
 // velocity frame does.
+// Where a slot holds by chance (one in 2^18) in this robot's command whose MAC holds, the
+// frame is the command; a frame sealed under the room key is the stop for every robot.
+// How: a frame heard is read once into one kind (frame_reading.h), every reading its MAC could
+// decide verified first and one chosen by a stated rule where two hold; then the kind's one
+// condition that holds picks a row of the rules (admission_rules.h), which says the event,
+// the answer and whether the counter is kept, and the admission does what the row says.
 // Pure logic, but for the counter stores and the wall clock it is given. Parts:
 // room_stop_admission.cpp (the stop for every robot), renewal_admission.cpp (joint renewals).
 #pragma once
@@ -45,10 +51,11 @@
 #include <optional>
 #include <set>
 
+#include "link/admission_rules.h"
+#include "link/frame_reading.h"
 #include "link/hop_frame_path.h"
 #include "link/link.h"
 #include "reliability/echo_memory.h"
-#include "reliability/plain_renewal.h"
 #include "reliability/sequence_filter.h"
 #include "security/frame_mac.h"
 #include "security/room_freshness.h"
@@ -65,40 +72,49 @@ class FrameAdmission {
   std::optional<Reception> admit(const HeardHopFrame& heard);
   // Echoes of frames taken lately, ignored so far.
   std::size_t echoes_ignored() const { return echoes_ignored_; }
-  // Whether the 80-bit frame `bits` (its CRC holds) is authentic: its MAC holds for the
-  // counter its low bits complete to. Changes nothing; false without a key.
+  // Whether the 80-bit frame `bits` (its CRC holds) is authentic: some reading of it verifies
+  // (reading::verify_sealed). Changes nothing, allocates nothing; false without a key.
   bool authentic(const reliability::FrameBits& bits) const;
 
  private:
-  void admit_plain(Reception& r);
-  void admit_sealed(Reception& r);
-  // Whether the frame is a stop for every robot; if so, `r` says what became of it.
-  bool admit_plain_room_stop(Reception& r);
-  bool admit_sealed_room_stop(Reception& r);
-  // Whether the 80-bit frame `bits` is a command or synchronisation under this robot's key.
-  bool command_authentic(const reliability::FrameBits& bits) const;
-  // The payload `frame`'s MAC holds for under this robot's key at `counter`: a command's own;
-  // in synchronisation form, a synchronisation's (0) or a Stop's.
-  std::optional<std::uint32_t> sealed_payload(const reliability::SealedFrame& frame, std::uint64_t counter) const;
+  using Rule = admission::Rule;
+  using Condition = admission::Condition;
+
+  // This robot's keys and state as a frame's reading needs them.
+  reading::ReadingContext reading_context() const;
+  // Gives `r` the row of (`kind`, `condition`): its event, refusal, answer, authentication.
+  const Rule& judge(reading::FrameKind kind, Condition condition, Reception& r) const;
+  // One for each kind of frame read: finds its condition, judges it by its row of
+  // kAdmissionRules and does what the row says. Unheard: no reception.
+  const Rule& act(const reading::Broken& frame, Reception& r);
+  const Rule& act(const reading::Echo& frame, Reception& r);
+  const Rule& act(const reading::Elsewhere& frame, Reception& r);
+  const Rule& act(const reading::PlainCommand& frame, Reception& r);
+  const Rule& act(const reading::Synchronisation& frame, Reception& r);
+  const Rule& act(const reading::SealedCommand& frame, Reception& r);
+  const Rule& act(const reading::Unverified& frame, Reception& r);
+  // room_stop_admission.cpp: the stop for every robot.
+  const Rule& act(const reading::PlainRoomStop& frame, Reception& r);
+  const Rule& act(const reading::RoomStop& frame, Reception& r);
+  // renewal_admission.cpp: joint renewals.
+  const Rule& act(const reading::PlainRenewal& frame, Reception& r);
+  const Rule& act(const reading::JointRenewal& frame, Reception& r);
+
+  // Whether plain (unauthenticated) frames are refused here: a key, and no exception made.
+  bool plain_refused() const { return options_.key && !options_.accept_unauthenticated; }
   // This robot's clock as a counter (security/counter_clock.h).
   std::uint64_t clock_counter() const;
-  void take_stop_ahead(Reception& r, const command::Command& stop, std::uint64_t clock);
-  // Whether `frame` is sealed under the room key: a stop for every robot.
-  bool room_authentic(const reliability::SealedFrame& frame) const;
+  // A renewal `id` (its counter, or a plain renewal's number) of the velocity taken last,
+  // beginning at `start_ms`: PastHorizon, LeaseEnded, Repeat or Fresh.
+  Condition renewal_condition(double start_ms, std::uint64_t id) const;
+  // What a renewal `id`, described as `what`, did under `condition`: renewed the velocity
+  // (Fresh), or the words why not.
+  void renew(Condition condition, Reception& r, std::uint64_t id, const std::string& what);
+  // Executes `command`: nothing taken before it is renewed any more, and its echoes are known.
   void take_command(Reception& r, const command::Command& command);
-  // Whether the frame is a joint renewal of this robot's velocity; if so, `r` says what
-  // became of it.
-  bool admit_renewal(Reception& r);
-  // The plain (unkeyed) joint renewal `renewal` (reliability/plain_renewal.h): what it did
-  // here, or nothing when no slot names this robot.
-  std::optional<Reception> admit_plain_renewal(Reception r, const reliability::PlainRenewal& renewal);
-  // The renewal `id` (its counter, or a plain renewal's number), of the velocity taken last:
-  // that velocity again, unless `id` was taken already (a repeat) or the velocity's frame
-  // began past the horizon (refused for `late`; false then).
-  bool take_renewal(Reception& r, std::uint64_t id, const std::string& what, RefusalReason late);
-  // The counter `bits` renews this robot's velocity with, if it is a renewal whose slot for
-  // this robot holds.
-  std::optional<std::uint64_t> renewal_counter(const reliability::FrameBits& bits) const;
+  // After `command` was taken from the frame of `r`: if a velocity, what renewals renew next,
+  // known by `id` (its counter if `sealed`, else its sequence number).
+  void hold_renewable(const Reception& r, const command::Command& command, std::uint64_t id, bool sealed);
 
   // The velocity frame taken last, while no other command has been taken since: what a
   // renewal renews (a keyed renewal only a sealed one, a plain renewal only a plain one).

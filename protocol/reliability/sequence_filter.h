@@ -17,9 +17,11 @@ namespace dtmf::reliability {
 
 class SequenceFilter {
  public:
+  // True when `frame` is the last one executed, again. Changes nothing.
+  bool is_repeat(const CommandFrame& frame) const { return last_ && *last_ == frame; }
   // True when `frame` is new and should be executed; remembers it.
   bool first_time(const CommandFrame& frame) {
-    if (last_ && *last_ == frame) return false;
+    if (is_repeat(frame)) return false;
     last_ = frame;
     return true;
   }
