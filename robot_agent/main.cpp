@@ -14,10 +14,10 @@
 #include "agent_program.h"
 #include "stop_guard.h"
 
-int main(int argc, char** argv) {
-  spdlog::set_default_logger(spdlog::stderr_color_mt("dtmf-agent"));
-  dtmf::agent::AgentFlags f;
-  CLI::App app{"dtmf-agent: hears command chords, answers ACK/NACK, drives a TurtleBot3 through cmd_vel"};
+namespace {
+
+// What it hears and answers with, and how it drives the robot.
+void add_driving_flags(CLI::App& app, dtmf::agent::AgentFlags& f) {
   app.add_option("--audio", f.audio, "where to listen: wav:FILE, a device name or index, or default")
       ->envname("DTMF_AGENT_AUDIO")
       ->capture_default_str();
@@ -51,6 +51,10 @@ int main(int argc, char** argv) {
   app.add_option("--ros-domain-id", f.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0)")
       ->check(CLI::Range(0, 232));
   app.add_option("--frame-id", f.frame_id, "header.frame_id of TwistStamped");
+}
+
+// Where it logs, its keys and its address.
+void add_record_and_key_flags(CLI::App& app, dtmf::agent::AgentFlags& f) {
   app.add_option("--db", f.db,
                  "PostgreSQL URL, or none; default: DTMF_DB_URL, else the libpq environment (PGHOST, ...)")
       ->envname("DTMF_DB_URL");
@@ -66,6 +70,16 @@ int main(int argc, char** argv) {
   app.add_flag("--accept-unauthenticated", f.accept_unauthenticated,
                "with --key: execute frames without a MAC too (the seed profile's; a warning at start)")
       ->envname("DTMF_AGENT_ACCEPT_UNAUTHENTICATED");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  spdlog::set_default_logger(spdlog::stderr_color_mt("dtmf-agent"));
+  dtmf::agent::AgentFlags f;
+  CLI::App app{"dtmf-agent: hears command chords, answers ACK/NACK, drives a TurtleBot3 through cmd_vel"};
+  add_driving_flags(app, f);
+  add_record_and_key_flags(app, f);
   dtmf::program::add_audio_program_options(app, f.program);
   f.program.without_devices =
       "or run on recordings: --audio wav:FILE --ack-out wav:FILE (scripts/air start gives a "

@@ -102,9 +102,12 @@ void Transmitter::send_renewal(const std::vector<RobotIndex>& robots) {
   {
     std::lock_guard lock(mutex_);
     for (const RobotIndex r : robots) {
-      // Kept under one profile each; links of another profile than the first's, or keyed
-      // otherwise, are left out.
-      if (const link::Link* l = robots_[r].renewal_link) links.push_back(const_cast<link::Link*>(l));
+      // Kept under one profile each; links of another profile than the first's are left out
+      // (plan_renewal), and so are links keyed otherwise: one frame renews keyed robots or
+      // plain ones, never both (link/renewal_planner.h).
+      const link::Link* kept = robots_[r].renewal_link;
+      if (!kept || (!links.empty() && kept->keyed() != links.front()->keyed())) continue;
+      links.push_back(&link_for(kept->profile(), r));  // the robot's own link, which numbers its frames
     }
   }
   std::optional<link::Link::PlannedRenewal> planned;

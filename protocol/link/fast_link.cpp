@@ -2,6 +2,8 @@
 // command, checked by a CRC (and with a key authenticated by a MAC over a freshness
 // counter), as a Reed-Solomon codeword of hopped 32-ary tones; ACK / NACK replies below the
 // chords, and the ACK to an authenticated frame one chord spelling its tag in the frame bands.
+// Here: numbering commands, and the robot's and the ear's paths. How each frame sounds is
+// fast_frames.cpp; joint renewals are planned by renewal_planner.cpp from the record kept here.
 #include "link/fast_link.h"
 
 #include <algorithm>
@@ -10,15 +12,13 @@
 #include "command/command_payload.h"
 #include "command/random_command.h"
 #include "link/fast_answer_listener.h"
+#include "link/fast_frames.h"
 #include "link/frame_admission.h"
 #include "link/hop_frame_path.h"
 #include "link/reply_lane.h"
 #include "reliability/command_frame.h"
-#include "reliability/plain_renewal.h"
-#include "reliability/renewal_frame.h"
 #include "reliability/reply_code.h"
 #include "reliability/sealed_frame.h"
-#include "security/frame_mac.h"
 #include "security/freshness.h"
 #include "signal/hop_reply.h"
 #include "signal/hop_synthesizer.h"
@@ -29,15 +29,6 @@ namespace {
 
 // Offline recordings leave each frame the time its answer takes, as a sender would.
 constexpr double kAnswerWaitMs = 100;
-
-static_assert(security::kAnswerTagBytes == reliability::kTagBytes);
-
-// The tag the ACK to an authenticated frame spells, as its chord's symbols, in the bins the
-// frame left free.
-reliability::TagChordSymbols reply_tag(const security::LinkKey& key, const security::FrameMacInput& input,
-                                       std::uint32_t mac, const reliability::BandValueSet& taken) {
-  return reliability::tag_chord_symbols(security::answer_tag(key, input, mac), taken);
-}
 
 class FastReceiver final : public FrameReceiver {
  public:
@@ -74,52 +65,11 @@ TransmitFrame FastLink::plain_frame(std::uint32_t payload) {
   const reliability::CommandFrame frame{
       options_.address, static_cast<std::uint8_t>(next_sequence_ & reliability::kSequenceMask), payload};
   next_sequence_ = static_cast<std::uint8_t>((frame.sequence + 1) & reliability::kSequenceMask);
-  return frame_of(frame);
-}
-
-TransmitFrame FastLink::frame_of(const reliability::CommandFrame& frame) const {
-  TransmitFrame f;
-  f.bits = reliability::command_frame_pack(frame);
-  f.bit_count = reliability::kCommandFrameBits;
-  f.check_bit_count = reliability::kCommandCrcBits;
-  f.sequence = frame.sequence;
-  f.address = frame.address;
-  f.answer_lane = answer_lane(frame.sequence);
-  const auto symbols = reliability::command_frame_symbols(f.bits.low64());
-  f.tones_hz = signal::frame_tones_hz(profile(), symbols);
-  f.audio = signal::synthesize_hopped_frame(profile(), symbols);
-  f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
-  f.next_frame_after_ms = f.tone_ms + profile().timing.gap_ms;  // its answer sounds in the reply bands
-  return f;
+  return command_transmit_frame(profile(), frame);
 }
 
 TransmitFrame FastLink::sealed_frame(std::uint32_t payload, bool synchronisation, std::uint64_t counter) const {
-  const auto form = synchronisation ? reliability::SealedForm::Sync : reliability::SealedForm::Command;
-  const security::FrameMacInput input{options_.address, static_cast<std::uint8_t>(form), counter, payload};
-  reliability::SealedFrame frame;
-  frame.address = options_.address;
-  frame.form = form;
-  frame.counter = synchronisation ? counter : security::counter_low_bits(counter);
-  frame.payload = payload;
-  frame.mac = security::frame_mac(*options_.key, input);
-  TransmitFrame f;
-  f.bits = reliability::sealed_frame_pack(frame);
-  f.bit_count = reliability::kSealedFrameBits;
-  f.check_bit_count = reliability::kSealedCheckBits;
-  f.address = frame.address;
-  f.authenticated = true;
-  f.synchronisation = synchronisation;
-  f.counter = counter;
-  f.answer_lane = answer_lane(counter);
-  const auto symbols = reliability::sealed_frame_symbols(f.bits);
-  f.sent_tones = reliability::tag_chord_taken(symbols);
-  f.answer_tag = reply_tag(*options_.key, input, frame.mac, f.sent_tones);
-  f.tones_hz = signal::frame_tones_hz(profile(), symbols);
-  f.audio = signal::synthesize_hopped_frame(profile(), symbols);
-  f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
-  f.next_frame_after_ms =
-      std::max(f.tone_ms + profile().timing.gap_ms, profile().hops().sealed_bands_busy_ms(profile().sample_rate_hz));
-  return f;
+  return sealed_transmit_frame(profile(), *options_.key, {options_.address, payload, synchronisation, counter});
 }
 
 std::vector<TransmitFrame> FastLink::broadcast_frames(std::uint32_t payload) {
@@ -139,11 +89,11 @@ std::vector<TransmitFrame> FastLink::broadcast_frames(std::uint32_t payload) {
 std::vector<TransmitFrame> FastLink::plan(const command::Command& command) {
   const std::uint32_t payload = command::encode_payload(command);  // throws before a counter is used
   if (command::every_robot(command)) return broadcast_frames(payload);
-  velocity_counter_.reset();
-  velocity_sequence_.reset();
+  renewal_.velocity_counter.reset();
+  renewal_.velocity_sequence.reset();
   if (!keyed()) {
     TransmitFrame f = plain_frame(payload);
-    if (std::holds_alternative<command::Velocity>(command)) velocity_sequence_ = f.sequence;
+    if (std::holds_alternative<command::Velocity>(command)) renewal_.velocity_sequence = f.sequence;
     return {std::move(f)};
   }
   std::vector<TransmitFrame> frames;
@@ -162,88 +112,8 @@ std::vector<TransmitFrame> FastLink::plan(const command::Command& command) {
     counter = counters.next_counter();
   }
   frames.push_back(sealed_frame(payload, false, counter));
-  if (std::holds_alternative<command::Velocity>(command)) velocity_counter_ = counter;
+  if (std::holds_alternative<command::Velocity>(command)) renewal_.velocity_counter = counter;
   return frames;
-}
-
-std::vector<std::size_t> FastLink::renewable(std::span<Link* const> robots) const {
-  // Links of this profile, keyed as this one is, whose last frame planned was a velocity.
-  std::vector<std::size_t> candidates;
-  for (std::size_t i = 0; i < robots.size() && candidates.size() < reliability::kRenewalSlots; ++i) {
-    const auto* link = dynamic_cast<const FastLink*>(robots[i]);
-    if (link && &link->profile() == &profile() && link->keyed() == keyed() &&
-        (keyed() ? link->velocity_counter_.has_value() : link->velocity_sequence_.has_value()))
-      candidates.push_back(i);
-  }
-  return candidates;
-}
-
-std::optional<Link::PlannedRenewal> FastLink::plan_renewal(std::span<Link* const> robots) {
-  const std::vector<std::size_t> candidates = renewable(robots);
-  if (candidates.empty()) return std::nullopt;
-  if (!keyed()) return plan_plain_renewal(robots, candidates);
-  // One counter, new to every one of them.
-  std::uint64_t counter = 0;
-  for (const std::size_t i : candidates) counter = std::max(counter, robots[i]->options().counters->next_counter());
-  PlannedRenewal planned;
-  reliability::RenewalFrame renewal;
-  renewal.counter_low = security::counter_low_bits(counter);
-  for (const std::size_t i : candidates) {
-    auto& link = static_cast<FastLink&>(*robots[i]);
-    security::CounterStore& counters = *link.options().counters;
-    counters.next_counter_from(counter);  // used here, whether or not its robot can take it
-    // The robot completes the low bits from its velocity frame's counter: one that could not
-    // is left out, and its next frame, numbered after this one, is in step again.
-    if (counter - *link.velocity_counter_ >= security::kCounterWindow) continue;
-    const std::uint8_t address = link.options().address;
-    const std::uint32_t mac = security::frame_mac(
-        *link.options().key, security::renewal_mac_input(address, counter, *link.velocity_counter_));
-    renewal.slots[planned.renewed.size()] = {address, mac >> (32 - reliability::kRenewalMacBits)};
-    planned.renewed.push_back(i);
-  }
-  if (planned.renewed.empty()) return std::nullopt;
-  // Slots nobody fills repeat the first: a robot checks the same slot twice, no other robot's.
-  for (std::size_t slot = planned.renewed.size(); slot < renewal.slots.size(); ++slot)
-    renewal.slots[slot] = renewal.slots[0];
-  TransmitFrame& f = planned.frame;
-  f.bits = reliability::renewal_frame_pack(renewal);
-  f.bit_count = reliability::kSealedFrameBits;
-  f.check_bit_count = reliability::kSealedCheckBits;
-  f.address = renewal.slots[0].address;
-  f.authenticated = true;
-  f.renewal = true;
-  f.counter = counter;
-  const auto symbols = reliability::sealed_frame_symbols(f.bits);
-  f.tones_hz = signal::frame_tones_hz(profile(), symbols);
-  f.audio = signal::synthesize_hopped_frame(profile(), symbols);
-  f.tone_ms = 1000.0 * static_cast<double>(f.audio.size()) / profile().sample_rate_hz;
-  f.next_frame_after_ms = f.tone_ms + profile().timing.gap_ms;  // no answer to wait for
-  return planned;
-}
-
-std::optional<Link::PlannedRenewal> FastLink::plan_plain_renewal(std::span<Link* const> robots,
-                                                                 const std::vector<std::size_t>& candidates) {
-  // One number, new to every one of them: each robot takes a renewal's number once.
-  std::uint64_t number = 0;
-  for (const std::size_t i : candidates)
-    number = std::max(number, static_cast<FastLink&>(*robots[i]).next_renewal_number_);
-  PlannedRenewal planned;
-  reliability::PlainRenewal renewal;
-  renewal.number = static_cast<std::uint32_t>(number & reliability::kPlainRenewalNumberMask);
-  for (const std::size_t i : candidates) {
-    auto& link = static_cast<FastLink&>(*robots[i]);
-    link.next_renewal_number_ = number + 1;
-    renewal.slots[planned.renewed.size()] = {link.options().address, *link.velocity_sequence_};
-    planned.renewed.push_back(i);
-  }
-  for (std::size_t slot = planned.renewed.size(); slot < renewal.slots.size(); ++slot)
-    renewal.slots[slot] = renewal.slots[0];
-  TransmitFrame& f = planned.frame;
-  f = frame_of(reliability::plain_renewal_pack(renewal));
-  f.sequence.reset();  // no answer names it
-  f.address = renewal.slots[0].address;
-  f.renewal = true;
-  return planned;
 }
 
 std::size_t FastLink::frame_count(const command::Command& command) const {

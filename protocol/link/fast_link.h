@@ -5,7 +5,6 @@
 #pragma once
 
 #include "link/link.h"
-#include "reliability/command_frame.h"
 
 namespace dtmf::link {
 
@@ -21,8 +20,8 @@ class FastLink final : public Link {
   TransmitFrame random_frame(std::uint64_t seed) override;
   double frame_start_ms(std::size_t index) const override;
   void confirmed(const TransmitFrame& frame) override;
-  std::optional<PlannedRenewal> plan_renewal(std::span<Link* const> robots) override;
   bool renews_jointly() const override { return true; }
+  RenewalRecord* renewal_record() override { return &renewal_; }
   std::unique_ptr<FrameReceiver> receiver() const override;
   std::vector<float> answer_audio(const Reception& reception) const override;
   int receiver_block_samples() const override;
@@ -32,26 +31,14 @@ class FastLink final : public Link {
 
  private:
   TransmitFrame plain_frame(std::uint32_t payload);
-  // `frame` (50 bits) as it sounds, paced for its answer.
-  TransmitFrame frame_of(const reliability::CommandFrame& frame) const;
-  // Which of `robots` a joint renewal planned here could renew (at most three, in order).
-  std::vector<std::size_t> renewable(std::span<Link* const> robots) const;
-  // The unkeyed joint renewal of `candidates` (reliability/plain_renewal.h).
-  std::optional<PlannedRenewal> plan_plain_renewal(std::span<Link* const> robots,
-                                                   const std::vector<std::size_t>& candidates);
   TransmitFrame sealed_frame(std::uint32_t payload, bool synchronisation, std::uint64_t counter) const;
   // A stop for every robot: the profile's broadcast copies, sealed under the room key (this
   // link's key) with the whole counter, or plain.
   std::vector<TransmitFrame> broadcast_frames(std::uint32_t payload);
 
   std::uint8_t next_sequence_;
-  // Keyed: the counter of the last frame planned, when it was a velocity (what a joint
-  // renewal renews).
-  std::optional<std::uint64_t> velocity_counter_;
-  // Unkeyed: the sequence number of the last frame planned, when it was a velocity, and the
-  // number the next plain joint renewal takes at least.
-  std::optional<std::uint8_t> velocity_sequence_;
-  std::uint64_t next_renewal_number_ = 0;
+  // The velocity a joint renewal renews, and the renewals' numbers (renewal_planner.h).
+  RenewalRecord renewal_;
 };
 
 }  // namespace dtmf::link

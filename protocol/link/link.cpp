@@ -56,8 +56,6 @@ std::optional<TransmitFrame> Link::plan_payload_word(std::uint32_t) const { retu
 
 void Link::confirmed(const TransmitFrame&) {}
 
-std::optional<Link::PlannedRenewal> Link::plan_renewal(std::span<Link* const>) { return std::nullopt; }
-
 std::vector<float> Link::render(std::span<const TransmitFrame> frames) const {
   std::vector<float> audio(static_cast<std::size_t>(profile_.samples_for_ms(frame_start_ms(frames.size()))), 0.0f);
   for (std::size_t i = 0; i < frames.size(); ++i) {

@@ -26,6 +26,7 @@
 
 #include "command/command.h"
 #include "link/reception.h"
+#include "link/renewal_planner.h"
 #include "link/transmit_plan.h"
 #include "profile/link_profile.h"
 #include "security/counter_store.h"
@@ -140,19 +141,24 @@ class Link {
   // The robot confirmed `frame` (an answer for which answers() held): with a key, the
   // counter it confirmed is on record.
   virtual void confirmed(const TransmitFrame& frame);
-  // One frame, unanswered, that renews the lease of the velocity each of `robots` (links of
-  // this profile, one per robot, this one among them) was sent last (fast:
-  // reliability/renewal_frame.h keyed, reliability/plain_renewal.h without keys), and which of
-  // them it renews: at most three, in order; left out are robots keyed otherwise than this
-  // link, robots whose last frame was no velocity and, keyed, robots that could not complete
-  // the renewal's counter from that frame's (their next frame is in step). Nothing where the
-  // format has no such frame (renews_jointly()) or none can be renewed.
+  // One frame, unanswered, that renews the lease of the velocity each of `robots` (one link
+  // per robot) was sent last, and which of them it renews: at most three, in order. Planned by
+  // plan_joint_renewal (renewal_planner.h), to which this gives the robots' records and fresh
+  // counters and whose numbers it records in their links and stores. Left out are links of
+  // another profile than this one's or whose format has no such frame (renews_jointly()),
+  // robots whose last frame was no velocity and, keyed, robots that could not complete the
+  // renewal's counter from that frame's (their next frame is in step). Nothing when none can
+  // be renewed. Throws MixedRenewal for keyed and plain robots together, and what a counter
+  // store throws.
   struct PlannedRenewal {
     TransmitFrame frame;
     std::vector<std::size_t> renewed;  // indices into `robots`
   };
-  virtual std::optional<PlannedRenewal> plan_renewal(std::span<Link* const> robots);
+  std::optional<PlannedRenewal> plan_renewal(std::span<Link* const> robots);
   virtual bool renews_jointly() const { return false; }
+  // What this link's sender keeps for its robot's joint renewals (renewal_planner.h); none
+  // where the format renews no lease jointly.
+  virtual RenewalRecord* renewal_record() { return nullptr; }
 
   // --- the robot ---
   virtual std::unique_ptr<FrameReceiver> receiver() const = 0;

@@ -20,7 +20,6 @@ namespace {
 constexpr std::size_t B = kOctaveBands;
 constexpr int kSincHalfTaps = 32;
 constexpr double kSincKaiserBeta = 8.0;
-constexpr double kMinInsideM = 0.01;
 constexpr double kLengthMarginFactor = 1.2;  // on the slowest axial decay, an upper bound
 constexpr double kFadeOutS = 0.005;
 // An image whose amplitude (relative to a direct sound at 1 m) is below this is left out:
@@ -102,52 +101,129 @@ double estimated_length_s(const ShoeboxRoom& room, double direct_s) {
   return direct_s + 2 * diagonal_m / kSpeedOfSoundMps + kLengthMarginFactor * slowest_s;
 }
 
-}  // namespace
-
-std::string surface_name(Surface s) {
-  static const char* names[] = {"wall x=0", "wall x=max", "wall y=0", "wall y=max", "floor", "ceiling"};
-  return names[s];
-}
-
-void check_room(const ShoeboxRoom& room) {
-  for (double side : {room.size_m.x, room.size_m.y, room.size_m.z}) {
-    if (!std::isfinite(side) || side < kMinRoomSideM || side > kMaxRoomSideM) {
-      throw std::invalid_argument("room side " + number_text(side) +
-                                  " m: give sides between 0.5 and 200 m, e.g. 7x9x3");
+// Air absorption by arrival time, per band, 10^(-alpha(f) * d / 20), in steps of
+// kAirStep samples (5 cm at 48 kHz: 0.02 dB at 16 kHz), small enough to stay in cache.
+constexpr std::size_t kAirStep = 8;
+std::vector<Gains> air_gains(const ShoeboxRoom& room, std::size_t length, double fs) {
+  std::vector<Gains> air(length / kAirStep + 2);
+  for (std::size_t i = 0; i < air.size(); ++i) {
+    const double d = static_cast<double>(i * kAirStep) / fs * kSpeedOfSoundMps;
+    for (std::size_t b = 0; b < B; ++b) {
+      const double f = kOctaveCentresHz[b];
+      air[i][b] = room.air_absorption
+                      ? static_cast<float>(units::amplitude_ratio_from_db(-kAirAbsorptionDbPerMPerHz2 * f * f * d))
+                      : 1.0f;
     }
   }
-  for (std::size_t s = 0; s < kSurfaces; ++s) {
-    for (std::size_t b = 0; b < B; ++b) {
-      const double r = room.reflection[s][b];
-      if (!std::isfinite(r) || r < 0 || r >= 1) {
-        throw std::invalid_argument("reflection coefficient " + number_text(r) + " of the " +
-                                    surface_name(static_cast<Surface>(s)) + " at " + band_name(b) +
-                                    ": give a value in [0, 1) (0.9 a furnished wall, 0.97 a hard floor)");
+  return air;
+}
+
+// One image's sound, `g` per band, arriving `t` samples in: a band-limited impulse at the exact
+// time (a Kaiser-windowed sinc) while `fractional`, else at the nearest sample.
+void add_arrival(std::vector<float>& trains, std::size_t length, double t, const Gains& g, bool fractional) {
+  if (!fractional) {
+    float* row = trains.data() + static_cast<std::size_t>(std::lround(t)) * B;
+    for (std::size_t b = 0; b < B; ++b) row[b] += g[b];
+    return;
+  }
+  const auto whole = static_cast<long long>(std::floor(t));
+  for (long long k = whole - kSincHalfTaps + 1; k <= whole + kSincHalfTaps; ++k) {
+    if (k < 0 || k >= static_cast<long long>(length)) continue;
+    const double x = static_cast<double>(k) - t;
+    const double r = x / kSincHalfTaps;
+    if (std::abs(r) >= 1) continue;
+    const double sinc = x == 0 ? 1.0 : std::sin(std::numbers::pi * x) / (std::numbers::pi * x);
+    const double w = sinc * kaiser(r, kSincKaiserBeta);
+    float* row = trains.data() + static_cast<std::size_t>(k) * B;
+    for (std::size_t b = 0; b < B; ++b) row[b] += static_cast<float>(w) * g[b];
+  }
+}
+
+// The images along each axis, and how far and how long their sound is followed.
+struct Images {
+  std::vector<AxisImage> xs, ys, zs;
+  std::size_t length;
+  double fs, reach_m, direct_s;
+};
+
+// Each band's impulse train of every image within reach, [sample][band]: float halves the
+// cache misses.
+std::vector<float> image_trains(const ShoeboxRoom& room, const Images& images, std::uint64_t seed) {
+  const std::size_t length = images.length;
+  const double fs = images.fs;
+  const std::vector<Gains> air = air_gains(room, length, fs);
+  std::vector<float> trains(length * B, 0.0f);  // [sample][band]: float halves the cache misses
+  const double fractional_until = images.direct_s * fs + kFractionalDelayS * fs;
+  const double jitter_m = room.randomization_m;
+  const double reach2 = images.reach_m * images.reach_m;
+
+  for (const AxisImage& ix : images.xs) {
+    const double x2 = ix.offset_m * ix.offset_m;
+    // Beyond reach, or so many reflections on the way that nothing farther can matter.
+    if (x2 > reach2 || ix.loudest_after < kNegligibleGain * std::abs(ix.offset_m)) break;
+    const float gx_max = *std::max_element(ix.gain.begin(), ix.gain.end());
+    for (const AxisImage& iy : images.ys) {
+      const double xy2 = x2 + iy.offset_m * iy.offset_m;
+      if (xy2 > reach2 || gx_max * iy.loudest_after < kNegligibleGain * std::sqrt(xy2)) break;
+      Gains gxy;
+      for (std::size_t b = 0; b < B; ++b) gxy[b] = ix.gain[b] * iy.gain[b];
+      const float gxy_max = *std::max_element(gxy.begin(), gxy.end());
+      for (const AxisImage& iz : images.zs) {
+        const double d2 = xy2 + iz.offset_m * iz.offset_m;
+        double d = std::sqrt(d2);
+        if (d2 > reach2 || gxy_max * iz.loudest_after < kNegligibleGain * d) break;
+        if (jitter_m > 0 && ix.order + iy.order + iz.order >= 2) {
+          const auto u = uniform3_pm1(mix(mix(mix(seed ^ ix.key) ^ iy.key) ^ iz.key));
+          const double dx = ix.offset_m + jitter_m * u[0];
+          const double dy = iy.offset_m + jitter_m * u[1];
+          const double dz = iz.offset_m + jitter_m * u[2];
+          d = std::sqrt(dx * dx + dy * dy + dz * dz);
+        }
+        const double t = d / kSpeedOfSoundMps * fs;
+        if (t >= static_cast<double>(length) - 1) continue;
+        const auto nearest = static_cast<std::size_t>(std::lround(t));
+        const float spread = static_cast<float>(1.0 / std::max(d, kMinInsideM));
+        Gains g;
+        const Gains& absorbed = air[(nearest + kAirStep / 2) / kAirStep];
+        for (std::size_t b = 0; b < B; ++b) g[b] = gxy[b] * iz.gain[b] * spread * absorbed[b];
+        add_arrival(trains, length, t, g, t < fractional_until);
       }
     }
   }
-  if (!std::isfinite(room.max_length_s) || room.max_length_s < 0.05 || room.max_length_s > 10) {
-    throw std::invalid_argument("room response length cap " + number_text(room.max_length_s) + " s: give 0.05 to 10 s");
-  }
-  if (!std::isfinite(room.randomization_m) || room.randomization_m < 0 || room.randomization_m > 0.5) {
-    throw std::invalid_argument("image randomization " + number_text(room.randomization_m) + " m: give 0 to 0.5 m");
-  }
+  return trains;
 }
 
-void check_inside(const ShoeboxRoom& room, const Point3& p, const std::string& what) {
-  const double sides[3] = {room.size_m.x, room.size_m.y, room.size_m.z};
-  const double at[3] = {p.x, p.y, p.z};
-  for (int a = 0; a < 3; ++a) {
-    if (!std::isfinite(at[a]) || at[a] < kMinInsideM || at[a] > sides[a] - kMinInsideM) {
-      throw std::invalid_argument(what + " at (" + number_text(p.x) + ", " + number_text(p.y) + ", " +
-                                  number_text(p.z) + ") m is not inside the " + number_text(room.size_m.x) + " x " +
-                                  number_text(room.size_m.y) + " x " + number_text(room.size_m.z) +
-                                  " m room: give a position at least 1 cm from every wall, floor and ceiling");
+std::vector<float> band_filtered_sum(const std::vector<float>& trains, std::size_t length, double fs) {
+  // Each band's train through its band filter, summed in the frequency domain.
+  const std::size_t pad = static_cast<std::size_t>(fs / 10);  // the band filters' pre-ringing wraps into it
+  const RealFft fft(fft_size_at_least(length + pad));
+  FftReal x(fft.size(), 0.0f);
+  FftBins band(fft.bins()), sum(fft.bins(), {0.0f, 0.0f});
+  for (std::size_t b = 0; b < B; ++b) {
+    if (kOctaveCentresHz[b] / 2 >= fs / 2) continue;  // a band wholly above Nyquist
+    for (std::size_t n = 0; n < length; ++n) x[n] = trains[n * B + b];
+    fft.forward(x.data(), band.data());
+    for (std::size_t k = 0; k < band.size(); ++k) {
+      const double f = static_cast<double>(k) * fs / static_cast<double>(fft.size());
+      sum[k] += band[k] * static_cast<float>(band_weight(b, f) / static_cast<double>(fft.size()));
     }
   }
+  fft.inverse(sum.data(), x.data());
+  return {x.begin(), x.begin() + static_cast<std::ptrdiff_t>(length)};
 }
 
-double distance_m(const Point3& a, const Point3& b) { return std::hypot(a.x - b.x, a.y - b.y, a.z - b.z); }
+// An automatic length: cut where the response has decayed by 60 dB, and fade the cut out.
+void trim_to_decay(std::vector<float>& h, double direct_s, double fs) {
+  const std::size_t end = std::max(decay_point(h, 60.0), static_cast<std::size_t>((direct_s + kFractionalDelayS) * fs));
+  if (end < h.size()) h.resize(end);
+  const auto fade = std::min(h.size() / 4, static_cast<std::size_t>(kFadeOutS * fs));
+  for (std::size_t i = 0; i < fade; ++i) {
+    h[h.size() - fade + i] *= static_cast<float>(
+        0.5 + 0.5 * std::cos(std::numbers::pi * static_cast<double>(i + 1) / static_cast<double>(fade + 1)));
+  }
+}
+
+}  // namespace
 
 std::vector<float> image_source_response(const ShoeboxRoom& room, const Point3& speaker_in, const Point3& mic_in,
                                          int sample_rate_hz, std::uint64_t seed, double length_s) {
@@ -172,108 +248,15 @@ std::vector<float> image_source_response(const ShoeboxRoom& room, const Point3& 
   const auto length = static_cast<std::size_t>(std::ceil(generate_s * fs));
   const double reach_m = static_cast<double>(length) / fs * kSpeedOfSoundMps;
 
-  const auto xs =
+  Images images{{}, {}, {}, length, fs, reach_m, direct_s};
+  images.xs =
       axis_images(room.size_m.x, speaker.x, mic.x, room.reflection[kWallX0], room.reflection[kWallX1], reach_m + 1);
-  const auto ys =
+  images.ys =
       axis_images(room.size_m.y, speaker.y, mic.y, room.reflection[kWallY0], room.reflection[kWallY1], reach_m + 1);
-  const auto zs =
+  images.zs =
       axis_images(room.size_m.z, speaker.z, mic.z, room.reflection[kFloor], room.reflection[kCeiling], reach_m + 1);
-
-  // Air absorption by arrival time, per band, 10^(-alpha(f) * d / 20), in steps of
-  // kAirStep samples (5 cm at 48 kHz: 0.02 dB at 16 kHz), small enough to stay in cache.
-  constexpr std::size_t kAirStep = 8;
-  std::vector<Gains> air(length / kAirStep + 2);
-  for (std::size_t i = 0; i < air.size(); ++i) {
-    const double d = static_cast<double>(i * kAirStep) / fs * kSpeedOfSoundMps;
-    for (std::size_t b = 0; b < B; ++b) {
-      const double f = kOctaveCentresHz[b];
-      air[i][b] = room.air_absorption
-                      ? static_cast<float>(units::amplitude_ratio_from_db(-kAirAbsorptionDbPerMPerHz2 * f * f * d))
-                      : 1.0f;
-    }
-  }
-  std::vector<float> trains(length * B, 0.0f);  // [sample][band]: float halves the cache misses
-  const double fractional_until = direct_s * fs + kFractionalDelayS * fs;
-  const double jitter_m = room.randomization_m;
-  const double reach2 = reach_m * reach_m;
-
-  for (const AxisImage& ix : xs) {
-    const double x2 = ix.offset_m * ix.offset_m;
-    // Beyond reach, or so many reflections on the way that nothing farther can matter.
-    if (x2 > reach2 || ix.loudest_after < kNegligibleGain * std::abs(ix.offset_m)) break;
-    const float gx_max = *std::max_element(ix.gain.begin(), ix.gain.end());
-    for (const AxisImage& iy : ys) {
-      const double xy2 = x2 + iy.offset_m * iy.offset_m;
-      if (xy2 > reach2 || gx_max * iy.loudest_after < kNegligibleGain * std::sqrt(xy2)) break;
-      Gains gxy;
-      for (std::size_t b = 0; b < B; ++b) gxy[b] = ix.gain[b] * iy.gain[b];
-      const float gxy_max = *std::max_element(gxy.begin(), gxy.end());
-      for (const AxisImage& iz : zs) {
-        const double d2 = xy2 + iz.offset_m * iz.offset_m;
-        double d = std::sqrt(d2);
-        if (d2 > reach2 || gxy_max * iz.loudest_after < kNegligibleGain * d) break;
-        if (jitter_m > 0 && ix.order + iy.order + iz.order >= 2) {
-          const auto u = uniform3_pm1(mix(mix(mix(seed ^ ix.key) ^ iy.key) ^ iz.key));
-          const double dx = ix.offset_m + jitter_m * u[0];
-          const double dy = iy.offset_m + jitter_m * u[1];
-          const double dz = iz.offset_m + jitter_m * u[2];
-          d = std::sqrt(dx * dx + dy * dy + dz * dz);
-        }
-        const double t = d / kSpeedOfSoundMps * fs;
-        if (t >= static_cast<double>(length) - 1) continue;
-        const auto nearest = static_cast<std::size_t>(std::lround(t));
-        const float spread = static_cast<float>(1.0 / std::max(d, kMinInsideM));
-        Gains g;
-        const Gains& absorbed = air[(nearest + kAirStep / 2) / kAirStep];
-        for (std::size_t b = 0; b < B; ++b) g[b] = gxy[b] * iz.gain[b] * spread * absorbed[b];
-        if (t < fractional_until) {
-          // A band-limited impulse at the exact time: a Kaiser-windowed sinc.
-          const auto whole = static_cast<long long>(std::floor(t));
-          for (long long k = whole - kSincHalfTaps + 1; k <= whole + kSincHalfTaps; ++k) {
-            if (k < 0 || k >= static_cast<long long>(length)) continue;
-            const double x = static_cast<double>(k) - t;
-            const double r = x / kSincHalfTaps;
-            if (std::abs(r) >= 1) continue;
-            const double sinc = x == 0 ? 1.0 : std::sin(std::numbers::pi * x) / (std::numbers::pi * x);
-            const double w = sinc * kaiser(r, kSincKaiserBeta);
-            float* row = trains.data() + static_cast<std::size_t>(k) * B;
-            for (std::size_t b = 0; b < B; ++b) row[b] += static_cast<float>(w) * g[b];
-          }
-        } else {
-          float* row = trains.data() + nearest * B;
-          for (std::size_t b = 0; b < B; ++b) row[b] += g[b];
-        }
-      }
-    }
-  }
-
-  // Each band's train through its band filter, summed in the frequency domain.
-  const std::size_t pad = static_cast<std::size_t>(fs / 10);  // the band filters' pre-ringing wraps into it
-  const RealFft fft(fft_size_at_least(length + pad));
-  FftReal x(fft.size(), 0.0f);
-  FftBins band(fft.bins()), sum(fft.bins(), {0.0f, 0.0f});
-  for (std::size_t b = 0; b < B; ++b) {
-    if (kOctaveCentresHz[b] / 2 >= fs / 2) continue;  // a band wholly above Nyquist
-    for (std::size_t n = 0; n < length; ++n) x[n] = trains[n * B + b];
-    fft.forward(x.data(), band.data());
-    for (std::size_t k = 0; k < band.size(); ++k) {
-      const double f = static_cast<double>(k) * fs / static_cast<double>(fft.size());
-      sum[k] += band[k] * static_cast<float>(band_weight(b, f) / static_cast<double>(fft.size()));
-    }
-  }
-  fft.inverse(sum.data(), x.data());
-  std::vector<float> h(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(length));
-
-  if (automatic) {
-    const std::size_t end =
-        std::max(decay_point(h, 60.0), static_cast<std::size_t>((direct_s + kFractionalDelayS) * fs));
-    if (end < h.size()) h.resize(end);
-    const auto fade = std::min(h.size() / 4, static_cast<std::size_t>(kFadeOutS * fs));
-    for (std::size_t i = 0; i < fade; ++i) {
-      h[h.size() - fade + i] *= static_cast<float>(
-          0.5 + 0.5 * std::cos(std::numbers::pi * static_cast<double>(i + 1) / static_cast<double>(fade + 1)));
-    }
-  }
+  std::vector<float> h = band_filtered_sum(image_trains(room, images, seed), length, fs);
+  if (automatic) trim_to_decay(h, direct_s, fs);
   return h;
 }
 

@@ -42,6 +42,8 @@ enum Surface : std::size_t { kWallX0, kWallX1, kWallY0, kWallY1, kFloor, kCeilin
 inline constexpr double kFractionalDelayS = 0.05;
 inline constexpr double kMaxImages = 4e7;
 inline constexpr double kMinRoomSideM = 0.5, kMaxRoomSideM = 200;
+// How close to a surface a loudspeaker or microphone may be, and to each other.
+inline constexpr double kMinInsideM = 0.01;
 inline constexpr double kDefaultWallReflection = 0.9;    // walls and ceiling: a furnished room
 inline constexpr double kDefaultFloorReflection = 0.97;  // a hard floor: tiles, wood, concrete (absorbs 6 %)
 
@@ -58,6 +60,7 @@ struct ShoeboxRoom {
   double randomization_m = 0.08;  // 0: the plain image method
 };
 
+// The room's checks and measures (shoebox_checks.cpp).
 std::string surface_name(Surface s);
 
 // std::invalid_argument naming what is wrong and what to do: a side outside
