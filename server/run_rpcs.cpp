@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "database_status.h"
 #include "run_reader.h"
 #include "teleop_service.h"
 
@@ -78,15 +79,6 @@ void fill_report(v1::GetReportResponse& response, const store::RunReport& report
   measure(report.latency_max_ms, &R::set_latency_max_ms);
   measure(report.air_wait_max_ms, &R::set_air_wait_max_ms);
   for (const auto& frame : report.frames) fill_frame(*response.add_frames(), frame);
-}
-
-grpc::Status no_database() {
-  return {grpc::StatusCode::FAILED_PRECONDITION,
-          "this server runs without a database (--db none): there are no runs or reports; start it with --db URL"};
-}
-
-grpc::Status database_trouble(const std::exception& e) {
-  return {grpc::StatusCode::UNAVAILABLE, std::string("the database cannot answer: ") + e.what()};
 }
 
 }  // namespace

@@ -49,6 +49,8 @@ class TeleopService final : public v1::TeleopService::WithCallbackMethod_WatchAi
   grpc::Status ListRuns(grpc::ServerContext*, const v1::ListRunsRequest*, v1::ListRunsResponse*) override;
   grpc::Status GetReport(grpc::ServerContext*, const v1::GetReportRequest*, v1::GetReportResponse*) override;
   grpc::Status ListRobots(grpc::ServerContext*, const v1::ListRobotsRequest*, v1::ListRobotsResponse*) override;
+  grpc::Status ListReceptions(grpc::ServerContext* context, const v1::ListReceptionsRequest* request,
+                              grpc::ServerWriter<v1::ListReceptionsResponse>* writer) override;
   grpc::ServerWriteReactor<v1::WatchAirResponse>* WatchAir(grpc::CallbackServerContext*,
                                                            const v1::WatchAirRequest* request) override;
 

@@ -168,6 +168,15 @@ TEST(BenchSmoke, FleetTeleopDrivesThreeRobotsEachWithItsOwnFrames) {
   }
 }
 
+// Watching the air: the watcher reads frames and columns, and loses none at the full spectrum.
+TEST(BenchSmoke, WatchSeesFramesAndColumnsAndLosesNone) {
+  const auto doc = run(std::string(WATCH_PATH) + " --seconds 2 --phases 1", "watch");
+  EXPECT_GE(doc["latency_ms"]["count"].get<int>(), 2) << doc.dump();
+  EXPECT_GT(doc["columns_per_s"].get<double>(), 30) << doc.dump();  // 50 asked, the first second's start-up aside
+  EXPECT_EQ(doc["dropped_events"], 0) << doc.dump();
+  EXPECT_GT(doc["commands_confirmed"].get<int>(), 4) << doc.dump();
+}
+
 TEST(BenchSmoke, TalkoffFindsNothingInSilence) {
   // 10 s of silence (raw float32 zeros) on stdin.
   const auto doc =

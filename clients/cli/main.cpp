@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
       "  dtmfctl teleop                                  (drive live from the keyboard; fast profile)\n"
       "  dtmfctl robots; dtmfctl --robot beta drive --speed 30   (a server that drives several robots)\n"
       "  dtmfctl watch --robot beta                      (the air, live: frames, answers, waits)\n"
+      "  dtmfctl heard --follow                          (what the robots heard and did, as it is logged)\n"
       "  dtmfctl report --json");
 
   dtmf::cli::Action run;
@@ -64,6 +65,7 @@ int main(int argc, char** argv) {
   dtmf::cli::add_run_commands(app, run, global);
   dtmf::cli::add_teleop_command(app, run, global);
   dtmf::cli::add_watch_command(app, run, global);
+  dtmf::cli::add_heard_command(app, run, global);
 #else
   app.footer(app.get_footer() + "\nThis dtmfctl was built without its live commands (cmake -DDTMF_CLI_LIVE=OFF).");
 #endif

@@ -31,5 +31,7 @@ void add_run_commands(CLI::App& app, Action& run, const GlobalOptions& global);
 void add_teleop_command(CLI::App& app, Action& run, const GlobalOptions& global);
 // watch: the air as the server puts it there and hears it (watch_command.cpp).
 void add_watch_command(CLI::App& app, Action& run, const GlobalOptions& global);
+// heard: what the robots heard and did, from the database (watch_command.cpp).
+void add_heard_command(CLI::App& app, Action& run, const GlobalOptions& global);
 
 }  // namespace dtmf::cli

@@ -1,5 +1,6 @@
 // dtmfctl watch: the air as the sender puts it there and hears it (WatchAir), one line per
-// event as it happens, until Ctrl-C, --count events or --seconds.
+// event as it happens, until Ctrl-C, --count events or --seconds. dtmfctl heard: what robots
+// heard and did, from the database (ListReceptions), and with --follow as it is stored.
 #include <cstdio>
 
 #include "offline_commands.h"
@@ -50,7 +51,49 @@ int run_watch(const GlobalOptions& global, const WatchFlags& flags) {
   return exit_code_for(status);
 }
 
+struct HeardFlags {
+  std::string run;  // an id, or a number
+  unsigned limit = 0;
+  bool follow = false;
+};
+
+int run_heard(const GlobalOptions& global, const HeardFlags& flags) {
+  ServerConnection connection(global.server);
+  auto context = connection.context();
+  v1::ListReceptionsRequest request;
+  request.set_robot(global.robot);
+  request.set_limit(flags.limit);
+  request.set_follow(flags.follow);
+  if (!flags.run.empty() && flags.run.find_first_not_of("0123456789") == std::string::npos)
+    request.set_run_number(std::stoll(flags.run));
+  else if (!flags.run.empty())
+    request.set_run_id(flags.run);
+  auto reader = connection.teleop().ListReceptions(context.get(), request);
+  v1::ListReceptionsResponse message;
+  while (reader->Read(&message)) {
+    const std::string text = global.json ? json_line(message.reception()) : reception_line(message.reception());
+    std::fputs(text.c_str(), stdout);
+    std::fflush(stdout);
+  }
+  const grpc::Status status = reader->Finish();
+  if (status.ok()) return 0;
+  std::fprintf(stderr, "dtmfctl: %s\n", describe_status(status).c_str());
+  return exit_code_for(status);
+}
+
 }  // namespace
+
+void add_heard_command(CLI::App& app, Action& run, const GlobalOptions& global) {
+  auto flags = std::make_shared<HeardFlags>();
+  CLI::App* heard = app.add_subcommand(
+      "heard",
+      "what the robots heard and did, from the database: executed, refused and why, heard again (--robot: one)");
+  heard->add_option("--run", flags->run, "within this test run's time (its id or number); default: any time");
+  heard->add_option("--limit", flags->limit, "the newest this many (default 100, at most 10000)")
+      ->check(CLI::Range(0u, 10000u));
+  heard->add_flag("--follow", flags->follow, "then each one as it is stored, until Ctrl-C");
+  heard->callback([&run, &global, flags] { run = [&global, flags] { return run_heard(global, *flags); }; });
+}
 
 void add_watch_command(CLI::App& app, Action& run, const GlobalOptions& global) {
   auto flags = std::make_shared<WatchFlags>();

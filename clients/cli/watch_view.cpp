@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <ctime>
+#include <vector>
 
 namespace dtmf::cli {
 
@@ -101,13 +103,36 @@ std::string watch_lines(const v1::WatchAirResponse& message) {
   return lines + format("%10.1f ms  ", message.audio_ms()) + event_line(message) + "\n";
 }
 
-std::string watch_json(const v1::WatchAirResponse& message) {
+std::string json_line(const google::protobuf::Message& message) {
   std::string json;
   google::protobuf::util::JsonPrintOptions options;
   options.preserve_proto_field_names = true;
   options.always_print_primitive_fields = true;
   (void)google::protobuf::util::MessageToJsonString(message, &json, options);
   return json + "\n";
+}
+
+std::string watch_json(const v1::WatchAirResponse& message) { return json_line(message); }
+
+std::string reception_line(const v1::Reception& r) {
+  const std::time_t seconds = static_cast<std::time_t>(r.heard_unix_ms() / 1000);
+  std::tm local{};
+  localtime_r(&seconds, &local);
+  char clock[16];
+  std::strftime(clock, sizeof clock, "%H:%M:%S", &local);
+  std::string robot = !r.robot().empty() ? r.robot()
+                      : r.has_address()  ? "address " + std::to_string(r.address())
+                                         : r.host();
+  std::vector<std::string> said;
+  if (!r.reason().empty()) said.push_back(r.reason());
+  if (!r.command().empty()) said.push_back(r.command());
+  if (r.has_linear_mps()) said.push_back(format("%.2f m/s %.2f rad/s", r.linear_mps(), r.angular_radps()));
+  if (r.authenticated()) said.push_back("authenticated");
+  said.push_back(r.reply().empty() ? "not answered" : "answered " + r.reply());
+  std::string line = format("%s.%03lld  %-12s %-5s %-9s ", clock, static_cast<long long>(r.heard_unix_ms() % 1000),
+                            robot.c_str(), r.profile().c_str(), r.event().c_str());
+  for (std::size_t i = 0; i < said.size(); ++i) line += (i ? ", " : "") + said[i];
+  return line + "\n";
 }
 
 }  // namespace dtmf::cli

@@ -1,7 +1,9 @@
 #include "run_reader.h"
 
 #include <pqxx/pqxx>
+
 #include <sstream>
+#include "field_values.h"
 
 namespace dtmf::store {
 
@@ -15,11 +17,6 @@ constexpr const char* kFrameColumns =
     "command_id::text AS command_id, coalesce(command_kind, '') AS command, position, attempt, word, "
     "frame_bits, array_to_string(tones_hz, ' ') AS tones, extract(epoch FROM chord_started_at) * 1000 AS started_ms, "
     "coalesce(answer, '') AS answer, response_time_ms, latency_ms";
-
-template <typename T>
-std::optional<T> optional_field(const pqxx::field& field) {
-  return field.is_null() ? std::nullopt : std::optional<T>(field.as<T>());
-}
 
 RunSummary run_of(const pqxx::row& row) {
   RunSummary run;

@@ -75,3 +75,24 @@ TEST(WatchView, JsonIsOneObjectPerMessageWithTheProtosNames) {
   EXPECT_EQ(json["audio_ms"], 5);
   EXPECT_EQ(json["dropped_events"], "0");  // uint64 is a string in proto3 JSON
 }
+
+TEST(WatchView, AReceptionSaysWhatTheRobotDidAndWhy) {
+  v1::Reception r;
+  r.set_robot("alpha");
+  r.set_profile("fast");
+  r.set_event("refused");
+  r.set_reason("authentication");
+  r.set_heard_unix_ms(1765091464512);
+  const std::string line = cli::reception_line(r);
+  EXPECT_NE(line.find(".512  alpha        fast  refused   authentication, not answered\n"), std::string::npos) << line;
+  r.set_event("command");
+  r.set_reason("");
+  r.set_command("stop");
+  r.set_linear_mps(0);
+  r.set_angular_radps(0);
+  r.set_authenticated(true);
+  r.set_reply("ack");
+  EXPECT_NE(cli::reception_line(r).find("command   stop, 0.00 m/s 0.00 rad/s, authenticated, answered ack\n"),
+            std::string::npos)
+      << cli::reception_line(r);
+}

@@ -1,6 +1,7 @@
 """Client.watch() against the live system (conftest.py): the air as the server sees it."""
 
 import threading
+import time
 
 import pytest
 
@@ -53,3 +54,18 @@ def test_watch_refuses_a_rate_over_its_cap(robot):
     with pytest.raises(BadRequest) as raised:
         list(robot.watch(spectrum=True, columns_per_s=500))
     assert "columns_per_s" in raised.value.details
+
+
+def test_receptions_list_what_the_robot_heard_and_did(robot):
+    drive = robot.drive(speed=25, duration=1, profile="fast").result()
+    assert drive.command_id
+    deadline = time.monotonic() + 10
+    while True:  # the robot's row reaches the database through its store's queue
+        heard = list(robot.receptions(limit=5))
+        if any(r["event"] == "command" and r["command"].startswith("drive_for_duration speed=25") for r in heard):
+            break
+        assert time.monotonic() < deadline, heard
+        time.sleep(0.2)
+    executed = next(r for r in heard if r["command"].startswith("drive_for_duration speed=25"))
+    assert executed["intact"] and executed["reply"] == "ack" and executed["profile"] == "fast"
+    assert [r["stored"] for r in heard] == sorted(r["stored"] for r in heard)

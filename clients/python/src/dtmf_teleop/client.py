@@ -211,6 +211,21 @@ class Client:
                                      bins=bins)
         return AirWatch(self._stub.WatchAir(request, metadata=self._metadata), self.target)
 
+    def receptions(self, run: Optional[str | int] = None, *, limit: int = 0, follow: bool = False) -> AirWatch:
+        """What the robots heard and did, from the database: dicts with robot, address, host,
+        profile, heard_unix_ms, intact, event ("command", "repeat", "refused", "renewal",
+        "sync", "broken", ...), reason, authenticated, reply, command and the velocity set.
+        The newest `limit` (0: 100), oldest first, of this client's robot (Client(robot=...))
+        or every robot, within a run (id, number) or any time; with follow=True, then each as
+        it is stored, until cancel(). Iterate the returned stream."""
+        request = pb.ListReceptionsRequest(robot=self.robot or "", limit=limit, follow=follow)
+        if isinstance(run, int):
+            request.run_number = run
+        elif run:
+            request.run_id = run
+        return AirWatch(self._stub.ListReceptions(request, metadata=self._metadata), self.target,
+                        convert=lambda response: message_to_dict(response.reception))
+
     def health(self) -> str:
         """The server's health: "SERVING" or "NOT_SERVING" (its audio device is gone)."""
         response = self._unary(self._health.Check, health_pb2.HealthCheckRequest(service=""))

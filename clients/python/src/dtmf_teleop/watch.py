@@ -13,7 +13,7 @@ slowly: the server never waits for it), and the event's fields under its kind.
 
 from __future__ import annotations
 
-from typing import Any, Iterator
+from typing import Any, Callable, Iterator, Optional
 
 import grpc
 
@@ -34,17 +34,19 @@ def watch_event(message: Any) -> dict[str, Any]:
 
 
 class AirWatch:
-    """A WatchAir stream: iterate it for events; cancel() (or leaving a with block) ends it."""
+    """A server stream (WatchAir, or ListReceptions with its own `convert`): iterate it for
+    dicts; cancel() (or leaving a with block) ends it."""
 
-    def __init__(self, call: Any, target: str):
+    def __init__(self, call: Any, target: str, convert: Optional[Callable[[Any], dict[str, Any]]] = None):
         self._call = call
         self._target = target
+        self._convert = convert or watch_event
         self._cancelled = False
 
     def __iter__(self) -> Iterator[dict[str, Any]]:
         try:
             for message in self._call:
-                yield watch_event(message)
+                yield self._convert(message)
         except grpc.RpcError as e:
             if self._cancelled and e.code() == grpc.StatusCode.CANCELLED:
                 return
