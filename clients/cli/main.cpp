@@ -22,31 +22,36 @@
 #include "server_connection.h"
 #endif
 
+namespace {
+// The exit codes and examples, under --help.
+constexpr const char* kFooter =
+    "Exit codes: 0 success (command confirmed), 1 runtime error (unreadable file, bad audio), 2 bad usage,\n"
+    "            3 the robot did not confirm / the command failed, 4 the server cannot be reached,\n"
+    "            5 the server refused the caller (no or wrong bearer token: --token-file; not allowed).\n"
+    "Examples:\n"
+    "  dtmfctl encode --json --word 2861\n"
+    "  dtmfctl encode --wav drive.wav drive --speed 50 --duration 3\n"
+    "  dtmfctl simulate drive.wav heard.wav --distance 4 --noise white --noise-dbfs -40\n"
+    "  dtmfctl decode --json heard.wav\n"
+    "  dtmfctl keygen link.key                         (then dtmf-server --key link.key, dtmf-agent --key link.key)\n"
+    "  dtmfctl encode --key link.key --profile fast --wav f.wav drive --speed 40   (authenticated frames)\n"
+    "  dtmfctl decode --replies --profile fast answers.wav   (the ACKs and NACKs a sender would hear)\n"
+    "  dtmfctl drive --speed 50 --duration 2          (through dtmf-server: --server, DTMF_SERVER)\n"
+    "  dtmfctl sequence --label general\n"
+    "  dtmfctl teleop                                  (drive live from the keyboard; fast profile)\n"
+    "  dtmfctl robots; dtmfctl --robot beta drive --speed 30   (a server that drives several robots)\n"
+    "  dtmfctl watch --robot beta                      (the air, live: frames, answers, waits)\n"
+    "  dtmfctl heard --follow                          (what the robots heard and did, as it is logged)\n"
+    "  dtmfctl report --json";
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{
       "dtmfctl: drive a TurtleBot3 by sound, and inspect the acoustic link offline.\n"
       "Link profiles: " +
       dtmf::profile_names()};
   app.require_subcommand(1);
-  app.footer(
-      "Exit codes: 0 success (command confirmed), 1 runtime error (unreadable file, bad audio), 2 bad usage,\n"
-      "            3 the robot did not confirm / the command failed, 4 the server cannot be reached,\n"
-      "            5 the server refused the caller (no or wrong bearer token: --token-file; not allowed).\n"
-      "Examples:\n"
-      "  dtmfctl encode --json --word 2861\n"
-      "  dtmfctl encode --wav drive.wav drive --speed 50 --duration 3\n"
-      "  dtmfctl simulate drive.wav heard.wav --distance 4 --noise white --noise-dbfs -40\n"
-      "  dtmfctl decode --json heard.wav\n"
-      "  dtmfctl keygen link.key                         (then dtmf-server --key link.key, dtmf-agent --key link.key)\n"
-      "  dtmfctl encode --key link.key --profile fast --wav f.wav drive --speed 40   (authenticated frames)\n"
-      "  dtmfctl decode --replies --profile fast answers.wav   (the ACKs and NACKs a sender would hear)\n"
-      "  dtmfctl drive --speed 50 --duration 2          (through dtmf-server: --server, DTMF_SERVER)\n"
-      "  dtmfctl sequence --label general\n"
-      "  dtmfctl teleop                                  (drive live from the keyboard; fast profile)\n"
-      "  dtmfctl robots; dtmfctl --robot beta drive --speed 30   (a server that drives several robots)\n"
-      "  dtmfctl watch --robot beta                      (the air, live: frames, answers, waits)\n"
-      "  dtmfctl heard --follow                          (what the robots heard and did, as it is logged)\n"
-      "  dtmfctl report --json");
+  app.footer(kFooter);
 
   dtmf::cli::Action run;
   dtmf::cli::GlobalOptions global;
