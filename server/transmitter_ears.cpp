@@ -111,9 +111,7 @@ std::optional<Transmitter::HeardReply> Transmitter::wait_reply(const link::Link&
       return reply;
     }
     if (stopping_ || stop_waiting_ || now_ms() >= until_ms) return std::nullopt;  // a Stop overtakes the wait
-    // Until the deadline: whatever ends the wait sooner notifies changed_ under the lock (an
-    // answer heard, a Stop queued, the shutdown), so nothing needs looking at in between.
-    changed_.wait_for(lock, std::chrono::duration<double, std::milli>(until_ms - now_ms()));
+    changed_.wait_for(lock, std::chrono::duration<double, std::milli>(std::min(until_ms - now_ms(), 50.0)));
   }
 }
 
