@@ -49,6 +49,7 @@ std::shared_ptr<AirWatch> AirFanout::watch(WatchOptions options) {
   std::lock_guard lock(mutex_);
   if (closed_ || watchers_.size() >= kMaxWatchers) return nullptr;
   watchers_.push_back(watcher);
+  ++watcher_count_;
   if (watcher->options().spectrum) ++spectrum_watchers_;
   return watcher;
 }
@@ -57,6 +58,7 @@ void AirFanout::unwatch(const std::shared_ptr<AirWatch>& watcher) {
   std::lock_guard lock(mutex_);
   const auto it = std::find(watchers_.begin(), watchers_.end(), watcher);
   if (it == watchers_.end()) return;
+  --watcher_count_;
   if (watcher->options().spectrum) --spectrum_watchers_;
   watchers_.erase(it);
   watcher->on_ready_ = nullptr;

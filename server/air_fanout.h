@@ -98,6 +98,8 @@ class AirFanout {
   void publish_column(double audio_ms, store::WallTime wall, const SpectrumColumn& column);
   // Whether anyone watches the spectrum (so that columns are worth computing).
   bool spectrum_watched() const { return spectrum_watchers_.load() > 0; }
+  // Whether anyone watches at all (so that an event is worth making).
+  bool watched() const { return watcher_count_.load() > 0; }
   std::size_t watchers() const;
   void close();
 
@@ -108,6 +110,7 @@ class AirFanout {
   mutable std::mutex mutex_;
   std::vector<std::shared_ptr<AirWatch>> watchers_;
   std::atomic<int> spectrum_watchers_{0};
+  std::atomic<int> watcher_count_{0};
   bool closed_ = false;
 };
 

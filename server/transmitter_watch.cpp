@@ -59,6 +59,7 @@ FrameAnswered frame_answered(const Job& job, const ProgressEvent& event) {
 double Transmitter::audio_ms_of(double steady_ms) const { return steady_ms - mic_offset_ms_.load(); }
 
 void Transmitter::publish_air(const Job& job, const ProgressEvent& event) {
+  if (!air_events_.watched()) return;  // nobody to tell: no strings made on the sender's thread
   AirEvent air{audio_ms_of(now_ms()), event.time, CommandEnded{}};
   switch (event.kind) {
     case Kind::Transmitting:
@@ -89,6 +90,7 @@ void Transmitter::publish_air(const Job& job, const ProgressEvent& event) {
 }
 
 void Transmitter::publish_heard(const HeardAnswer& heard, double audio_ms, double level_dbfs) {
+  if (!air_events_.watched()) return;
   const link::Answer& a = heard.answer;
   AnswerHeard answer{
       "", heard.link->profile().name, a.ack, std::nullopt, a.tag_reading.has_value(), std::nullopt, level_dbfs};
