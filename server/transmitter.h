@@ -1,56 +1,33 @@
-// The sender's transmitter: one acoustic channel, so one frame on air at a time.
-//
-// Commands from any number of callers wait in one bounded queue (Stop goes to its front);
-// a worker thread takes them one by one and sends each frame under a RetryController
-// (seed Fig. 8): it plays the frame, waits for an answer of the frame's profile heard after
-// the frame started (under the fast profile, an ACK must name the frame's sequence number),
-// or for the ACK timeout, retransmits by itself, and then follows the command's policy (ask
-// the caller, continue, or fail). A second thread listens to the microphone with every
-// link's answer listener (ReplyListeners). Each command goes out under the profile its
-// caller chose, or the transmitter's default. With a key, nothing goes on air without a MAC
-// unless the operator allowed it (TransmitterOptions::allow_unauthenticated), and a Stop
-// always goes authenticated: the robot refuses a frame without a MAC, and an untagged ACK
-// is a fixed chord anyone within earshot can play (docs/security.md). Frames of a command
-// go out in order with nothing between them but other frames of the same command and the
-// joint renewals that fall due meanwhile; a cancelled command's queued frames never play, a
-// chord already on air completes.
-// It only emits progress events: the caller's stream reads them, and the observer it is
-// given (store_recorder.h on a server) records them first.
-// It drives one robot or several (RobotLinks: a name, a model, and links bound to the
-// robot's address and key), all through its one loudspeaker: a command names its robot,
-// and only that robot's answer confirms its frames (link/fast_link.h). A stop for every robot
-// goes on links of its own, keyed with the room key (transmitter_room.cpp), and no robot
-// answers it. Before each frame it listens before it talks (transmitter_air.cpp): the
-// microphone's levels tell it whether another sender's frame or answer is on the air. While
-// Teleop streams drive robots, it renews their velocity leases together, one frame for
-// up to three robots, ahead of the queue (transmitter_renewal.cpp). The loudspeaker's
-// thread is transmitter_loop.cpp, the microphone's transmitter_ears.cpp, a command's frames
-// on air transmitter_send.cpp. What it puts on the air and hears there it publishes to its
-// air's fan-out (air_fanout.h, transmitter_watch.cpp), for anyone to watch (WatchAir).
+// The sender's transmitter: the driver of its core (core/sender_core.h) on one loudspeaker
+// and one microphone. The core decides everything that goes on the air and when (the queue,
+// a Stop's overtaking, listen before talk, retries, answers, renewals, the stop for every
+// robot); this class gives it audio and time and does what it says:
+//   - the loudspeaker's thread asks the core's next() and plays its frames; between them it
+//     sleeps until the core's next time or until an input wakes it (no poll: a microphone
+//     block, a command, a cancel, a decision);
+//   - the microphone's thread reads blocks, runs the ears (ReplyListeners) outside the lock,
+//     and hands the core each block's level and each answer heard;
+//   - it hands the core's events, in order, to the observer (the record, store_recorder.h),
+//     then to the job's caller, then to the air's watchers (air_fanout.h, transmitter_watch.cpp).
+//     Publishing never waits for a watcher; the record's write() only queues.
+// The core's clock is this class's steady clock in milliseconds; the microphone's blocks are
+// mapped onto it as they are read. One lock guards the core; every call into it holds it.
 #pragma once
 
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
-#include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <stdexcept>
 #include <thread>
 
 #include "air_fanout.h"
-#include "command/robot_model.h"
-#include "job.h"
 #include "physical/audio_io.h"
-#include "profile/link_profile.h"
 #include "progress_observer.h"
-#include "reliability/air_access.h"
-#include "reliability/carrier_sense.h"
-#include "renewal_schedule.h"
-#include "reply_listeners.h"
+#include "sender_core.h"
 #include "signal/spectrum_columns.h"
-#include "transmitter_types.h"
 
 namespace dtmf::server {
 
@@ -93,7 +70,7 @@ class Transmitter {
   // When the last joint renewal that renewed `robot` began, if one did.
   std::optional<std::chrono::steady_clock::time_point> last_renewed(RobotIndex robot) const;
   // Whether the stop for every robot goes authenticated (the room links have a key).
-  bool room_keyed() const { return room_links_.front()->keyed(); }
+  bool room_keyed() const { return core_.room_keyed(); }
   // Answers the job awaiting a decision; false if no such job waits.
   bool decide(const std::string& command_id, reliability::Decision decision);
   // Commands submitted from now on belong to this test run (none: outside runs).
@@ -101,16 +78,19 @@ class Transmitter {
   // Finishes the chord on air, fails everything else as unavailable, stops the threads.
   void shutdown();
 
-  const LinkProfile& profile() const { return profile_; }
+  // What never changes after construction: read without the lock.
+  const LinkProfile& profile() const { return core_.profile(); }
   // The profile called `name` if this transmitter can send it; else std::invalid_argument.
-  const LinkProfile& usable_profile(std::string_view name) const;
+  const LinkProfile& usable_profile(std::string_view name) const { return core_.usable_profile(name); }
   // The link this transmitter sends `profile` to `robot` with.
-  const link::Link& link_of(const LinkProfile& profile, RobotIndex robot = 0) const;
+  const link::Link& link_of(const LinkProfile& profile, RobotIndex robot = 0) const {
+    return core_.link_of(profile, robot);
+  }
   // The robot called `name`; an empty name is the only robot. std::invalid_argument naming
   // the robots there are, for an unknown name or an empty one among several.
-  RobotIndex robot_named(std::string_view name) const;
-  const std::string& robot_name(RobotIndex robot) const { return robots_.at(robot).name; }
-  const command::RobotModel& model_of(RobotIndex robot) const { return robots_.at(robot).model; }
+  RobotIndex robot_named(std::string_view name) const { return core_.robot_named(name); }
+  const std::string& robot_name(RobotIndex robot) const { return core_.robot_name(robot); }
+  const command::RobotModel& model_of(RobotIndex robot) const { return core_.model_of(robot); }
   std::vector<RobotStatus> robots() const;
   AirShare air_share() const;
   // What it puts on the air and hears there, as it happens (air_event.h), for watchers.
@@ -120,40 +100,28 @@ class Transmitter {
   // first profile that does, and any other command is refused (UnauthenticatedRefused)
   // unless unauthenticated commands are allowed. std::invalid_argument for a profile this
   // transmitter cannot send.
-  const LinkProfile& sendable_profile(const LinkProfile* requested, bool stop, RobotIndex robot = 0) const;
+  const LinkProfile& sendable_profile(const LinkProfile* requested, bool stop, RobotIndex robot = 0) const {
+    return core_.sendable_profile(requested, stop, robot);
+  }
 
  private:
-  struct HeardReply {
-    HeardAnswer answer;
-    double steady_ms;
-  };
-
-  std::shared_ptr<Job> enqueue(link::Link& link, const command::Command& command, Policy policy,
-                               std::chrono::milliseconds decision_timeout, bool to_front);
+  // Under `lock`: hands the core's events over, in order, outside the core's lock (the hand-over
+  // lock keeps their order). A Queued the observer cannot record takes its job back.
+  void deliver(std::unique_lock<std::mutex>& lock);
+  void deliver_one(SenderCore::Emitted& emitted);
+  // The loudspeaker's thread and the microphone's.
   void run();
   void listen();
-  void send(Job& job);
-  // A frame no robot answers: played, and the command goes on.
-  void send_unanswered(Job& job);
-  // The renewals due now, played before the next frame of `job` (not its first).
-  void renew_between_frames(const Job& job);
-  // A joint renewal of `robots` (kept by keep_renewed), planned and played now.
-  void send_renewal(const std::vector<RobotIndex>& robots);
-  // Under mutex_: whether every robot a renewal renews is still kept (no stream of theirs ended).
-  bool all_kept(const std::vector<Job::Renewed>& renewed) const;
-  // Under mutex_: the robots whose renewal goes before the queue now (none while a Stop waits).
-  std::vector<RobotIndex> renewals_due() const;
-  // When the wait for the answer to `job`'s frame, which ended at `frame_end_ms`, ends: its
-  // `deadline_ms`, or sooner, when a kept robot's renewal must go to be heard within its lease.
-  double answer_wait_end_ms(const Job& job, double frame_end_ms, double deadline_ms) const;
-  // One frame of `job` through the retry controller, `attempt` its state (seed Fig. 8).
-  struct FrameAttempt;
-  // Each false when the command ended there (cancelled, the loudspeaker failed, no decision).
-  bool transmit(Job& job, FrameAttempt& attempt);
-  void await_answer(Job& job, FrameAttempt& attempt);
-  bool decide(Job& job, FrameAttempt& attempt);
-  // To the observer, then to the job's caller, then to the air's watchers.
-  void emit(Job& job, ProgressEvent event);
+  // Wakes the loudspeaker's thread: an input came. A job's cancel or decision calls it through
+  // waker(), which does nothing once this transmitter is gone (a caller may keep its job).
+  void wake();
+  std::function<void()> waker();
+  struct Waking {
+    explicit Waking(Transmitter* t) : transmitter(t) {}
+    std::mutex mutex;
+    Transmitter* transmitter;
+  };
+  void play(const SenderCore::Play& play);
   // The air's events (transmitter_watch.cpp): what `event` of `job` shows of the air; an
   // answer the microphone read; a block's level (the air heard busy or quiet again) and its
   // spectrum, while someone watches it.
@@ -163,80 +131,23 @@ class Transmitter {
                       double floor_dbfs);
   // The microphone's sample clock at `steady_ms` of the transmitter's steady clock.
   double audio_ms_of(double steady_ms) const;
-  // Emits the command's last event and ends it.
-  void end(Job& job, Outcome outcome, const std::string& detail);
   store::WallTime wall(double steady_ms) const;
   double now_ms() const;
-  void play(const link::TransmitFrame& frame, double start_ms);
-  // Waits until the loudspeaker is free and the air is ours (listen before talk), then marks
-  // our exchange as begun; false if the job was cancelled or the transmitter stops meanwhile.
-  // When the air holds the frame, it emits `waiting` (the attempt's event) as WaitingForAir,
-  // with why; the job's air_wait() then holds how long it waited.
-  bool wait_for_air(Job& job, ProgressEvent waiting);
-  // Tells the operator (and the record) that `job`'s frame waits for the air: `wait` says why.
-  void tell_waiting(Job& job, ProgressEvent waiting, const reliability::AirWait& wait, double now_ms);
-  // Our frame ended: the microphone listens while we wait for its answer.
-  void frame_ended();
-  // Our exchange (a frame and its answer's wait) is over; `answer`: when our robot's answer
-  // sounded (heard, or where its answers came lately), so that it is not taken for another's;
-  // `unconfirmed`: no ACK came (a loss, perhaps a collision).
-  void exchange_ended(std::optional<reliability::AirSpan> answer = std::nullopt, bool unconfirmed = false);
-  // The longest silence between a frame's end and its answer that any profile this sender
-  // knows allows (ack_timeout_ms − chord_ms): the quiet it waits for after another's sound.
-  double answer_silence_ms() const;
-  // Whether `answer`, read by `link`'s ear, came from a robot that is none of ours (only
-  // formats whose answers name their robot can tell).
-  bool another_robots(const link::Link& link, const link::Answer& answer) const;
-  // The first answer to `frame` of `link` heard after `since_ms`, or nothing by `until_ms`.
-  std::optional<HeardReply> wait_reply(const link::Link& link, const link::TransmitFrame& frame, double since_ms,
-                                       double until_ms);
-  link::Link& link_for(const LinkProfile& profile, RobotIndex robot = 0) const;
-  // The robot's first link that authenticates its frames; std::invalid_argument if none does.
-  const link::Link& authenticated_link(RobotIndex robot = 0) const;
-  // The robot whose link `link` is.
-  RobotIndex robot_of(const link::Link& link) const;
-  // Under the lock: what a Stop for `link`'s robot (or every robot) ends (transmitter_stop.cpp).
-  std::vector<std::shared_ptr<Job>> stop_overtakes(const link::Link& link, const command::Command& stop);
-  void end_cancelled(Job& job);  // UNAVAILABLE while shutting down, else CANCELLED (a caller, a Stop)
+  std::chrono::steady_clock::time_point steady(double steady_ms) const;
 
-  struct Robot {
-    std::string name;
-    command::RobotModel model;
-    std::vector<std::unique_ptr<link::Link>> owned_links;
-    std::vector<const link::Link*> links;      // what this transmitter can send it and hear from it
-    std::optional<double> last_answered_ms;    // guarded by mutex_
-    std::optional<double> answer_delay_ms;     // its last answer began this long after the frame ended (worker only)
-    const link::Link* renewal_link = nullptr;  // kept renewed with it (keep_renewed); guarded by mutex_
-    std::optional<double> renewed_ms;          // its last joint renewal's start; guarded by mutex_
-    std::optional<double> frame_started_ms;    // its last frame's start, a renewal's too; guarded by mutex_
-  };
-
-  const LinkProfile& profile_;
-  std::vector<Robot> robots_;
-  std::vector<std::unique_ptr<link::Link>> room_links_;  // the stop for every robot
   std::unique_ptr<physical::AudioSink> speaker_;
   std::unique_ptr<physical::AudioSource> microphone_;
   ProgressObserver& observer_;
-  TransmitterOptions options_;
+  bool realtime_audio_;
   const std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
 
-  mutable std::mutex mutex_;
-  std::condition_variable changed_;
-  std::deque<std::shared_ptr<Job>> queue_;
-  std::shared_ptr<Job> on_air_;
-  std::deque<HeardReply> replies_;
-  // The last answer from a robot none of ours read under our exchange, awaiting a second
-  // (wait_reply): its address and when it was heard. Guarded by mutex_.
-  std::optional<std::pair<unsigned, double>> masked_once_;
-  std::optional<std::string> run_id_;
-  std::string unavailable_;  // why the audio path failed, once it did
+  mutable std::mutex mutex_;  // guards core_, inputs_, stopping_
+  std::condition_variable woken_;
+  SenderCore core_;
+  std::uint64_t inputs_ = 0;  // counts what came in: the loudspeaker's thread sleeps until it moves
   bool stopping_ = false;
-  // A Stop is queued behind a command on air, which it overtakes: waits for an answer end.
-  bool stop_waiting_ = false;
-  double channel_free_ms_ = 0;
-  reliability::CarrierSense carrier_;  // fed by listen(), guarded by mutex_
-  std::optional<reliability::AirAccess> air_;
-  RenewalSchedule renewals_;  // guarded by mutex_
+  std::mutex handing_;  // the core's events go out in order
+  std::shared_ptr<Waking> waking_ = std::make_shared<Waking>(this);
 
   std::unique_ptr<ReplyListeners> ears_;  // every link's answer ear, fed by listen() alone
   AirFanout air_events_;

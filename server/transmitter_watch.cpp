@@ -60,7 +60,7 @@ double Transmitter::audio_ms_of(double steady_ms) const { return steady_ms - mic
 
 void Transmitter::publish_air(const Job& job, const ProgressEvent& event) {
   if (!air_events_.watched()) return;  // nobody to tell: no strings made on the sender's thread
-  AirEvent air{audio_ms_of(now_ms()), event.time, CommandEnded{}};
+  AirEvent air{audio_ms_of(event.at_ms), event.time, CommandEnded{}};
   switch (event.kind) {
     case Kind::Transmitting:
     case Kind::Retransmitting:
@@ -97,10 +97,10 @@ void Transmitter::publish_heard(const HeardAnswer& heard, double audio_ms, doubl
   if (a.sequence) answer.sequence = *a.sequence;
   if (!a.tag_reading && heard.link->addresses_robots()) {
     answer.address = a.address;
-    for (const Robot& r : robots_)
-      if (r.links.front()->options().address == a.address) answer.robot = r.name;
-  } else if (!heard.link->addresses_robots() && robots_.size() == 1) {
-    answer.robot = robots_.front().name;  // the seed's answers name none: one robot's, if it is alone
+    for (RobotIndex r = 0; r < core_.robot_count(); ++r)  // names and addresses never change: no lock
+      if (core_.robot_options(r).address == a.address) answer.robot = core_.robot_name(r);
+  } else if (!heard.link->addresses_robots() && core_.robot_count() == 1) {
+    answer.robot = core_.robot_name(0);  // the seed's answers name none: one robot's, if it is alone
   }
   air_events_.publish(AirEvent{audio_ms, store::WallClock::now(), std::move(answer)});
 }
@@ -116,9 +116,9 @@ void Transmitter::publish_levels(std::span<const float> block, double end_audio_
     return;
   }
   if (!columns_) {
-    columns_ = std::make_unique<signal::SpectrumColumns>(profile_.sample_rate_hz, kSpectrumLowHz, kSpectrumHighHz,
+    columns_ = std::make_unique<signal::SpectrumColumns>(profile().sample_rate_hz, kSpectrumLowHz, kSpectrumHighHz,
                                                          kMaxColumnBins, kMaxColumnsPerS);
-    columns_start_ms_ = end_audio_ms - 1000.0 * static_cast<double>(block.size()) / profile_.sample_rate_hz;
+    columns_start_ms_ = end_audio_ms - 1000.0 * static_cast<double>(block.size()) / profile().sample_rate_hz;
   }
   for (signal::ColumnLevels& c : columns_->feed(block)) {
     SpectrumColumn column{columns_->low_hz(), columns_->step_hz(), columns_->window_ms(), std::move(c.level_dbfs)};

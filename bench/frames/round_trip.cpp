@@ -1,16 +1,18 @@
 // dtmf-bench-roundtrip: the link's round trip in a simulated room — command to confirmation.
 //
-// A stop-and-wait sender and a robot face each other `d` metres apart in a simulated room
+// The sender's own core (server/core/sender_core.h: its queue, listen before talk, retries,
+// answer matching, exactly what dtmf-server runs) and a robot face each other `d` metres
+// apart in a simulated room
 // (sim::AcousticChannel both ways: delay, spreading, air absorption, RT60 0.3 s, pink
 // noise at -50 dBFS; each microphone also hears its own loudspeaker from 0.1 m, as in the
 // e2e air), or with --rir in a measured room both ways (room_model.h: near a loudspeaker only
 // its direct sound grows). Both
-// run block by block (--block-samples, 5 ms by default, like low-latency sound cards): the
-// robot answers every verdict with ACK / NACK at its next block, the sender sends a
-// command's frames one after another — each once its answer came and the channel is free
-// (the seed's chord + gap) — retransmits after a NACK or after ack_timeout_ms, and hands the
-// next command over the moment one is confirmed. Per command: the time from being handed
-// over (as an RPC would hand it) to the ACK of its last frame. Throughput: payload bits of
+// run block by block (--block-samples, 5 ms by default, like low-latency sound cards) in
+// simulated time: the robot answers every verdict with ACK / NACK at its next block; the
+// core is asked what to play at each block's start and hears each block the sender's
+// microphone took, as the live transmitter drives it. The next command is handed over the
+// moment one ends. Per command: the time from being handed over (as an RPC would hand it)
+// to its confirmation. Throughput: payload bits of
 // the confirmed commands (frame_trials.h: command_payload_bits) over the run's audio time.
 // No server, no gRPC: this is the link's own share of a command's latency, which
 // dtmf-bench-e2e measures through the whole system where a profile is wired to it.
@@ -25,10 +27,10 @@
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "frames/frame_trials.h"
-#include "link/answer_wait.h"
+#include "reliability/carrier_sense.h"
+#include "sender_core.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
-#include "reliability/reply_code.h"
 #include "signal/hop_reply.h"
 #include "sim/acoustic_channel.h"
 #include "sim/room_model.h"
@@ -113,11 +115,16 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   // Numbered from 0, so that a run is the same run every time: a sender left to draw its first
   // sequence number at random sends other frames, answered in other lanes, in every process.
   keyed.first_sequence = 0;
-  const auto sender_link = link::make_link(profile, keyed);
+  std::vector<server::RobotLinks> robots(1);
+  robots.front().links = link::make_links(keyed);
+  server::TransmitterOptions options;
+  options.backoff_seed = o.seed;
+  options.allow_unauthenticated = true;  // the profile asked for, keyed or not
+  server::SenderCore sender(std::move(robots), profile, options, {});
+  const link::Link& link = sender.link_of(profile);
   const auto robot_link = link::make_link(profile, keyed);
-  link::Link& link = *sender_link;
   Responder robot(*robot_link);
-  const auto sender_ear = link.answer_listener();
+  server::ReplyListeners sender_ears(sender.every_link());
   Speaker sender_speaker, robot_speaker;
   const double ms_per_sample = 1000.0 / profile.sample_rate_hz;
   const std::vector<command::Command> commands = {command::DriveForDuration{50, 2}, command::TurnForDuration{-30, 1.5},
@@ -126,22 +133,31 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   std::vector<double> latencies_ms;
   long frames_sent = 0, frames_first_time = 0, retransmissions = 0, failed_commands = 0, payload_bits = 0;
   int command_index = -1;
-  std::vector<link::TransmitFrame> frames;
-  std::size_t frame = 0;
-  int attempt = 0;
-  double handed_over_ms = 0, frame_started_ms = 0, channel_free_ms = 0;
-  bool awaiting = false, want_send = false;
-  std::optional<link::AnswerWait> wait;  // this transmission's
-
+  double handed_over_ms = 0, frame_started_ms = 0;
+  std::shared_ptr<server::Job> job;
   auto next_command = [&](double now_ms) {
     if (++command_index >= o.commands) return;
-    frames = link.plan(commands[static_cast<std::size_t>(command_index) % commands.size()]);
-    frame = 0;
-    attempt = 0;
+    job = sender.submit(commands[static_cast<std::size_t>(command_index) % commands.size()], server::Policy::Fail,
+                        std::chrono::milliseconds(0), false, nullptr, 0, now_ms);
     handed_over_ms = now_ms;
-    want_send = true;
   };
   next_command(0);
+  // The core's events: what each frame and command came to.
+  auto take_events = [&](double now_ms) {
+    using Kind = server::ProgressEvent::Kind;
+    for (const auto& [of, event] : sender.take_events()) {
+      if (event.kind == Kind::Retransmitting) ++retransmissions;
+      if (event.kind == Kind::Ack && event.attempt == 1) ++frames_first_time;
+      if (of != job || event.outcome == server::Outcome::Pending) continue;
+      if (event.outcome == server::Outcome::Confirmed) {
+        latencies_ms.push_back(event.at_ms - handed_over_ms);
+        payload_bits += link.payload_bits(of->command());
+      } else {
+        ++failed_commands;
+      }
+      next_command(now_ms);
+    }
+  };
 
   // With --trace, every reading of the reply bands with half its tones heard (hopped profiles).
   std::optional<signal::HopReplyListener> trace_ear;
@@ -151,29 +167,18 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   long long samples = 0;
   while (command_index < o.commands) {
     const double now_ms = static_cast<double>(samples) * ms_per_sample;  // start of this block
-    if (want_send && now_ms >= channel_free_ms) {
-      sender_speaker.queue(frames[frame].audio);
+    // What the loudspeaker plays from this block on: the core's frames, as it names them.
+    for (auto step = sender.next(now_ms); std::holds_alternative<server::SenderCore::Play>(step);
+         step = sender.next(now_ms)) {
+      const auto& play = std::get<server::SenderCore::Play>(step);
+      sender_speaker.queue(play.frame->audio);
       ++frames_sent;
-      ++attempt;
-      if (attempt > 1) ++retransmissions;
-      wait.emplace(link, frames[frame]);
       frame_started_ms = now_ms;
-      if (o.trace) {
-        std::printf("frame at %.1f ms, attempt %d, %zu samples; expect", now_ms, attempt, frames[frame].audio.size());
-        if (frames[frame].authenticated) {
-          for (int t : frames[frame].answer_tag) std::printf(" %2d", t);
-          std::printf(" (tag chord)");
-        } else {
-          for (int t : reliability::reply_codeword(reliability::NamedReply{true, frames[frame].sequence.value_or(0)}))
-            std::printf(" %2d", t);
-          std::printf(" (lane %d)", frames[frame].answer_lane);
-        }
-        std::printf("\n");
-      }
-      channel_free_ms = now_ms + frames[frame].next_frame_after_ms;
-      awaiting = true;
-      want_send = false;
+      if (o.trace)
+        std::printf("frame at %.1f ms, %s, %zu samples, lane %d\n", now_ms, play.job->description().c_str(),
+                    play.frame->audio.size(), play.frame->answer_lane);
     }
+    take_events(now_ms);
     sender_speaker.next_block(speaker_block);
     robot_speaker.next_block(robot_block);
     samples += static_cast<long long>(o.block_samples);
@@ -211,41 +216,16 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
         std::printf("\n");
       }
     }
-    for (const link::Answer& a : sender_ear->feed(heard)) {
-      if (o.trace && a.tag_reading && awaiting) {
-        std::printf("  %9.1f tag chord, %2d bands agree:", a.heard_ms - frame_started_ms,
-                    reliability::tag_chord_matches(*a.tag_reading, frames[frame].answer_tag, frames[frame].sent_tones));
-        for (int t : reliability::tag_chord_plain(*a.tag_reading)) std::printf(" %2d", t);
-        std::printf("\n");
-      }
-      if (!awaiting) continue;
-      if (!wait->answered_by(a)) continue;  // names another frame, or a wrong tag
-      if (!a.ack) {
-        want_send = attempt <= profile.timing.auto_retransmissions;
-        awaiting = false;
-        continue;
-      }
-      awaiting = false;
-      link.confirmed(frames[frame]);
-      if (attempt == 1) ++frames_first_time;
-      if (++frame < frames.size()) {
-        attempt = 0;
-        want_send = true;
-      } else {
-        latencies_ms.push_back(end_ms - handed_over_ms);
-        payload_bits += link.payload_bits(commands[static_cast<std::size_t>(command_index) % commands.size()]);
-        next_command(end_ms);
-      }
+    // The sender's microphone, as the live transmitter hands it over: the block's level, then
+    // each answer its ears read (their times are this air's, from its first sample).
+    sender.hear_level(reliability::block_level_dbfs(heard), end_ms);
+    for (const server::HeardAnswer& a : sender_ears.feed(heard)) {
+      if (o.trace)
+        std::printf("  %9.1f %s heard%s\n", a.answer.heard_ms - frame_started_ms, a.answer.ack ? "ACK" : "NACK",
+                    a.answer.tag_reading ? " (tag chord)" : "");
+      sender.hear_answer(a, a.answer.heard_ms);
     }
-    if (awaiting && end_ms - frame_started_ms > profile.timing.ack_timeout_ms) {
-      awaiting = false;
-      if (attempt <= profile.timing.auto_retransmissions) {
-        want_send = true;
-      } else {
-        ++failed_commands;
-        next_command(end_ms);
-      }
-    }
+    take_events(end_ms);
   }
   const double run_s = static_cast<double>(samples) / profile.sample_rate_hz;
   const double median = percentile(latencies_ms, 0.5), p95 = percentile(latencies_ms, 0.95);

@@ -11,7 +11,7 @@
 //   answers in the profiles it knows): the exchange is over, nobody waits for an answer, and
 //   kStarvedQuietMs of quiet will do. An answer it cannot read (another profile's, or too
 //   weak) leaves the full hold, and so does an authenticated answer, which is only a tag
-//   chord (the ear reads one out of mere noise; server/transmitter_ears.cpp).
+//   chord (the ear reads one out of mere noise; server/core/sender_core_ears.cpp).
 // - Then back off at random (kBackoffSlots slots of kSlotMs, drawn once per deferral), so
 //   that two senders that waited for the same quiet seldom start together. A slot is longer
 //   than the time a start takes to be heard (the capture latency and a block).

@@ -22,7 +22,7 @@ Job reset_job(std::chrono::milliseconds decision_timeout) {
 TEST(Job, ADecisionBeforeTheQuestionIsOpenIsRefused) {
   auto job = reset_job(std::chrono::milliseconds(10));
   EXPECT_FALSE(job.decide(reliability::Decision::Continue));
-  EXPECT_EQ(job.await_decision(), std::nullopt);  // and it was not kept for later
+  EXPECT_EQ(job.take_decision(), std::nullopt);  // and it was not kept for later
 }
 
 TEST(Job, ADecisionRightAfterTheQuestionOpensIsKeptUntilTheTransmitterWaits) {
@@ -30,12 +30,20 @@ TEST(Job, ADecisionRightAfterTheQuestionOpensIsKeptUntilTheTransmitterWaits) {
   job.open_decision();
   EXPECT_TRUE(job.decide(reliability::Decision::Retransmit));
   EXPECT_FALSE(job.decide(reliability::Decision::Continue));  // one answer per question
-  EXPECT_EQ(job.await_decision(), reliability::Decision::Retransmit);
+  EXPECT_EQ(job.take_decision(), reliability::Decision::Retransmit);
+  EXPECT_EQ(job.take_decision(), std::nullopt);  // taken once
 }
 
-TEST(Job, AQuestionNobodyAnswersTimesOutAndCloses) {
-  auto job = reset_job(std::chrono::milliseconds(10));
+TEST(Job, ACancelOrADecisionWakesItsDriverAndAStopsOvertakingDoesNot) {
+  auto job = reset_job(std::chrono::seconds(60));
+  int woken = 0;
+  job.on_change([&woken] { ++woken; });
   job.open_decision();
-  EXPECT_EQ(job.await_decision(), std::nullopt);
-  EXPECT_FALSE(job.decide(reliability::Decision::Continue));
+  EXPECT_TRUE(job.decide(reliability::Decision::Continue));
+  EXPECT_EQ(woken, 1);
+  job.overtake();  // the core overtakes it, and reads it itself
+  EXPECT_EQ(woken, 1);
+  job.cancel();
+  EXPECT_EQ(woken, 2);
+  EXPECT_TRUE(job.cancelled());
 }

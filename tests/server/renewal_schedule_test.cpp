@@ -1,4 +1,4 @@
-// When the sender renews its robots' leases jointly (server/renewal_schedule.h).
+// When the sender renews its robots' leases jointly (server/core/renewal_schedule.h).
 #include "renewal_schedule.h"
 
 #include <gtest/gtest.h>

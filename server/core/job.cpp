@@ -1,5 +1,7 @@
 #include "job.h"
 
+#include <utility>
+
 namespace dtmf::server {
 
 std::string outcome_name(Outcome outcome) {
@@ -78,6 +80,7 @@ void Job::cancel() {
     cancelled_ = true;
   }
   changed_.notify_all();
+  woken();
 }
 
 bool Job::cancelled() {
@@ -106,6 +109,7 @@ bool Job::decide(reliability::Decision decision) {
     awaiting_decision_ = false;
   }
   changed_.notify_all();
+  woken();
   return true;
 }
 
@@ -115,11 +119,24 @@ void Job::open_decision() {
   decision_.reset();
 }
 
-std::optional<reliability::Decision> Job::await_decision() {
-  std::unique_lock lock(mutex_);
-  changed_.wait_for(lock, decision_timeout_, [this] { return decision_.has_value() || cancelled_; });
-  awaiting_decision_ = false;
-  return decision_;
+std::optional<reliability::Decision> Job::take_decision() {
+  std::lock_guard lock(mutex_);
+  if (decision_) awaiting_decision_ = false;
+  return std::exchange(decision_, std::nullopt);
+}
+
+void Job::on_change(std::function<void()> wake) {
+  std::lock_guard lock(mutex_);
+  wake_ = std::move(wake);
+}
+
+void Job::woken() {
+  std::function<void()> wake;
+  {
+    std::lock_guard lock(mutex_);
+    wake = wake_;
+  }
+  if (wake) wake();
 }
 
 Outcome Job::outcome() {

@@ -1,11 +1,14 @@
-// One command in the sender's transmitter: its frames, its policy, and the stream of
-// progress events the caller reads. The transmitter's thread writes events and the outcome;
-// the caller's thread reads them, may cancel, and answers a pending decision. Thread-safe.
+// One command in the sender: its frames, its policy, and the stream of progress events the
+// caller reads. The sender's core (sender_core.h) plans it and decides its outcome, its driver
+// (transmitter.h) hands its events over; the caller's thread reads them, may cancel, and
+// answers a pending decision. Thread-safe. A cancel or a decision wakes the driver (on_change),
+// so that the core sees it at once: nobody polls a job.
 #pragma once
 
 #include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -54,6 +57,11 @@ struct ProgressEvent {
   std::string detail;
   int queue_position = 0;
   store::WallTime time = store::WallClock::now();  // Transmitting, Retransmitting: when the chord started
+  // The same three times on the sender core's clock (sender_core.h), from which its driver sets
+  // the wall times above as it hands the event over.
+  double at_ms = 0;
+  std::optional<double> chord_ended_ms;
+  std::optional<double> answered_ms;
   // For observers that keep a record (store_recorder.h):
   // The frame the event is about (none before the command's frames are planned, when it goes
   // on air), and how many frames the command has (its counter synchronisation included).
@@ -121,14 +129,17 @@ class Job {
   void emit(ProgressEvent event);
   void finish(Outcome outcome, std::string detail = {});
   bool cancelled();
-  // A Stop overtakes the command on air (Transmitter::enqueue): cancelled, and said so.
+  // A Stop overtakes the command (SenderCore::submit): cancelled, and said so. It wakes no
+  // one: the core that calls it is the one that reads it.
   void overtake();
   bool overtaken();
-  // Opens the question before it is announced, so that a caller who answers
-  // the AWAITING_DECISION event at once finds it open; then waits for decide()
-  // (or cancel). await_decision() gives nullopt on timeout or cancel.
+  // Opens the question before it is announced, so that a caller who answers the
+  // AWAITING_DECISION event at once finds it open; take_decision() gives the answer once
+  // decide() was called (nothing before: the core waits until its decision timeout).
   void open_decision();
-  std::optional<reliability::Decision> await_decision();
+  std::optional<reliability::Decision> take_decision();
+  // Called (outside the job's lock) whenever cancel() or decide() changed it.
+  void on_change(std::function<void()> wake);
 
  private:
   std::string id_ = store::new_id();
@@ -152,6 +163,8 @@ class Job {
   bool overtaken_ = false;
   bool awaiting_decision_ = false;
   std::optional<reliability::Decision> decision_;
+  std::function<void()> wake_;
+  void woken();  // calls wake_, outside the lock
 };
 
 }  // namespace dtmf::server
