@@ -3,8 +3,8 @@
 // a Stop's overtaking, listen before talk, retries, answers, renewals, the stop for every
 // robot); this class gives it audio and time and does what it says:
 //   - the loudspeaker's thread asks the core's next() and plays its frames; between them it
-//     sleeps until the core's next time or until an input wakes it (no poll: a microphone
-//     block, a command, a cancel, a decision);
+//     sleeps until the core's next time or until an input wakes it (no poll: an answer heard,
+//     a command, a cancel, a decision; a block's level waits for the core's time);
 //   - the microphone's thread reads blocks, runs the ears (ReplyListeners) outside the lock,
 //     and hands the core each block's level and each answer heard;
 //   - it hands the core's events, in order, to the observer (the record, store_recorder.h),

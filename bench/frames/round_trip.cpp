@@ -141,7 +141,6 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
                         std::chrono::milliseconds(0), false, nullptr, 0, now_ms);
     handed_over_ms = now_ms;
   };
-  next_command(0);
   // The core's events: what each frame and command came to.
   auto take_events = [&](double now_ms) {
     using Kind = server::ProgressEvent::Kind;
@@ -164,7 +163,26 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   if (o.trace && profile.hops().reply_hop_samples > 0) trace_ear.emplace(profile, 6);
   std::vector<float> speaker_block(o.block_samples), robot_block(o.block_samples), own_block(o.block_samples), heard;
   const auto own_gain = static_cast<float>(std::pow(10.0, o.own_speaker_db / 20));
+  // As a server that starts: the sender hears its room before its first command, else the
+  // first sound it hears would be its floor (reliability/carrier_sense.h). Not counted.
   long long samples = 0;
+  for (const double warm_up_ms = 1000; static_cast<double>(samples) * ms_per_sample < warm_up_ms;) {
+    std::fill(speaker_block.begin(), speaker_block.end(), 0.0f);
+    heard.clear();
+    if (o.own_speaker_m > 0) {
+      const std::array<std::span<const float>, 2> both{std::span<const float>(speaker_block),
+                                                       std::span<const float>(speaker_block)};
+      to_sender.process(both, heard);
+    } else {
+      to_sender.process(std::span<const float>(speaker_block), heard);
+    }
+    samples += static_cast<long long>(o.block_samples);
+    sender.hear_level(reliability::block_level_dbfs(heard), static_cast<double>(samples) * ms_per_sample);
+    sender_ears.feed(heard);
+  }
+  const long long warm_up_samples = samples;
+  handed_over_ms = static_cast<double>(samples) * ms_per_sample;
+  next_command(handed_over_ms);
   while (command_index < o.commands) {
     const double now_ms = static_cast<double>(samples) * ms_per_sample;  // start of this block
     // What the loudspeaker plays from this block on: the core's frames, as it names them.
@@ -227,7 +245,7 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
     }
     take_events(end_ms);
   }
-  const double run_s = static_cast<double>(samples) / profile.sample_rate_hz;
+  const double run_s = static_cast<double>(samples - warm_up_samples) / profile.sample_rate_hz;
   const double median = percentile(latencies_ms, 0.5), p95 = percentile(latencies_ms, 0.95);
   const double max = latencies_ms.empty() ? 0 : *std::max_element(latencies_ms.begin(), latencies_ms.end());
   std::printf(

@@ -111,8 +111,6 @@ class SenderCore {
   std::shared_ptr<Job> on_air() const { return sending_ ? sending_->job : nullptr; }
   const std::string& unavailable() const { return unavailable_; }
   AirShare air_share() const;
-  // Whether a frame waits for the air: only then can a block's level change what next() says.
-  bool awaits_air() const { return sending_ && sending_->phase == Sending::Phase::Air; }
   // Whether the air is heard busy with another's sound now, and the room's floor.
   bool busy_now() const { return carrier_.busy_now(); }
   double floor_dbfs() const { return carrier_.floor_dbfs(); }
