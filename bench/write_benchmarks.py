@@ -481,10 +481,12 @@ def main() -> int:
 
     w("## Link round trip")
     w("")
-    w("`dtmf-bench-roundtrip`: a stop-and-wait sender and the robot 1 m apart in a simulated room (both ways: "
-      "delay, spreading, air absorption, RT60 0.3 s, pink noise at −50 dBFS), both working in 5 ms audio blocks. "
-      "A command's latency runs from being handed to the sender (the moment the previous one was confirmed) to the ACK "
-      "of its last frame; throughput is the confirmed commands' payload bits over the run's audio time. No server, "
+    w("`dtmf-bench-roundtrip`: the sender's own core (server/core/sender_core.h, what dtmf-server runs: its queue, "
+      "listen before talk, retries and answer matching) and the robot 1 m apart in a simulated room (both ways: "
+      "delay, spreading, air absorption, RT60 0.3 s, pink noise at −50 dBFS), both working in 5 ms audio blocks in "
+      "simulated time; the sender hears 1 s of its room first, as a server that starts. "
+      "A command's latency runs from being handed to the sender (the moment the previous one ended) to its "
+      "confirmation; throughput is the confirmed commands' payload bits over the run's audio time. No server, "
       "no gRPC: the link's own share of a command's latency.")
     w("")
     w("![link round trip](" + stem + "/roundtrip_latency.png)")

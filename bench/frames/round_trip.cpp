@@ -27,10 +27,10 @@
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "frames/frame_trials.h"
-#include "reliability/carrier_sense.h"
-#include "sender_core.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
+#include "reliability/carrier_sense.h"
+#include "sender_core.h"
 #include "signal/hop_reply.h"
 #include "sim/acoustic_channel.h"
 #include "sim/room_model.h"
@@ -163,28 +163,16 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   if (o.trace && profile.hops().reply_hop_samples > 0) trace_ear.emplace(profile, 6);
   std::vector<float> speaker_block(o.block_samples), robot_block(o.block_samples), own_block(o.block_samples), heard;
   const auto own_gain = static_cast<float>(std::pow(10.0, o.own_speaker_db / 20));
-  // As a server that starts: the sender hears its room before its first command, else the
-  // first sound it hears would be its floor (reliability/carrier_sense.h). Not counted.
-  long long samples = 0;
-  for (const double warm_up_ms = 1000; static_cast<double>(samples) * ms_per_sample < warm_up_ms;) {
-    std::fill(speaker_block.begin(), speaker_block.end(), 0.0f);
-    heard.clear();
-    if (o.own_speaker_m > 0) {
-      const std::array<std::span<const float>, 2> both{std::span<const float>(speaker_block),
-                                                       std::span<const float>(speaker_block)};
-      to_sender.process(both, heard);
-    } else {
-      to_sender.process(std::span<const float>(speaker_block), heard);
-    }
-    samples += static_cast<long long>(o.block_samples);
-    sender.hear_level(reliability::block_level_dbfs(heard), static_cast<double>(samples) * ms_per_sample);
-    sender_ears.feed(heard);
-  }
-  const long long warm_up_samples = samples;
-  handed_over_ms = static_cast<double>(samples) * ms_per_sample;
-  next_command(handed_over_ms);
+  // As a server that starts: the sender hears its room for a second before its first command,
+  // else the first sound it hears would be its floor (reliability/carrier_sense.h). Not counted.
+  constexpr double kWarmUpMs = 1000;
+  long long samples = 0, warm_up_samples = 0;
   while (command_index < o.commands) {
     const double now_ms = static_cast<double>(samples) * ms_per_sample;  // start of this block
+    if (command_index < 0 && now_ms >= kWarmUpMs) {
+      warm_up_samples = samples;
+      next_command(now_ms);
+    }
     // What the loudspeaker plays from this block on: the core's frames, as it names them.
     for (auto step = sender.next(now_ms); std::holds_alternative<server::SenderCore::Play>(step);
          step = sender.next(now_ms)) {

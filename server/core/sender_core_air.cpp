@@ -21,8 +21,7 @@ void SenderCore::hear_level(double level_dbfs, double at_ms) {
   carrier_.hear(level_dbfs, at_ms);
   if (carrier_.busy_now())
     spdlog::debug("the air at {:.0f} ms: {:.1f} dBFS over a floor of {:.1f}: another's sound{}", at_ms, level_dbfs,
-                  carrier_.floor_dbfs(),
-                  ours ? " (while our exchange goes on: counted if not our answer)" : "");
+                  carrier_.floor_dbfs(), ours ? " (while our exchange goes on: counted if not our answer)" : "");
 }
 
 SenderCore::MaybeStep SenderCore::await_air(Sending& s, double now_ms) {

@@ -53,7 +53,8 @@ std::optional<SenderCore::HeardReply> SenderCore::take_reply(const Sending& s) {
       masked_once_ = std::pair{address, reply.at_ms};
       if (again) carrier_.answer_masked(reply.at_ms);
       spdlog::debug("an answer from robot {}, none of ours, while frame {} waits: {}", address,
-                    frame.sequence.value_or(0), again ? "another sender shares the air" : "once so far (a misread of ours?)");
+                    frame.sequence.value_or(0),
+                    again ? "another sender shares the air" : "once so far (a misread of ours?)");
       continue;
     }
     if (!wait.answered_by(reply.answer.answer)) {

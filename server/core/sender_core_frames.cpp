@@ -40,9 +40,10 @@ reliability::RetryPolicy retry_policy(const Job& job) {
 }
 
 std::string ended_unanswered(const Job& job) {
-  return job.renewal() ? "played; no robot answers a joint renewal, each that heard it holds its velocity for a lease more"
-                       : std::to_string(job.frame_count()) +
-                             " copies played; no robot answers a stop for every robot, each that heard one stopped";
+  return job.renewal()
+             ? "played; no robot answers a joint renewal, each that heard it holds its velocity for a lease more"
+             : std::to_string(job.frame_count()) +
+                   " copies played; no robot answers a stop for every robot, each that heard one stopped";
 }
 }  // namespace
 

@@ -38,8 +38,7 @@ std::shared_ptr<Job> SenderCore::submit_every_robot_stop(const LinkProfile* requ
             "room.key), give it to every robot (dtmf-agent --room-key) and to this server (dtmf-server --room-key)");
     }
   }
-  return enqueue(*room, command::Stop{true}, Policy::Unanswered, std::chrono::milliseconds(0), true,
-                 now_ms);
+  return enqueue(*room, command::Stop{true}, Policy::Unanswered, std::chrono::milliseconds(0), true, now_ms);
 }
 
 std::shared_ptr<Job> SenderCore::enqueue(link::Link& link, const command::Command& command, Policy policy,

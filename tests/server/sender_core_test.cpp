@@ -89,8 +89,8 @@ class Sim {
 
 TEST(SenderCore, ACommandPlaysAndItsAckConfirmsItAllOnTheCoresClock) {
   Sim sim;
-  const auto job = sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0,
-                                   sim.now);
+  const auto job =
+      sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now);
   const auto play = sim.until_play(10);
   ASSERT_TRUE(play);
   EXPECT_EQ(play->job, job);
@@ -117,8 +117,8 @@ TEST(SenderCore, ACommandPlaysAndItsAckConfirmsItAllOnTheCoresClock) {
 
 TEST(SenderCore, AnAckNamingAnotherFrameIsNoAnswerAndTheFrameGoesAgainAtItsDeadline) {
   Sim sim;
-  const auto job = sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0,
-                                   sim.now);
+  const auto job =
+      sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now);
   const auto first = sim.until_play(10);
   ASSERT_TRUE(first);
   link::TransmitFrame other = *first->frame;
@@ -127,14 +127,14 @@ TEST(SenderCore, AnAckNamingAnotherFrameIsNoAnswerAndTheFrameGoesAgainAtItsDeadl
   const auto again = sim.until_play(5000);
   ASSERT_TRUE(again) << "retransmitted";
   EXPECT_EQ(again->start_ms, fast_profile().timing.ack_timeout_ms) << "at the deadline, not at the stranger's ACK";
-  EXPECT_EQ(sim.kinds(*job), (std::vector<Kind>{Kind::Queued, Kind::Transmitting, Kind::NoAnswer,
-                                                Kind::Retransmitting}));
+  EXPECT_EQ(sim.kinds(*job),
+            (std::vector<Kind>{Kind::Queued, Kind::Transmitting, Kind::NoAnswer, Kind::Retransmitting}));
 }
 
 TEST(SenderCore, RetransmissionsUsedUpItAsksTheCallerAndTakesTheAnswerItGives) {
   Sim sim;
-  const auto job = sim.core.submit(command::DriveForward{40}, Policy::Ask, std::chrono::seconds(5), false, nullptr, 0,
-                                   sim.now);
+  const auto job =
+      sim.core.submit(command::DriveForward{40}, Policy::Ask, std::chrono::seconds(5), false, nullptr, 0, sim.now);
   const int played = sim.run_until(3000);
   EXPECT_EQ(played, 1 + fast_profile().timing.auto_retransmissions);
   ASSERT_EQ(sim.kinds(*job).back(), Kind::AwaitingDecision);
@@ -165,14 +165,13 @@ TEST(SenderCore, AQuestionNobodyAnswersFailsTheCommandAtItsTimeout) {
 
 TEST(SenderCore, AStopOvertakesTheCommandWaitingForItsAnswerAndPlaysAtOnce) {
   Sim sim;
-  const auto drive = sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr,
-                                     0, sim.now);
+  const auto drive =
+      sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now);
   const auto first = sim.until_play(10);
   ASSERT_TRUE(first);
   sim.now = first->frame->tone_ms + 5;  // the drive waits for its answer
   const double asked_ms = sim.now;
-  const auto stop =
-      sim.core.submit(command::Stop{}, Policy::Fail, std::chrono::seconds(1), true, nullptr, 0, sim.now);
+  const auto stop = sim.core.submit(command::Stop{}, Policy::Fail, std::chrono::seconds(1), true, nullptr, 0, sim.now);
   EXPECT_TRUE(drive->overtaken());
   const auto played = sim.until_play(sim.now + 1000);
   ASSERT_TRUE(played);
@@ -186,8 +185,8 @@ TEST(SenderCore, RenewalsThatFallDueGoBetweenACommandsRetransmissions) {
   Sim sim;
   // Due 300 ms after each frame for the robot: before the drive's retransmission.
   ASSERT_TRUE(sim.core.keep_renewed(0, fast_profile(), 300, 1000, 0));
-  const auto drive = sim.core.submit(command::Velocity{0.1, 0, 1.0}, Policy::Fail, std::chrono::seconds(1), false, nullptr,
-                                     0, sim.now);
+  const auto drive = sim.core.submit(command::Velocity{0.1, 0, 1.0}, Policy::Fail, std::chrono::seconds(1), false,
+                                     nullptr, 0, sim.now);
   std::vector<std::shared_ptr<Job>> played;
   while (const auto p = sim.until_play(2500)) played.push_back(p->job);
   ASSERT_GE(played.size(), 3u);
@@ -204,8 +203,8 @@ TEST(SenderCore, ACancelWhileTheAirIsBusyEndsTheCommandBeforeItPlays) {
   Sim sim(o);
   for (double t = 0; t < 2000; t += 4) sim.core.hear_level(-70, t);  // the room's floor
   sim.now = 2000;
-  const auto job = sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0,
-                                   sim.now);
+  const auto job =
+      sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now);
   sim.core.hear_level(-20, sim.now);  // another's chord, loud
   EXPECT_FALSE(sim.until_play(sim.now + 1)) << "it waits for the air";
   EXPECT_EQ(sim.kinds(*job).back(), Kind::WaitingForAir);
