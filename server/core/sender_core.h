@@ -19,9 +19,11 @@
 // around every call (transmitter.h); benchmarks and tests call it from one thread.
 #pragma once
 
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
