@@ -87,22 +87,21 @@ std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy
                                          std::chrono::milliseconds decision_timeout, bool to_front,
                                          const LinkProfile* profile, RobotIndex robot) {
   std::unique_lock lock(mutex_);
-  auto job = core_.submit(command, policy, decision_timeout, to_front, profile, robot, now_ms());
+  return accepted(lock, core_.submit(command, policy, decision_timeout, to_front, profile, robot, now_ms()));
+}
+
+std::shared_ptr<Job> Transmitter::accepted(std::unique_lock<std::mutex>& lock, std::shared_ptr<Job> job) {
   job->on_change(waker());
   ++inputs_;
   deliver(lock);  // its Queued first: recorded before this call returns, or the job is taken back
+  lock.unlock();
   woken_.notify_all();
   return job;
 }
 
 std::shared_ptr<Job> Transmitter::submit_every_robot_stop(const LinkProfile* profile) {
   std::unique_lock lock(mutex_);
-  auto job = core_.submit_every_robot_stop(profile, now_ms());
-  job->on_change(waker());
-  ++inputs_;
-  deliver(lock);
-  woken_.notify_all();
-  return job;
+  return accepted(lock, core_.submit_every_robot_stop(profile, now_ms()));
 }
 
 bool Transmitter::keep_renewed(RobotIndex robot, const LinkProfile& profile, double every_ms, double lease_ms) {

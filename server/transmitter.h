@@ -110,6 +110,9 @@ class Transmitter {
   // lock keeps their order). A Queued the observer cannot record takes its job back.
   void deliver(std::unique_lock<std::mutex>& lock);
   void deliver_one(SenderCore::Emitted& emitted);
+  // A job the core took from a caller: it wakes the loudspeaker's thread when cancelled or
+  // decided, and its Queued is handed over before the caller has it.
+  std::shared_ptr<Job> accepted(std::unique_lock<std::mutex>& lock, std::shared_ptr<Job> job);
   // The loudspeaker's thread and the microphone's.
   void run();
   void listen();

@@ -166,10 +166,13 @@ class SenderCore {
   // Emits the command's last event and ends it; the job on air is done.
   void end(Sending& s, Outcome outcome, const std::string& detail, double now_ms);
   void end_cancelled(Sending& s, double now_ms);
+  // Ends every queued command so, before it went on the air.
+  void end_queued(Outcome outcome, const std::string& detail, double now_ms);
   // The next job on the air: a renewal due, or the queue's front. False when there is none.
   bool take_next(double now_ms);
   Step idle_step() const;
-  // The phases of the job on air (sender_core_frames.cpp).
+  // The phases of the job on air (sender_core_frames.cpp), and the one `s` is in.
+  MaybeStep phase_step(Sending& s, double now_ms);
   MaybeStep next_frame(Sending& s, double now_ms);
   MaybeStep await_air(Sending& s, double now_ms);
   MaybeStep play(Sending& s, double now_ms);
@@ -193,7 +196,7 @@ class SenderCore {
   // behind it); false if none could be planned.
   bool start_renewal(const std::vector<RobotIndex>& robots, double now_ms);
   double answer_wait_end_ms(const Job& job, double frame_end_ms, double deadline_ms) const;
-  void frame_started(const Job& job, const link::TransmitFrame& frame, double at_ms);
+  void frame_started(const Job& job, double at_ms);
 
   link::Link& link_for(const LinkProfile& profile, RobotIndex robot = 0) const;
   const link::Link& authenticated_link(RobotIndex robot = 0) const;

@@ -105,7 +105,7 @@ SenderCore::MaybeStep SenderCore::play(Sending& s, double now_ms) {
   s.chord_start_ms = now_ms;
   s.renewed_before = false;
   s.retry->on_transmit_started(now_ms);
-  if (!frame.broadcast) frame_started(job, frame, now_ms);  // every frame for a robot renews its lease
+  if (!frame.broadcast) frame_started(job, now_ms);  // every frame for a robot renews its lease
   ProgressEvent sending = attempt_event(s, s.retry->attempt() == 1 ? Kind::Transmitting : Kind::Retransmitting);
   tell_air_wait(job, sending);
   emit(s.job, sending, now_ms);

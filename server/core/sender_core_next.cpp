@@ -23,39 +23,31 @@ SenderCore::Step SenderCore::next(double now_ms) {
   while (true) {
     if (!sending_) {
       if (stopping_) {
-        for (auto& waiting : queue_) {
-          Sending ended{waiting};
-          sending_ = ended;
-          end(*sending_, Outcome::Unavailable, "the server is shutting down", now_ms);
-        }
-        queue_.clear();
+        end_queued(Outcome::Unavailable, "the server is shutting down", now_ms);
         return Idle{};
       }
       if (!take_next(now_ms)) return idle_step();
       // A renewal's Queued is handed over (and recorded) before it can play: see withdraw().
       if (sending_->job->renewal()) return WaitUntil{now_ms};
     }
-    Sending& s = *sending_;
-    MaybeStep step;
-    switch (s.phase) {
-      case Sending::Phase::NextFrame:
-        step = next_frame(s, now_ms);
-        break;
-      case Sending::Phase::Air:
-        step = await_air(s, now_ms);
-        break;
-      case Sending::Phase::Playing:
-        step = playing(s, now_ms);
-        break;
-      case Sending::Phase::Answer:
-        step = await_answer(s, now_ms);
-        break;
-      case Sending::Phase::Decision:
-        step = await_decision(s, now_ms);
-        break;
-    }
-    if (step) return *step;
+    if (const MaybeStep step = phase_step(*sending_, now_ms)) return *step;
   }
+}
+
+SenderCore::MaybeStep SenderCore::phase_step(Sending& s, double now_ms) {
+  switch (s.phase) {
+    case Sending::Phase::NextFrame:
+      return next_frame(s, now_ms);
+    case Sending::Phase::Air:
+      return await_air(s, now_ms);
+    case Sending::Phase::Playing:
+      return playing(s, now_ms);
+    case Sending::Phase::Answer:
+      return await_answer(s, now_ms);
+    case Sending::Phase::Decision:
+      return await_decision(s, now_ms);
+  }
+  return std::nullopt;
 }
 
 bool SenderCore::take_next(double now_ms) {
@@ -119,11 +111,17 @@ void SenderCore::shutdown() { stopping_ = true; }
 
 void SenderCore::audio_failed(std::string why, double now_ms) {
   if (unavailable_.empty()) unavailable_ = std::move(why);
-  if (sending_ && sending_->phase == Sending::Phase::Playing) exchange_ended(now_ms);
+  // Our exchange ends with it: nothing of ours is on the air any more.
+  if (sending_ && (sending_->phase == Sending::Phase::Playing || sending_->phase == Sending::Phase::Answer))
+    exchange_ended(now_ms);
   while (sending_) end(*sending_, Outcome::Unavailable, unavailable_, now_ms);
+  end_queued(Outcome::Unavailable, unavailable_, now_ms);
+}
+
+void SenderCore::end_queued(Outcome outcome, const std::string& detail, double now_ms) {
   for (auto& waiting : queue_) {
     sending_ = Sending{waiting};
-    end(*sending_, Outcome::Unavailable, unavailable_, now_ms);
+    end(*sending_, outcome, detail, now_ms);
   }
   queue_.clear();
 }

@@ -69,7 +69,7 @@ bool SenderCore::all_kept(const std::vector<Job::Renewed>& renewed) const {
   return std::all_of(renewed.begin(), renewed.end(), [this](const Job::Renewed& r) { return renewals_.kept(r.index); });
 }
 
-void SenderCore::frame_started(const Job& job, const link::TransmitFrame&, double at_ms) {
+void SenderCore::frame_started(const Job& job, double at_ms) {
   if (job.renewal()) {
     for (const Job::Renewed& r : job.renewed()) {
       renewals_.frame_started(r.index, at_ms);

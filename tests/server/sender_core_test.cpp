@@ -30,6 +30,13 @@ class Sim {
   explicit Sim(TransmitterOptions options = quiet_room())
       : core(one_fast_robot(), fast_profile(), options, {}), link(core.link_of(fast_profile())) {}
 
+  // Submits `command` for the robot now, as a caller that gives up unconfirmed (or asks, with
+  // `decision`); a Stop goes to the front, as callers send it.
+  std::shared_ptr<Job> submit(const command::Command& command, Policy policy = Policy::Fail,
+                              std::chrono::milliseconds decision = std::chrono::seconds(1)) {
+    const bool front = std::holds_alternative<command::Stop>(command);
+    return core.submit(command, policy, decision, front, nullptr, 0, now);
+  }
   // Runs the core until it plays a frame, at the times it names, up to `limit_ms`.
   std::optional<SenderCore::Play> until_play(double limit_ms) {
     while (true) {
@@ -89,8 +96,7 @@ class Sim {
 
 TEST(SenderCore, ACommandPlaysAndItsAckConfirmsItAllOnTheCoresClock) {
   Sim sim;
-  const auto job =
-      sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now);
+  const auto job = sim.submit(command::DriveForward{40});
   const auto play = sim.until_play(10);
   ASSERT_TRUE(play);
   EXPECT_EQ(play->job, job);
@@ -117,8 +123,7 @@ TEST(SenderCore, ACommandPlaysAndItsAckConfirmsItAllOnTheCoresClock) {
 
 TEST(SenderCore, AnAckNamingAnotherFrameIsNoAnswerAndTheFrameGoesAgainAtItsDeadline) {
   Sim sim;
-  const auto job =
-      sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now);
+  const auto job = sim.submit(command::DriveForward{40});
   const auto first = sim.until_play(10);
   ASSERT_TRUE(first);
   link::TransmitFrame other = *first->frame;
@@ -133,8 +138,7 @@ TEST(SenderCore, AnAckNamingAnotherFrameIsNoAnswerAndTheFrameGoesAgainAtItsDeadl
 
 TEST(SenderCore, RetransmissionsUsedUpItAsksTheCallerAndTakesTheAnswerItGives) {
   Sim sim;
-  const auto job =
-      sim.core.submit(command::DriveForward{40}, Policy::Ask, std::chrono::seconds(5), false, nullptr, 0, sim.now);
+  const auto job = sim.submit(command::DriveForward{40}, Policy::Ask, std::chrono::seconds(5));
   const int played = sim.run_until(3000);
   EXPECT_EQ(played, 1 + fast_profile().timing.auto_retransmissions);
   ASSERT_EQ(sim.kinds(*job).back(), Kind::AwaitingDecision);
@@ -150,8 +154,7 @@ TEST(SenderCore, RetransmissionsUsedUpItAsksTheCallerAndTakesTheAnswerItGives) {
 
 TEST(SenderCore, AQuestionNobodyAnswersFailsTheCommandAtItsTimeout) {
   Sim sim;
-  const auto job = sim.core.submit(command::DriveForward{40}, Policy::Ask, std::chrono::milliseconds(700), false,
-                                   nullptr, 0, sim.now);
+  const auto job = sim.submit(command::DriveForward{40}, Policy::Ask, std::chrono::milliseconds(700));
   sim.run_until(3000);
   ASSERT_EQ(sim.last(*job).kind, Kind::Failed);
   EXPECT_EQ(sim.last(*job).detail, "no decision within the decision timeout");
@@ -165,13 +168,12 @@ TEST(SenderCore, AQuestionNobodyAnswersFailsTheCommandAtItsTimeout) {
 
 TEST(SenderCore, AStopOvertakesTheCommandWaitingForItsAnswerAndPlaysAtOnce) {
   Sim sim;
-  const auto drive =
-      sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now);
+  const auto drive = sim.submit(command::DriveForward{40});
   const auto first = sim.until_play(10);
   ASSERT_TRUE(first);
   sim.now = first->frame->tone_ms + 5;  // the drive waits for its answer
   const double asked_ms = sim.now;
-  const auto stop = sim.core.submit(command::Stop{}, Policy::Fail, std::chrono::seconds(1), true, nullptr, 0, sim.now);
+  const auto stop = sim.submit(command::Stop{});
   EXPECT_TRUE(drive->overtaken());
   const auto played = sim.until_play(sim.now + 1000);
   ASSERT_TRUE(played);
@@ -185,8 +187,7 @@ TEST(SenderCore, RenewalsThatFallDueGoBetweenACommandsRetransmissions) {
   Sim sim;
   // Due 300 ms after each frame for the robot: before the drive's retransmission.
   ASSERT_TRUE(sim.core.keep_renewed(0, fast_profile(), 300, 1000, 0));
-  const auto drive = sim.core.submit(command::Velocity{0.1, 0, 1.0}, Policy::Fail, std::chrono::seconds(1), false,
-                                     nullptr, 0, sim.now);
+  const auto drive = sim.submit(command::Velocity{0.1, 0, 1.0});
   std::vector<std::shared_ptr<Job>> played;
   while (const auto p = sim.until_play(2500)) played.push_back(p->job);
   ASSERT_GE(played.size(), 3u);
@@ -203,8 +204,7 @@ TEST(SenderCore, ACancelWhileTheAirIsBusyEndsTheCommandBeforeItPlays) {
   Sim sim(o);
   for (double t = 0; t < 2000; t += 4) sim.core.hear_level(-70, t);  // the room's floor
   sim.now = 2000;
-  const auto job =
-      sim.core.submit(command::DriveForward{40}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now);
+  const auto job = sim.submit(command::DriveForward{40});
   sim.core.hear_level(-20, sim.now);  // another's chord, loud
   EXPECT_FALSE(sim.until_play(sim.now + 1)) << "it waits for the air";
   EXPECT_EQ(sim.kinds(*job).back(), Kind::WaitingForAir);
@@ -218,23 +218,20 @@ TEST(SenderCore, AFullQueueRefusesCommandsButNeverAStop) {
   TransmitterOptions o = quiet_room();
   o.max_queue = 2;
   Sim sim(o);
-  for (int i = 0; i < 2; ++i)
-    sim.core.submit(command::Turn{10}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now);
-  EXPECT_THROW(sim.core.submit(command::Turn{10}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now),
-               QueueFull);
-  EXPECT_NO_THROW(sim.core.submit(command::Stop{}, Policy::Fail, std::chrono::seconds(1), true, nullptr, 0, sim.now));
+  for (int i = 0; i < 2; ++i) sim.submit(command::Turn{10});
+  EXPECT_THROW(sim.submit(command::Turn{10}), QueueFull);
+  EXPECT_NO_THROW(sim.submit(command::Stop{}));
 }
 
 TEST(SenderCore, AtShutdownWhatWaitsEndsUnavailableAndNothingMorePlays) {
   Sim sim;
-  const auto first = sim.core.submit(command::Turn{10}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, 0);
-  const auto second = sim.core.submit(command::Turn{20}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, 0);
+  const auto first = sim.submit(command::Turn{10});
+  const auto second = sim.submit(command::Turn{20});
   ASSERT_TRUE(sim.until_play(10));
   sim.core.shutdown();
   EXPECT_EQ(sim.run_until(5000), 0);
   EXPECT_TRUE(sim.core.finished());
   EXPECT_EQ(sim.last(*first).outcome, Outcome::Unavailable);
   EXPECT_EQ(sim.last(*second).outcome, Outcome::Unavailable);
-  EXPECT_THROW(sim.core.submit(command::Turn{10}, Policy::Fail, std::chrono::seconds(1), false, nullptr, 0, sim.now),
-               TransmitterUnavailable);
+  EXPECT_THROW(sim.submit(command::Turn{10}), TransmitterUnavailable);
 }
