@@ -6,7 +6,6 @@
 #include "command/word_codec.h"  // command::ParameterError
 #include "teleop_service.h"
 #include "teleop_session.h"
-#include "teleop_stream.h"
 
 namespace dtmf::server {
 
@@ -71,10 +70,11 @@ void TeleopService::halt_every_teleop() {
   }
 }
 
-grpc::Status TeleopService::Teleop(grpc::ServerContext* context,
-                                   grpc::ServerReaderWriter<v1::TeleopResponse, v1::TeleopRequest>* stream) {
-  v1::TeleopRequest first;
-  if (!stream->Read(&first)) return grpc::Status::OK;  // closed before it asked for anything
+grpc::ServerBidiReactor<v1::TeleopRequest, v1::TeleopResponse>* TeleopService::Teleop(grpc::CallbackServerContext*) {
+  return TeleopReactor::start(transmitter_, [this](const v1::TeleopRequest& first) { return open_teleop(first); });
+}
+
+std::variant<TeleopOpened, grpc::Status> TeleopService::open_teleop(const v1::TeleopRequest& first) {
   CommandSettings settings;
   command::Velocity target;
   try {
@@ -83,7 +83,8 @@ grpc::Status TeleopService::Teleop(grpc::ServerContext* context,
   } catch (const RequestError& e) {
     return e.status();
   }
-  TeleopStreamSetup setup;
+  TeleopOpened opened;
+  TeleopStreamSetup& setup = opened.setup;
   setup.profile = settings.profile ? settings.profile : &transmitter_.profile();
   setup.decision_timeout = settings.decision_timeout;
   setup.first_lease_s = first.lease_s();
@@ -96,26 +97,20 @@ grpc::Status TeleopService::Teleop(grpc::ServerContext* context,
     (void)link.frame_count(target);
     setup.carried_lease_s = std::get<command::Velocity>(link.as_received(target)).lease_s;
   } catch (const command::ParameterError& e) {
-    return {grpc::StatusCode::INVALID_ARGUMENT, "profile " + setup.profile->name + ": " + e.what()};
+    return grpc::Status{grpc::StatusCode::INVALID_ARGUMENT, "profile " + setup.profile->name + ": " + e.what()};
   }
 
-  auto session = std::make_shared<TeleopSession>(transmitter_.model_of(settings.robot));
-  const TeleopSlot slot(teleop_mutex_, teleop_[settings.robot], session);
-  if (!slot.held()) {
-    return {grpc::StatusCode::FAILED_PRECONDITION, "another Teleop stream drives the robot (" +
-                                                       transmitter_.robot_name(settings.robot) +
-                                                       "); one stream drives a robot at a time (end it, or send Stop)"};
+  opened.session = std::make_shared<TeleopSession>(transmitter_.model_of(settings.robot));
+  opened.slot = std::make_unique<TeleopSlot>(teleop_mutex_, teleop_[settings.robot], opened.session);
+  if (!opened.slot->held()) {
+    return grpc::Status{grpc::StatusCode::FAILED_PRECONDITION,
+                        "another Teleop stream drives the robot (" + transmitter_.robot_name(settings.robot) +
+                            "); one stream drives a robot at a time (end it, or send Stop)"};
   }
   setup.first_target = target;
   spdlog::info("teleop stream opened (robot {}, {}, lease {:.2f} s)", transmitter_.robot_name(settings.robot),
                setup.profile->name, target.lease_s);
-  grpc::Status status;
-  {
-    TeleopStream driving(*context, *stream, session, transmitter_, std::move(setup));
-    status = driving.drive();
-  }  // the reader is joined here, before the slot is released
-  spdlog::info("teleop stream closed: {}", status.ok() ? "the client ended it" : status.error_message());
-  return status;
+  return opened;
 }
 
 }  // namespace dtmf::server

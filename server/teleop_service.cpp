@@ -1,5 +1,7 @@
 #include "teleop_service.h"
 
+#include "command_reactor.h"
+
 #include <spdlog/spdlog.h>
 
 #include "command/test_sequence.h"
@@ -71,8 +73,6 @@ void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event, cons
   out.set_time_unix_ms(std::chrono::duration_cast<std::chrono::milliseconds>(event.time.time_since_epoch()).count());
 }
 
-namespace {
-
 grpc::Status outcome_status(Job& job) {
   const std::string detail = job.outcome_detail();
   switch (job.outcome()) {
@@ -89,29 +89,40 @@ grpc::Status outcome_status(Job& job) {
   }
 }
 
+namespace {
+
+using Submitted = std::variant<std::shared_ptr<Job>, grpc::Status>;
+
 // Runs `submit`, and answers a request the transmitter refused with the status every command
-// RPC gives it; nullopt when the command was accepted.
+// RPC gives it.
 template <class Submit>
-std::optional<grpc::Status> refusal_of(Submit&& submit) {
+Submitted refusal_of(Submit&& submit) {
   try {
-    submit();
+    return submit();
   } catch (const RequestError& e) {
     return e.status();
   } catch (const QueueFull& e) {
     return grpc::Status{grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
   } catch (const TransmitterUnavailable& e) {
     return grpc::Status{grpc::StatusCode::UNAVAILABLE, e.what()};
+  } catch (const RoomKeyMissing& e) {
+    return grpc::Status{grpc::StatusCode::FAILED_PRECONDITION, std::string("all_robots: ") + e.what()};
   }
-  return std::nullopt;
+}
+
+// Follows one job: it, and the end once it ended well.
+CommandReactor<v1::StopResponse>::Next one_job(Submitted submitted) {
+  return [submitted = std::move(submitted)](const Job* last) -> Submitted {
+    if (last) return grpc::Status::OK;
+    return submitted;
+  };
 }
 
 // Drive, Turn, Stop and Reset each stream their own response message around one Progress.
-template <typename Response>
-auto progress_to(grpc::ServerWriter<Response>* writer) {
-  return [writer](const v1::Progress& progress) {
-    Response response;
-    *response.mutable_progress() = progress;
-    return writer->Write(response);
+template <class Response>
+typename CommandReactor<Response>::Fill progress_of(std::string robot) {
+  return [robot = std::move(robot)](Response& response, Job& job, const ProgressEvent& event) {
+    fill_progress(*response.mutable_progress(), job, event, robot);
   };
 }
 
@@ -135,18 +146,14 @@ CommandSettings TeleopService::settings_of(const v1::CommandOptions& options, bo
   return settings;
 }
 
-template <class Write>
-grpc::Status TeleopService::run_command(grpc::ServerContext* context, const command::Command& command,
-                                        const v1::CommandOptions& request_options, bool to_front, Write write) {
-  std::shared_ptr<Job> job;
-  std::string robot;
-  const auto refused = refusal_of([&] {
+Submitted TeleopService::submit(const command::Command& command, const v1::CommandOptions& request_options,
+                                bool to_front) {
+  return refusal_of([&] {
     const CommandSettings settings = settings_of(request_options, std::holds_alternative<command::Stop>(command));
     const std::string profile = settings.profile ? settings.profile->name : transmitter_.profile().name;
-    robot = transmitter_.robot_name(settings.robot);
     try {
-      job = transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile,
-                                settings.robot);
+      return transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile,
+                                 settings.robot);
     } catch (const command::ParameterError& e) {
       // The chosen profile's frames cannot carry the command (its fields, or its kind).
       throw RequestError("profile " + profile + ": " + e.what());
@@ -154,85 +161,72 @@ grpc::Status TeleopService::run_command(grpc::ServerContext* context, const comm
       throw RequestError(std::string("options.profile: ") + e.what());
     }
   });
-  if (refused) return *refused;
-  return follow(context, job, robot, write);
 }
 
-grpc::Status TeleopService::stop_every_robot(grpc::ServerContext* context, const v1::StopRequest& request,
-                                             grpc::ServerWriter<v1::StopResponse>* writer) {
-  std::shared_ptr<Job> job;
-  std::optional<grpc::Status> refused;
-  try {
-    refused = refusal_of([&] {
-      if (!request.options().robot().empty())
-        throw RequestError("options.robot: a stop for every robot names none (leave it empty, or drop all_robots)");
-      const LinkProfile* profile = command_settings(request.options(), options_.defaults).profile;
-      halt_every_teleop();  // before the submit, as Stop for one robot does (the proto says why)
-      try {
-        job = transmitter_.submit_every_robot_stop(profile);
-      } catch (const std::invalid_argument& e) {  // no profile that can send it
-        throw RequestError(std::string("options.profile: ") + e.what());
-      }
-    });
-  } catch (const RoomKeyMissing& e) {
-    return {grpc::StatusCode::FAILED_PRECONDITION, std::string("all_robots: ") + e.what()};
-  }
-  if (refused) return *refused;
-  return follow(context, job, "", progress_to(writer));
+template <class Response>
+grpc::ServerWriteReactor<Response>* TeleopService::run_command(const command::Command& command,
+                                                               const v1::CommandOptions& options, bool to_front) {
+  Submitted submitted = submit(command, options, to_front);
+  std::string robot;
+  if (auto* job = std::get_if<std::shared_ptr<Job>>(&submitted)) robot = (*job)->robot();
+  return CommandReactor<Response>::start(one_job(std::move(submitted)), progress_of<Response>(std::move(robot)));
 }
 
-template <class Write>
-grpc::Status TeleopService::follow(grpc::ServerContext* context, const std::shared_ptr<Job>& job,
-                                   const std::string& robot, Write write) {
-  bool client_gone = false;
-  while (!job->finished_and_drained()) {
-    if (!client_gone && context->IsCancelled()) {
-      client_gone = true;  // queued frames are withdrawn; a chord on air completes
-      job->cancel();
+grpc::ServerWriteReactor<v1::StopResponse>* TeleopService::stop_every_robot(const v1::StopRequest& request) {
+  Submitted submitted = refusal_of([&]() -> std::shared_ptr<Job> {
+    if (!request.options().robot().empty())
+      throw RequestError("options.robot: a stop for every robot names none (leave it empty, or drop all_robots)");
+    const LinkProfile* profile = command_settings(request.options(), options_.defaults).profile;
+    halt_every_teleop();  // before the submit, as Stop for one robot does (the proto says why)
+    try {
+      return transmitter_.submit_every_robot_stop(profile);
+    } catch (const std::invalid_argument& e) {  // no profile that can send it
+      throw RequestError(std::string("options.profile: ") + e.what());
     }
-    const auto event = job->next_event(std::chrono::milliseconds(100));
-    if (!event || client_gone) continue;
-    v1::Progress progress;
-    fill_progress(progress, *job, *event, robot);
-    if (!write(progress)) {
-      client_gone = true;
-      job->cancel();
-    }
-  }
-  return outcome_status(*job);
+  });
+  return CommandReactor<v1::StopResponse>::start(one_job(std::move(submitted)), progress_of<v1::StopResponse>(""));
 }
 
-grpc::Status TeleopService::Drive(grpc::ServerContext* context, const v1::DriveRequest* request,
-                                  grpc::ServerWriter<v1::DriveResponse>* writer) {
-  if (auto refused = refuse_while_teleop("Drive", request->options())) return *refused;
+namespace {
+// A command refused before it was queued: its status, and done.
+template <class Response>
+grpc::ServerWriteReactor<Response>* refused(const grpc::Status& status) {
+  return CommandReactor<Response>::start([status](const Job*) -> Submitted { return status; },
+                                         [](Response&, Job&, const ProgressEvent&) {});
+}
+}  // namespace
+
+grpc::ServerWriteReactor<v1::DriveResponse>* TeleopService::Drive(grpc::CallbackServerContext*,
+                                                                  const v1::DriveRequest* request) {
+  if (auto refusal = refuse_while_teleop("Drive", request->options())) return refused<v1::DriveResponse>(*refusal);
   try {
-    return run_command(context, drive_command(*request), request->options(), false, progress_to(writer));
+    return run_command<v1::DriveResponse>(drive_command(*request), request->options(), false);
   } catch (const RequestError& e) {
-    return e.status();
+    return refused<v1::DriveResponse>(e.status());
   }
 }
 
-grpc::Status TeleopService::Turn(grpc::ServerContext* context, const v1::TurnRequest* request,
-                                 grpc::ServerWriter<v1::TurnResponse>* writer) {
-  if (auto refused = refuse_while_teleop("Turn", request->options())) return *refused;
+grpc::ServerWriteReactor<v1::TurnResponse>* TeleopService::Turn(grpc::CallbackServerContext*,
+                                                                const v1::TurnRequest* request) {
+  if (auto refusal = refuse_while_teleop("Turn", request->options())) return refused<v1::TurnResponse>(*refusal);
   try {
-    return run_command(context, turn_command(*request), request->options(), false, progress_to(writer));
+    return run_command<v1::TurnResponse>(turn_command(*request), request->options(), false);
   } catch (const RequestError& e) {
-    return e.status();
+    return refused<v1::TurnResponse>(e.status());
   }
 }
 
-grpc::Status TeleopService::Stop(grpc::ServerContext* context, const v1::StopRequest* request,
-                                 grpc::ServerWriter<v1::StopResponse>* writer) {
-  if (request->all_robots()) return stop_every_robot(context, *request, writer);
+grpc::ServerWriteReactor<v1::StopResponse>* TeleopService::Stop(grpc::CallbackServerContext*,
+                                                                const v1::StopRequest* request) {
+  if (request->all_robots()) return stop_every_robot(*request);
   halt_teleop(request->options());
-  return run_command(context, command::Stop{}, request->options(), true, progress_to(writer));
+  return run_command<v1::StopResponse>(command::Stop{}, request->options(), true);
 }
 
-grpc::Status TeleopService::Reset(grpc::ServerContext* context, const v1::ResetRequest* request,
-                                  grpc::ServerWriter<v1::ResetResponse>* writer) {
-  if (auto refused = refuse_while_teleop("Reset", request->options())) return *refused;
-  return run_command(context, command::Reset{}, request->options(), false, progress_to(writer));
+grpc::ServerWriteReactor<v1::ResetResponse>* TeleopService::Reset(grpc::CallbackServerContext*,
+                                                                  const v1::ResetRequest* request) {
+  if (auto refusal = refuse_while_teleop("Reset", request->options())) return refused<v1::ResetResponse>(*refusal);
+  return run_command<v1::ResetResponse>(command::Reset{}, request->options(), false);
 }
 
 grpc::Status TeleopService::Decide(grpc::ServerContext*, const v1::DecideRequest* request, v1::DecideResponse*) {
@@ -247,9 +241,21 @@ grpc::Status TeleopService::Decide(grpc::ServerContext*, const v1::DecideRequest
   }
 }
 
-grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const v1::RunTestSequenceRequest* request,
-                                            grpc::ServerWriter<v1::RunTestSequenceResponse>* writer) {
-  if (auto refused = refuse_while_teleop("RunTestSequence", request->options())) return *refused;
+namespace {
+// The seed's test sequence as it goes: which command, and frames done of all.
+struct SequenceProgress {
+  std::string run_id;
+  std::vector<command::Command> commands = command::seed_test_sequence();
+  std::size_t index = 0;
+  std::uint32_t before = 0, done = 0, total = 0;  // frames of the commands already through, and in all
+};
+}  // namespace
+
+grpc::ServerWriteReactor<v1::RunTestSequenceResponse>* TeleopService::RunTestSequence(
+    grpc::CallbackServerContext*, const v1::RunTestSequenceRequest* request) {
+  using Reactor = CommandReactor<v1::RunTestSequenceResponse>;
+  if (auto refusal = refuse_while_teleop("RunTestSequence", request->options()))
+    return refused<v1::RunTestSequenceResponse>(*refusal);
   const LinkProfile* profile = nullptr;
   RobotIndex robot = 0;
   try {
@@ -259,38 +265,38 @@ grpc::Status TeleopService::RunTestSequence(grpc::ServerContext* context, const 
     profile = settings.profile;
     robot = settings.robot;
   } catch (const RequestError& e) {
-    return e.status();
+    return refused<v1::RunTestSequenceResponse>(e.status());
   }
   if (!profile) profile = &transmitter_.profile();
-  std::string run_id;
-  if (auto started = start_run(request->label(), request->notes(), *profile, run_id); !started.ok()) return started;
-  const auto commands = command::seed_test_sequence();
+  auto run = std::make_shared<SequenceProgress>();
+  if (auto started = start_run(request->label(), request->notes(), *profile, run->run_id); !started.ok())
+    return refused<v1::RunTestSequenceResponse>(started);
   // Frames per command are the link's business (a fast frame carries a whole command).
-  std::uint32_t total = 0;
-  for (const auto& c : commands)
-    total += static_cast<std::uint32_t>(transmitter_.link_of(*profile, robot).frame_count(c));
-  std::uint32_t before = 0, done = 0;  // frames of the commands already through, and in all
-  grpc::Status status = grpc::Status::OK;
-  for (std::size_t k = 0; k < commands.size() && status.ok(); ++k) {
-    status = run_command(context, commands[k], request->options(), false, [&](const v1::Progress& p) {
-      // A counter synchronisation the link put before a command is one frame more than planned.
-      if (p.synchronisation() && p.event() == v1::FRAME_EVENT_TRANSMITTING) ++total;
-      if (p.event() == v1::FRAME_EVENT_ACK) done = before + p.frame_index() + 1;
-      if (p.event() == v1::FRAME_EVENT_CONFIRMED || p.event() == v1::FRAME_EVENT_CONTINUED)
-        done = before + p.frame_count();
-      v1::RunTestSequenceResponse response;
-      response.set_run_id(run_id);
-      response.set_command_index(static_cast<std::uint32_t>(k));
-      response.set_command_count(static_cast<std::uint32_t>(commands.size()));
-      response.set_frames_done(done);
-      response.set_frames_total(total);
-      *response.mutable_progress() = p;
-      return writer->Write(response);
-    });
-    before = done;
-  }
-  end_run(run_id);
-  return status;
+  for (const auto& c : run->commands)
+    run->total += static_cast<std::uint32_t>(transmitter_.link_of(*profile, robot).frame_count(c));
+  Reactor::Next next = [this, run, options = request->options()](const Job* last) -> Submitted {
+    if (last) {
+      run->before = run->done;
+      ++run->index;
+    }
+    if (run->index == run->commands.size()) return grpc::Status::OK;
+    return submit(run->commands[run->index], options, false);
+  };
+  Reactor::Fill fill = [run](v1::RunTestSequenceResponse& response, Job& job, const ProgressEvent& event) {
+    v1::Progress& p = *response.mutable_progress();
+    fill_progress(p, job, event, job.robot());
+    // A counter synchronisation the link put before a command is one frame more than planned.
+    if (p.synchronisation() && p.event() == v1::FRAME_EVENT_TRANSMITTING) ++run->total;
+    if (p.event() == v1::FRAME_EVENT_ACK) run->done = run->before + p.frame_index() + 1;
+    if (p.event() == v1::FRAME_EVENT_CONFIRMED || p.event() == v1::FRAME_EVENT_CONTINUED)
+      run->done = run->before + p.frame_count();
+    response.set_run_id(run->run_id);
+    response.set_command_index(static_cast<std::uint32_t>(run->index));
+    response.set_command_count(static_cast<std::uint32_t>(run->commands.size()));
+    response.set_frames_done(run->done);
+    response.set_frames_total(run->total);
+  };
+  return Reactor::start(std::move(next), std::move(fill), [this, run] { end_run(run->run_id); });
 }
 
 }  // namespace dtmf::server

@@ -9,10 +9,12 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <variant>
 
 #include "dtmf/v1/teleop.grpc.pb.h"
 #include "request_validation.h"
 #include "store.h"
+#include "teleop_stream.h"
 #include "transmitter.h"
 
 #include "command/robot_model.h"
@@ -25,24 +27,28 @@ struct ServiceOptions {
   std::string host;
 };
 
-class TeleopSession;
-
 // A command's progress event as the API streams it.
 void fill_progress(v1::Progress& out, Job& job, const ProgressEvent& event, const std::string& robot);
 
-// WatchAir is a callback method (watch_air_rpc.h: a reactor, no thread of its own); the rest are synchronous.
-class TeleopService final : public v1::TeleopService::WithCallbackMethod_WatchAir<v1::TeleopService::Service> {
+// The streams that follow the air are callback methods, each a small reactor with no thread
+// of its own: the commands (command_reactor.h), Teleop (teleop_stream.h) and WatchAir
+// (watch_air_rpc.h). The rest, which read the database or answer at once, are synchronous.
+using TeleopServiceBase = v1::TeleopService::WithCallbackMethod_Drive<v1::TeleopService::WithCallbackMethod_Turn<
+    v1::TeleopService::WithCallbackMethod_Stop<v1::TeleopService::WithCallbackMethod_Reset<
+        v1::TeleopService::WithCallbackMethod_RunTestSequence<v1::TeleopService::WithCallbackMethod_Teleop<
+            v1::TeleopService::WithCallbackMethod_WatchAir<v1::TeleopService::Service>>>>>>>;
+
+class TeleopService final : public TeleopServiceBase {
  public:
   TeleopService(Transmitter& transmitter, store::Store& store, ServiceOptions options);
 
-  grpc::Status Drive(grpc::ServerContext*, const v1::DriveRequest*, grpc::ServerWriter<v1::DriveResponse>*) override;
-  grpc::Status Turn(grpc::ServerContext*, const v1::TurnRequest*, grpc::ServerWriter<v1::TurnResponse>*) override;
-  grpc::Status Stop(grpc::ServerContext*, const v1::StopRequest*, grpc::ServerWriter<v1::StopResponse>*) override;
-  grpc::Status Reset(grpc::ServerContext*, const v1::ResetRequest*, grpc::ServerWriter<v1::ResetResponse>*) override;
-  grpc::Status RunTestSequence(grpc::ServerContext*, const v1::RunTestSequenceRequest*,
-                               grpc::ServerWriter<v1::RunTestSequenceResponse>*) override;
-  grpc::Status Teleop(grpc::ServerContext*,
-                      grpc::ServerReaderWriter<v1::TeleopResponse, v1::TeleopRequest>* stream) override;
+  grpc::ServerWriteReactor<v1::DriveResponse>* Drive(grpc::CallbackServerContext*, const v1::DriveRequest*) override;
+  grpc::ServerWriteReactor<v1::TurnResponse>* Turn(grpc::CallbackServerContext*, const v1::TurnRequest*) override;
+  grpc::ServerWriteReactor<v1::StopResponse>* Stop(grpc::CallbackServerContext*, const v1::StopRequest*) override;
+  grpc::ServerWriteReactor<v1::ResetResponse>* Reset(grpc::CallbackServerContext*, const v1::ResetRequest*) override;
+  grpc::ServerWriteReactor<v1::RunTestSequenceResponse>* RunTestSequence(grpc::CallbackServerContext*,
+                                                                         const v1::RunTestSequenceRequest*) override;
+  grpc::ServerBidiReactor<v1::TeleopRequest, v1::TeleopResponse>* Teleop(grpc::CallbackServerContext*) override;
   grpc::Status Decide(grpc::ServerContext*, const v1::DecideRequest*, v1::DecideResponse*) override;
   grpc::Status StartRun(grpc::ServerContext*, const v1::StartRunRequest*, v1::StartRunResponse*) override;
   grpc::Status EndRun(grpc::ServerContext*, const v1::EndRunRequest*, v1::EndRunResponse*) override;
@@ -55,17 +61,17 @@ class TeleopService final : public v1::TeleopService::WithCallbackMethod_WatchAi
                                                            const v1::WatchAirRequest* request) override;
 
  private:
-  // Queues `command` and writes its progress through `write` until it ends.
-  template <class Write>
-  grpc::Status run_command(grpc::ServerContext* context, const command::Command& command,
-                           const v1::CommandOptions& options, bool to_front, Write write);
-  // Writes the progress of `job` through `write` until it ends; its status.
-  template <class Write>
-  grpc::Status follow(grpc::ServerContext* context, const std::shared_ptr<Job>& job, const std::string& robot,
-                      Write write);
+  // Queues `command`; its job, or the status that refuses it.
+  std::variant<std::shared_ptr<Job>, grpc::Status> submit(const command::Command& command,
+                                                          const v1::CommandOptions& options, bool to_front);
+  // Queues `command` and streams its progress until it ends (command_reactor.h).
+  template <class Response>
+  grpc::ServerWriteReactor<Response>* run_command(const command::Command& command, const v1::CommandOptions& options,
+                                                  bool to_front);
   // Stop with all_robots: every Teleop stream halted, one stop every robot executes.
-  grpc::Status stop_every_robot(grpc::ServerContext* context, const v1::StopRequest& request,
-                                grpc::ServerWriter<v1::StopResponse>* writer);
+  grpc::ServerWriteReactor<v1::StopResponse>* stop_every_robot(const v1::StopRequest& request);
+  // Teleop's first message: checked, and the robot's slot taken (teleop_rpc.cpp).
+  std::variant<TeleopOpened, grpc::Status> open_teleop(const v1::TeleopRequest& first);
   // The request's options over the server's defaults, with the profile the command goes out
   // under (Transmitter::sendable_profile: with a key, a Stop always authenticated); throws
   // RequestError.

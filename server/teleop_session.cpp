@@ -8,28 +8,29 @@ namespace dtmf::server {
 TeleopSession::TeleopSession(command::RobotModel model) : model_(std::move(model)) {}
 
 void TeleopSession::set_target(const command::Velocity& target, double now_s) {
-  {
-    std::lock_guard lock(mutex_);
-    target_ = target;
-    heard_at_s_ = now_s;
-  }
-  changed_.notify_all();
+  std::lock_guard lock(mutex_);
+  target_ = target;
+  heard_at_s_ = now_s;
 }
 
 void TeleopSession::end_stream() {
-  {
-    std::lock_guard lock(mutex_);
-    ended_ = true;
-  }
-  changed_.notify_all();
+  std::lock_guard lock(mutex_);
+  ended_ = true;
 }
 
 void TeleopSession::halt(const std::string& why) {
+  std::function<void()> told;
   {
     std::lock_guard lock(mutex_);
     if (!halted_) halted_ = why;
+    told = on_halt_;
   }
-  changed_.notify_all();
+  if (told) told();
+}
+
+void TeleopSession::on_halt(std::function<void()> told) {
+  std::lock_guard lock(mutex_);
+  on_halt_ = std::move(told);
 }
 
 std::optional<command::Velocity> TeleopSession::frame_due(double now_s, bool renewed_jointly) {
@@ -118,11 +119,22 @@ double TeleopSession::silent_s(double now_s) {
   return now_s - heard_at_s_;
 }
 
-void TeleopSession::wait(double for_s) {
-  std::unique_lock lock(mutex_);
-  const auto target = target_;
-  changed_.wait_for(lock, std::chrono::duration<double>(for_s),
-                    [&] { return ended_ || halted_ || (target_ && (!target || *target != *target_)); });
+std::optional<double> TeleopSession::next_change_s(double now_s, bool renewed_jointly) {
+  std::lock_guard lock(mutex_);
+  if (!target_ || ended_ || halted_) return std::nullopt;
+  std::optional<double> first;
+  const auto consider = [&](double at_s) {
+    if (at_s > now_s && (!first || at_s < *first)) first = at_s;
+  };
+  // Silent for longer than kClientSilence_s (a strict test): just past it.
+  constexpr double kJustPast_s = 0.001;
+  consider(heard_at_s_ + kClientSilence_s + kJustPast_s);
+  if (!in_flight_ && last_sent_) {
+    const double renewed_s = std::max(sent_at_s_, renewed_at_s_.value_or(sent_at_s_));
+    consider(renewed_s + last_sent_->lease_s * (renewed_jointly ? kJointRenewalLate : 0.5));
+    if (renewed_at_s_) consider(sent_at_s_ + kCheckEvery_s);
+  }
+  return first;
 }
 
 }  // namespace dtmf::server

@@ -1,7 +1,9 @@
 // One live-driving stream (TeleopService::Teleop) as pure state: the newest target, when to
 // send the next frame, what the robot confirmed, and the link's quality. No I/O and no
-// clock: the caller passes the time (seconds on a steady scale). Thread-safe: the stream's
-// reader sets targets while the RPC's thread sends frames and reads the status.
+// clock: the caller passes the time (seconds on a steady scale), and it says when its rules
+// next change (next_change_s), so that its stream looks again only then. Thread-safe: the
+// stream's reads set targets while its step sends frames and reads the status, and another
+// RPC may halt it.
 //
 // Sending rule: one frame at a time (nothing is due until the last has ended); a frame goes
 // out when the target differs from the last one sent, when the last frame was not
@@ -16,8 +18,8 @@
 // that the robot still holds the velocity they renew (a restarted robot does not).
 #pragma once
 
-#include <condition_variable>
 #include <deque>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -61,8 +63,9 @@ class TeleopSession {
   void set_target(const command::Velocity& target, double now_s);
   // The reader: the stream ended (the client half-closed, or it is gone).
   void end_stream();
-  // Another RPC: a Stop overtook the stream.
+  // Another RPC: a Stop overtook the stream. Calls on_halt's listener, outside the lock.
   void halt(const std::string& why);
+  void on_halt(std::function<void()> told);
 
   // The next frame to send now, if one is due (and marks it sent). `renewed_jointly`: the
   // transmitter keeps the robot renewed (Transmitter::keep_renewed), so a lease is renewed by
@@ -82,15 +85,17 @@ class TeleopSession {
   std::optional<std::string> halted();
   // Seconds since the client's last message.
   double silent_s(double now_s);
-  // Waits until the target changes, the stream ends or it is halted, or `for_s` passes.
-  void wait(double for_s);
+  // The first time after `now_s` at which frame_due() or renewable() may answer otherwise
+  // with no new input (a renewal or a check due, the client turned silent); none while a
+  // frame is in flight (its end is an input) or the stream is over.
+  std::optional<double> next_change_s(double now_s, bool renewed_jointly);
 
  private:
   void forget_old(double now_s);
 
   const command::RobotModel model_;
   std::mutex mutex_;
-  std::condition_variable changed_;
+  std::function<void()> on_halt_;
   std::optional<command::Velocity> target_;
   double heard_at_s_ = 0;
   std::optional<command::Velocity> last_sent_;

@@ -1,30 +1,35 @@
-// One Teleop call (TeleopService::Teleop) as a small class: it holds the teleop slot, owns
-// the thread that reads the client's targets, and sends the newest target one frame at a
-// time through the transmitter (Policy::Live: once, no retransmission), answering with the
-// status after each frame's event. teleop_session.h holds the rules; this is the I/O.
-//
-// Every path out ends the same way, whatever was thrown: drive() turns any exception into a
-// status (the server never terminates on a stream), and the destructor ends the stream,
-// waits for the reader (for the client's next message, at most kReaderGrace, then cancels
-// the call so that its Read returns) and joins it, and releases the slot. The sync API
-// reads on a thread of its own because a blocking Read cannot be woken otherwise; the
-// reader signals its end through a future, so nothing polls.
+// One Teleop call (TeleopService::Teleop) as a small reactor, in the manner of gRPC's
+// route_guide callback server: no thread, no sleep, no poll. Its first message opens it (the
+// service checks it and takes the robot's slot: one stream drives a robot at a time); then it
+// sends the newest target one frame at a time through the transmitter (Policy::Live: once, no
+// retransmission), answering with the status after each of the frame's events.
+// teleop_session.h holds the rules; this is the I/O. Its inputs: a message read, a write
+// done, the client's cancel, a frame's event, a Stop's halt, and the time the session's rules
+// next change (reactor_steps.h runs its step at each). Every way out goes through one end: the
+// frame in flight cancelled (a chord on air completes), renewals stopped, a last FAILED status
+// for a failure, then Finish; the slot is released when gRPC is done with the call.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
 
+#include <chrono>
 #include <functional>
-#include <future>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <thread>
+#include <variant>
 
 #include "dtmf/v1/teleop.grpc.pb.h"
+#include "reactor_steps.h"
 #include "teleop_session.h"
 #include "transmitter.h"
 
 namespace dtmf::server {
+
+// The session's time scale (teleop_session.h): seconds of the steady clock.
+inline double steady_s(std::chrono::steady_clock::time_point at = std::chrono::steady_clock::now()) {
+  return std::chrono::duration<double>(at.time_since_epoch()).count();
+}
 
 // The teleop slot: one stream drives at a time. Held for the life of this object.
 class TeleopSlot {
@@ -53,43 +58,71 @@ struct TeleopStreamSetup {
   std::function<command::Velocity(const v1::TeleopRequest&)> target_of;
 };
 
-class TeleopStream {
+// What the first message opened: the stream's rules, its slot and its setup.
+struct TeleopOpened {
+  std::shared_ptr<TeleopSession> session;
+  std::unique_ptr<TeleopSlot> slot;
+  TeleopStreamSetup setup;
+};
+// Checks the first message and takes the slot; the status that refuses it otherwise.
+using TeleopOpener = std::function<std::variant<TeleopOpened, grpc::Status>(const v1::TeleopRequest& first)>;
+
+class TeleopReactor final : public grpc::ServerBidiReactor<v1::TeleopRequest, v1::TeleopResponse> {
  public:
-  using Stream = grpc::ServerReaderWriter<v1::TeleopResponse, v1::TeleopRequest>;
+  // Reads the first message; gRPC owns the returned reactor until OnDone.
+  static TeleopReactor* start(Transmitter& transmitter, TeleopOpener open);
 
-  // Gives the session the first target and starts the reader.
-  TeleopStream(grpc::ServerContext& context, Stream& stream, std::shared_ptr<TeleopSession> session,
-               Transmitter& transmitter, TeleopStreamSetup setup);
-  ~TeleopStream();
-  TeleopStream(const TeleopStream&) = delete;
-  TeleopStream& operator=(const TeleopStream&) = delete;
-
-  // Sends frames until the stream ends, is cancelled or halted, or fails; never throws.
-  grpc::Status drive();
+  void OnReadDone(bool ok) override;
+  void OnWriteDone(bool ok) override;
+  void OnCancel() override;
+  void OnDone() override;
 
  private:
-  void read_targets();
-  grpc::Status drive_frames();
-  // Keeps the robot renewed jointly while the session is renewable (fast links), and tells
-  // the session when a renewal renewed it.
-  void follow_renewals();
-  // Sends one frame and streams its events; a status if the stream must end.
-  std::optional<grpc::Status> send_frame(const command::Velocity& velocity);
-  bool write_status(const v1::Progress* progress);
-  void write_failure(const grpc::Status& status);
+  TeleopReactor(Transmitter& transmitter, TeleopOpener open);
+  void opened(const v1::TeleopRequest& first);
 
-  grpc::ServerContext& context_;
-  Stream& stream_;
-  std::shared_ptr<TeleopSession> session_;
+  // The step (teleop_stream_step.cpp): follows the frame in flight, renews, sends the next
+  // frame due, or ends; then waits for the session's next change.
+  void step();
+  // Why the stream must end now, if it must.
+  std::optional<grpc::Status> end_due(double now_s);
+  // Writes the frame's next event; false while it writes or the frame goes on.
+  bool follow_frame(double now_s);
+  void follow_renewals(double now_s);
+  void send_frame(const command::Velocity& velocity);
+  void write_status(const v1::Progress* progress);
+  void end_step();
+  void wait_for_change(double now_s);
+
   Transmitter& transmitter_;
+  TeleopOpener open_;
+  std::shared_ptr<TeleopReactor> self_;  // held until OnDone
+  std::optional<ReactorSteps> steps_;
+  v1::TeleopRequest request_;
+
+  // Set once, by the first message, before `opened_` (under the lock) says so.
+  std::shared_ptr<TeleopSession> session_;
+  std::unique_ptr<TeleopSlot> slot_;
   TeleopStreamSetup setup_;
-  std::shared_ptr<Job> job_;  // the frame on air, if any
-  bool renewing_ = false;     // kept renewed by the transmitter (Transmitter::keep_renewed)
-  std::mutex refused_mutex_;
-  std::optional<grpc::Status> refused_;  // a bad target mid-stream, or the reader's failure
-  std::promise<void> reader_done_;
-  std::future<void> reader_finished_ = reader_done_.get_future();
-  std::thread reader_;
+
+  // The step's own.
+  std::shared_ptr<Job> job_;  // the frame in flight, if any
+  bool answered_ = false;     // ... and what was heard of it
+  bool confirmed_ = false;
+  double response_ms_ = 0;
+  bool renewing_ = false;  // kept renewed by the transmitter (Transmitter::keep_renewed)
+  std::optional<grpc::Status> ending_;
+  bool failure_written_ = false;
+  bool finished_ = false;
+  v1::TeleopResponse response_;
+
+  // The reactions', under the lock.
+  std::mutex mutex_;
+  bool opened_ = false;
+  bool writing_ = false;
+  bool cancelled_ = false;
+  std::optional<grpc::Status> refused_;  // the first message refused, or a bad target mid-stream
+  bool closed_unopened_ = false;         // the client closed before its first message
 };
 
 }  // namespace dtmf::server

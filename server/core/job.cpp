@@ -69,6 +69,28 @@ std::optional<ProgressEvent> Job::next_event(std::chrono::milliseconds timeout) 
   return event;
 }
 
+std::optional<ProgressEvent> Job::take_event() {
+  std::lock_guard lock(mutex_);
+  if (events_.empty()) return std::nullopt;
+  ProgressEvent event = std::move(events_.front());
+  events_.pop_front();
+  return event;
+}
+
+void Job::on_event(std::function<void()> told) {
+  std::lock_guard lock(mutex_);
+  told_ = std::move(told);
+}
+
+void Job::tell() {
+  std::function<void()> told;
+  {
+    std::lock_guard lock(mutex_);
+    told = told_;
+  }
+  if (told) told();
+}
+
 bool Job::finished_and_drained() {
   std::lock_guard lock(mutex_);
   return outcome_ != Outcome::Pending && events_.empty();
@@ -155,6 +177,7 @@ void Job::emit(ProgressEvent event) {
     events_.push_back(std::move(event));
   }
   changed_.notify_all();
+  tell();
 }
 
 void Job::finish(Outcome outcome, std::string detail) {
@@ -164,6 +187,7 @@ void Job::finish(Outcome outcome, std::string detail) {
     outcome_detail_ = std::move(detail);
   }
   changed_.notify_all();
+  tell();
 }
 
 }  // namespace dtmf::server

@@ -1,8 +1,9 @@
 // One command in the sender: its frames, its policy, and the stream of progress events the
 // caller reads. The sender's core (sender_core.h) plans it and decides its outcome, its driver
-// (transmitter.h) hands its events over; the caller's thread reads them, may cancel, and
-// answers a pending decision. Thread-safe. A cancel or a decision wakes the driver (on_change),
-// so that the core sees it at once: nobody polls a job.
+// (transmitter.h) hands its events over; the caller takes them (a pull tap, take_event(),
+// told of each by on_event()), may cancel, and answers a pending decision. Thread-safe. A
+// cancel or a decision wakes the driver (on_change), and an event its caller (on_event), so
+// that each sees it at once: nobody polls a job.
 #pragma once
 
 #include <chrono>
@@ -117,6 +118,12 @@ class Job {
 
   // Caller side.
   std::optional<ProgressEvent> next_event(std::chrono::milliseconds timeout);
+  // The next event if one is there; never waits.
+  std::optional<ProgressEvent> take_event();
+  // Called after each event and at the job's end, outside the job's lock, on the driver's
+  // thread and under its locks: it must only note the news (a gRPC reactor runs its step on
+  // gRPC's threads: reactor_steps.h), never call the transmitter.
+  void on_event(std::function<void()> told);
   bool finished_and_drained();
   void cancel();
   bool decide(reliability::Decision decision);  // false unless a decision is awaited
@@ -164,7 +171,9 @@ class Job {
   bool awaiting_decision_ = false;
   std::optional<reliability::Decision> decision_;
   std::function<void()> wake_;
+  std::function<void()> told_;
   void woken();  // calls wake_, outside the lock
+  void tell();   // calls told_, outside the lock
 };
 
 }  // namespace dtmf::server
