@@ -17,11 +17,14 @@
 
 #include "job.h"
 #include "reactor_steps.h"
+#include "refusal.h"
 
 namespace dtmf::server {
 
 // How a command's outcome ends its RPC.
 grpc::Status outcome_status(Job& job);
+// The status that answers a refusal of the sender's (teleop_service.cpp).
+grpc::Status status_of(const Refusal& refusal);
 
 template <class Response>
 class CommandReactor final : public grpc::ServerWriteReactor<Response> {

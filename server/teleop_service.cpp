@@ -89,30 +89,46 @@ grpc::Status outcome_status(Job& job) {
   }
 }
 
+grpc::Status status_of(const Refusal& refusal) {
+  using K = Refusal::Kind;
+  switch (refusal.kind) {
+    case K::QueueFull:
+      return {grpc::StatusCode::RESOURCE_EXHAUSTED, refusal.why};
+    case K::Unavailable:
+      return {grpc::StatusCode::UNAVAILABLE, refusal.why};
+    case K::Unrecorded:
+      return {grpc::StatusCode::INTERNAL, refusal.why};
+    case K::RoomKeyMissing:
+      return {grpc::StatusCode::FAILED_PRECONDITION, "all_robots: " + refusal.why};
+    case K::Unauthenticated:
+    case K::NoProfile:
+      return {grpc::StatusCode::INVALID_ARGUMENT, "options.profile: " + refusal.why};
+    case K::Unsendable:
+      return {grpc::StatusCode::INVALID_ARGUMENT, refusal.why};
+  }
+  return {grpc::StatusCode::INTERNAL, refusal.why};
+}
+
 namespace {
 
-using Submitted = std::variant<std::shared_ptr<Job>, grpc::Status>;
+// What a command RPC follows: its job, or the status that ends it at once.
+using Followed = std::variant<std::shared_ptr<Job>, grpc::Status>;
 
-// Runs `submit`, and answers a request the transmitter refused with the status every command
-// RPC gives it.
+// Runs `submit`: the job, or the status of its refusal, or of a request found bad before it.
 template <class Submit>
-Submitted refusal_of(Submit&& submit) {
+Followed followed(Submit&& submit) {
   try {
-    return submit();
+    Submitted submitted = submit();
+    if (auto* job = std::get_if<std::shared_ptr<Job>>(&submitted)) return std::move(*job);
+    return status_of(std::get<Refusal>(submitted));
   } catch (const RequestError& e) {
     return e.status();
-  } catch (const QueueFull& e) {
-    return grpc::Status{grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
-  } catch (const TransmitterUnavailable& e) {
-    return grpc::Status{grpc::StatusCode::UNAVAILABLE, e.what()};
-  } catch (const RoomKeyMissing& e) {
-    return grpc::Status{grpc::StatusCode::FAILED_PRECONDITION, std::string("all_robots: ") + e.what()};
   }
 }
 
 // Follows one job: it, and the end once it ended well.
-CommandReactor<v1::StopResponse>::Next one_job(Submitted submitted) {
-  return [submitted = std::move(submitted)](const Job* last) -> Submitted {
+CommandReactor<v1::StopResponse>::Next one_job(Followed submitted) {
+  return [submitted = std::move(submitted)](const Job* last) -> Followed {
     if (last) return grpc::Status::OK;
     return submitted;
   };
@@ -146,43 +162,32 @@ CommandSettings TeleopService::settings_of(const v1::CommandOptions& options, bo
   return settings;
 }
 
-Submitted TeleopService::submit(const command::Command& command, const v1::CommandOptions& request_options,
-                                bool to_front) {
-  return refusal_of([&] {
+std::variant<std::shared_ptr<Job>, grpc::Status> TeleopService::submit(const command::Command& command,
+                                                                       const v1::CommandOptions& request_options,
+                                                                       bool to_front) {
+  return followed([&] {
     const CommandSettings settings = settings_of(request_options, std::holds_alternative<command::Stop>(command));
-    const std::string profile = settings.profile ? settings.profile->name : transmitter_.profile().name;
-    try {
-      return transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile,
-                                 settings.robot);
-    } catch (const command::ParameterError& e) {
-      // The chosen profile's frames cannot carry the command (its fields, or its kind).
-      throw RequestError("profile " + profile + ": " + e.what());
-    } catch (const UnauthenticatedRefused& e) {
-      throw RequestError(std::string("options.profile: ") + e.what());
-    }
+    return transmitter_.submit(command, settings.policy, settings.decision_timeout, to_front, settings.profile,
+                               settings.robot);
   });
 }
 
 template <class Response>
 grpc::ServerWriteReactor<Response>* TeleopService::run_command(const command::Command& command,
                                                                const v1::CommandOptions& options, bool to_front) {
-  Submitted submitted = submit(command, options, to_front);
+  Followed submitted = submit(command, options, to_front);
   std::string robot;
   if (auto* job = std::get_if<std::shared_ptr<Job>>(&submitted)) robot = (*job)->robot();
   return CommandReactor<Response>::start(one_job(std::move(submitted)), progress_of<Response>(std::move(robot)));
 }
 
 grpc::ServerWriteReactor<v1::StopResponse>* TeleopService::stop_every_robot(const v1::StopRequest& request) {
-  Submitted submitted = refusal_of([&]() -> std::shared_ptr<Job> {
+  Followed submitted = followed([&] {
     if (!request.options().robot().empty())
       throw RequestError("options.robot: a stop for every robot names none (leave it empty, or drop all_robots)");
     const LinkProfile* profile = command_settings(request.options(), options_.defaults).profile;
     halt_every_teleop();  // before the submit, as Stop for one robot does (the proto says why)
-    try {
-      return transmitter_.submit_every_robot_stop(profile);
-    } catch (const std::invalid_argument& e) {  // no profile that can send it
-      throw RequestError(std::string("options.profile: ") + e.what());
-    }
+    return transmitter_.submit_every_robot_stop(profile);
   });
   return CommandReactor<v1::StopResponse>::start(one_job(std::move(submitted)), progress_of<v1::StopResponse>(""));
 }
@@ -191,7 +196,7 @@ namespace {
 // A command refused before it was queued: its status, and done.
 template <class Response>
 grpc::ServerWriteReactor<Response>* refused(const grpc::Status& status) {
-  return CommandReactor<Response>::start([status](const Job*) -> Submitted { return status; },
+  return CommandReactor<Response>::start([status](const Job*) -> Followed { return status; },
                                          [](Response&, Job&, const ProgressEvent&) {});
 }
 }  // namespace
@@ -274,7 +279,7 @@ grpc::ServerWriteReactor<v1::RunTestSequenceResponse>* TeleopService::RunTestSeq
   // Frames per command are the link's business (a fast frame carries a whole command).
   for (const auto& c : run->commands)
     run->total += static_cast<std::uint32_t>(transmitter_.link_of(*profile, robot).frame_count(c));
-  Reactor::Next next = [this, run, options = request->options()](const Job* last) -> Submitted {
+  Reactor::Next next = [this, run, options = request->options()](const Job* last) -> Followed {
     if (last) {
       run->before = run->done;
       ++run->index;

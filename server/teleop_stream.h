@@ -86,7 +86,7 @@ class TeleopReactor final : public grpc::ServerBidiReactor<v1::TeleopRequest, v1
   void step();
   // Why the stream must end now, if it must.
   std::optional<grpc::Status> end_due(double now_s);
-  // Writes the frame's next event; false while it writes or the frame goes on.
+  // Writes the frame's next event; true once the frame ended (and was followed to its end).
   bool follow_frame(double now_s);
   void follow_renewals(double now_s);
   void send_frame(const command::Velocity& velocity);

@@ -4,6 +4,7 @@
 // session when its rules next change and steps again then.
 #include <spdlog/spdlog.h>
 
+#include "command_reactor.h"  // status_of
 #include "request_validation.h"
 #include "teleop_service.h"
 #include "teleop_stream.h"
@@ -20,12 +21,8 @@ double renewal_every_ms(double lease_s) { return std::min(400.0, 400.0 * lease_s
 // A client silent this long holds the slot no more (its lease lapsed long ago).
 constexpr double kClientGone_s = 10.0;
 
-// A refusal of the transmitter's as the stream's status.
-grpc::Status refusal_status(const std::exception& e) {
-  if (dynamic_cast<const QueueFull*>(&e)) return {grpc::StatusCode::RESOURCE_EXHAUSTED, e.what()};
-  if (dynamic_cast<const TransmitterUnavailable*>(&e)) return {grpc::StatusCode::UNAVAILABLE, e.what()};
-  // UnauthenticatedRefused, command::ParameterError
-  if (dynamic_cast<const std::invalid_argument*>(&e)) return {grpc::StatusCode::INVALID_ARGUMENT, e.what()};
+// What the step could not foresee: the stream ends, and the robot stops at its lease's end.
+grpc::Status failure_status(const std::exception& e) {
   return {grpc::StatusCode::INTERNAL, std::string("the Teleop stream failed: ") + e.what() +
                                           "; the robot stops when its lease ends, and a new stream may drive it"};
 }
@@ -47,14 +44,16 @@ void TeleopReactor::step() {
     if (ending_) return end_step();
     if (!is_open) return;  // the first message opens it
     try {
-      if (job_ && !follow_frame(now_s)) return;
+      if (job_) {
+        if (!follow_frame(now_s)) return;  // a write, or its next event, steps again
+        continue;                          // it ended: an end due, or the next frame
+      }
       follow_renewals(now_s);
-      if (job_) return;  // its next event steps again
       const auto due = session_->frame_due(now_s, renewing_);
       if (!due) return wait_for_change(now_s);
       send_frame(*due);
     } catch (const std::exception& e) {
-      ending_ = refusal_status(e);
+      ending_ = failure_status(e);
     }
   }
 }
@@ -97,7 +96,7 @@ bool TeleopReactor::follow_frame(double now_s) {
   const std::shared_ptr<Job> job = std::exchange(job_, nullptr);
   if (job->outcome() == Outcome::Unavailable)
     ending_ = grpc::Status(grpc::StatusCode::UNAVAILABLE, job->outcome_detail());
-  return !ending_;
+  return true;
 }
 
 void TeleopReactor::follow_renewals(double now_s) {
@@ -117,7 +116,13 @@ void TeleopReactor::follow_renewals(double now_s) {
 void TeleopReactor::send_frame(const command::Velocity& velocity) {
   answered_ = confirmed_ = false;
   response_ms_ = 0;
-  job_ = transmitter_.submit(velocity, Policy::Live, setup_.decision_timeout, false, setup_.profile, setup_.robot);
+  Submitted submitted =
+      transmitter_.submit(velocity, Policy::Live, setup_.decision_timeout, false, setup_.profile, setup_.robot);
+  if (auto* refusal = std::get_if<Refusal>(&submitted)) {
+    ending_ = status_of(*refusal);
+    return;
+  }
+  job_ = std::get<std::shared_ptr<Job>>(std::move(submitted));
   std::weak_ptr<TeleopReactor> told = self_;
   // The job's events come under the transmitter's locks: the step runs on gRPC's threads.
   job_->on_event([told] {

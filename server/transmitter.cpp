@@ -83,23 +83,27 @@ void Transmitter::wake() {
   woken_.notify_all();
 }
 
-std::shared_ptr<Job> Transmitter::submit(const command::Command& command, Policy policy,
-                                         std::chrono::milliseconds decision_timeout, bool to_front,
-                                         const LinkProfile* profile, RobotIndex robot) {
+Submitted Transmitter::submit(const command::Command& command, Policy policy,
+                              std::chrono::milliseconds decision_timeout, bool to_front, const LinkProfile* profile,
+                              RobotIndex robot) {
   std::unique_lock lock(mutex_);
   return accepted(lock, core_.submit(command, policy, decision_timeout, to_front, profile, robot, now_ms()));
 }
 
-std::shared_ptr<Job> Transmitter::accepted(std::unique_lock<std::mutex>& lock, std::shared_ptr<Job> job) {
-  job->on_change(waker());
+Submitted Transmitter::accepted(std::unique_lock<std::mutex>& lock, Submitted submitted) {
+  auto* job = std::get_if<std::shared_ptr<Job>>(&submitted);
+  if (!job) return submitted;
+  (*job)->on_change(waker());
   ++inputs_;
-  deliver(lock);  // its Queued first: recorded before this call returns, or the job is taken back
+  // Its Queued first: recorded before this call returns, or the job is taken back.
+  std::optional<std::string> unrecorded = deliver(lock);
   lock.unlock();
   woken_.notify_all();
-  return job;
+  if (unrecorded) return Refusal(Refusal::Kind::Unrecorded, *unrecorded);
+  return submitted;
 }
 
-std::shared_ptr<Job> Transmitter::submit_every_robot_stop(const LinkProfile* profile) {
+Submitted Transmitter::submit_every_robot_stop(const LinkProfile* profile) {
   std::unique_lock lock(mutex_);
   return accepted(lock, core_.submit_every_robot_stop(profile, now_ms()));
 }
@@ -163,9 +167,10 @@ AirShare Transmitter::air_share() const {
   return core_.air_share();
 }
 
-void Transmitter::deliver(std::unique_lock<std::mutex>& lock) {
+std::optional<std::string> Transmitter::deliver(std::unique_lock<std::mutex>& lock) {
   std::vector<SenderCore::Emitted> events = core_.take_events();
-  if (events.empty()) return;
+  if (events.empty()) return std::nullopt;
+  std::optional<std::string> unrecorded;
   std::unique_lock hand_over(handing_);
   // Up to the last Queued, under the core's lock: a job whose Queued cannot be recorded is
   // taken back before it can play. The rest outside it: a slow record never stalls the ears.
@@ -183,13 +188,17 @@ void Transmitter::deliver(std::unique_lock<std::mutex>& lock) {
     } catch (const std::exception& e) {
       spdlog::error("{}: not sent, it cannot be recorded: {}", events[i].job->description(), e.what());
       core_.withdraw(*events[i].job, now_ms());
-      if (!events[i].job->renewal()) throw;  // the caller is told (submit)
+      // The caller is told (submit): a command is refused, never sent unrecorded.
+      if (!events[i].job->renewal())
+        unrecorded = std::string("not sent: the command cannot be recorded (") + e.what() +
+                     "); check the server's database spill directory, then retry";
     }
   }
   lock.unlock();
   for (; i < events.size(); ++i) deliver_one(events[i]);
   hand_over.unlock();
   lock.lock();
+  return unrecorded;
 }
 
 void Transmitter::deliver_one(SenderCore::Emitted& emitted) {

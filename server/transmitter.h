@@ -50,17 +50,16 @@ class Transmitter {
               std::vector<std::unique_ptr<link::Link>> room_links = {});
   ~Transmitter();
 
-  // Queues a command under sendable_profile(profile, command is a Stop). Throws QueueFull,
-  // TransmitterUnavailable, UnauthenticatedRefused, command::ParameterError.
-  std::shared_ptr<Job> submit(const command::Command& command, Policy policy,
-                              std::chrono::milliseconds decision_timeout, bool to_front = false,
-                              const LinkProfile* profile = nullptr, RobotIndex robot = 0);
+  // Queues a command under sendable_profile(profile, command is a Stop), or refuses it
+  // (SenderCore::submit; Unrecorded when its Queued cannot be recorded).
+  Submitted submit(const command::Command& command, Policy policy, std::chrono::milliseconds decision_timeout,
+                   bool to_front = false, const LinkProfile* profile = nullptr, RobotIndex robot = 0);
   // Queues a stop for every robot in the room at the front, under `profile` (nullptr: the
   // first the room links have whose frames name robots), sent the profile's broadcast copies
-  // and answered by none (link::TransmitFrame::broadcast). Throws RoomKeyMissing when a robot
-  // has a key and the room links none; std::invalid_argument for a profile that names no
-  // robot; and what submit() throws.
-  std::shared_ptr<Job> submit_every_robot_stop(const LinkProfile* profile = nullptr);
+  // and answered by none (link::TransmitFrame::broadcast). Refused RoomKeyMissing when a robot
+  // has a key and the room links none; NoProfile for a profile that names no robot; and as
+  // submit() refuses.
+  Submitted submit_every_robot_stop(const LinkProfile* profile = nullptr);
   // Teleop: keeps `robot`'s velocity lease (`lease_ms` from each frame's start) renewed every
   // `every_ms` by joint renewals under `profile` (link::Link::plan_renewal: one unanswered
   // frame for up to three robots), sent ahead of the queue (a Stop still goes first), until
@@ -107,12 +106,13 @@ class Transmitter {
 
  private:
   // Under `lock`: hands the core's events over, in order, outside the core's lock (the hand-over
-  // lock keeps their order). A Queued the observer cannot record takes its job back.
-  void deliver(std::unique_lock<std::mutex>& lock);
+  // lock keeps their order). A Queued the observer cannot record takes its job back: then why,
+  // for a command's (a renewal's is only logged).
+  std::optional<std::string> deliver(std::unique_lock<std::mutex>& lock);
   void deliver_one(SenderCore::Emitted& emitted);
   // A job the core took from a caller: it wakes the loudspeaker's thread when cancelled or
   // decided, and its Queued is handed over before the caller has it.
-  std::shared_ptr<Job> accepted(std::unique_lock<std::mutex>& lock, std::shared_ptr<Job> job);
+  Submitted accepted(std::unique_lock<std::mutex>& lock, Submitted submitted);
   // The loudspeaker's thread and the microphone's.
   void run();
   void listen();

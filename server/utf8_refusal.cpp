@@ -72,8 +72,14 @@ class Utf8Refusal final : public grpc::experimental::Interceptor {
       }
       t_refused_field.clear();
     }
+    // A synchronous method answers an unparsed request INTERNAL, a callback method (the
+    // streams that follow the air) UNIMPLEMENTED; both with no message.
+    const auto unparsed_status = [&] {
+      const grpc::StatusCode code = methods->GetSendStatus().error_code();
+      return code == grpc::StatusCode::INTERNAL || code == grpc::StatusCode::UNIMPLEMENTED;
+    };
     if (methods->QueryInterceptionHookPoint(InterceptionHookPoints::PRE_SEND_STATUS) && unparsed_ &&
-        methods->GetSendStatus().error_code() == grpc::StatusCode::INTERNAL) {
+        unparsed_status()) {
       methods->ModifySendStatus({grpc::StatusCode::INVALID_ARGUMENT, refusal_text()});
     }
     methods->Proceed();

@@ -2,10 +2,10 @@
 // INVALID_ARGUMENT naming the field.
 //
 // proto3 strings must be UTF-8, and protobuf refuses to parse a message that breaks this
-// before any handler runs; gRPC then answers INTERNAL with an empty message, which tells a
-// caller neither that it was their fault nor which field. A server interceptor, which runs
-// on the parsing thread right after the parse (POST_RECV_MESSAGE with no message), rewrites
-// that status to INVALID_ARGUMENT before it is sent.
+// before any handler runs; gRPC then answers INTERNAL (UNIMPLEMENTED for a callback method)
+// with an empty message, which tells a caller neither that it was their fault nor which field. A server interceptor,
+// which runs on the parsing thread right after the parse (POST_RECV_MESSAGE with no message), rewrites that status to
+// INVALID_ARGUMENT before it is sent.
 //
 // Which field: protobuf (before 22) names it in a log line on that thread. A log handler
 // keeps the full name of any string field of this API the line mentions, checked against

@@ -137,8 +137,8 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
   std::shared_ptr<server::Job> job;
   auto next_command = [&](double now_ms) {
     if (++command_index >= o.commands) return;
-    job = sender.submit(commands[static_cast<std::size_t>(command_index) % commands.size()], server::Policy::Fail,
-                        std::chrono::milliseconds(0), false, nullptr, 0, now_ms);
+    job = server::taken(sender.submit(commands[static_cast<std::size_t>(command_index) % commands.size()],
+                                      server::Policy::Fail, std::chrono::milliseconds(0), false, nullptr, 0, now_ms));
     handed_over_ms = now_ms;
   };
   // The core's events: what each frame and command came to.

@@ -22,12 +22,14 @@
 #include <deque>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <variant>
 #include <vector>
 
 #include "job.h"
+#include "refusal.h"
 #include "reliability/air_access.h"
 #include "reliability/carrier_sense.h"
 #include "renewal_schedule.h"
@@ -35,6 +37,15 @@
 #include "transmitter_types.h"
 
 namespace dtmf::server {
+
+// A command the sender took (its job), or why it refused it.
+using Submitted = std::variant<std::shared_ptr<Job>, Refusal>;
+// The job, for a caller sure it was taken (tests, benchmarks); std::logic_error with the
+// refusal's why otherwise.
+inline std::shared_ptr<Job> taken(Submitted submitted) {
+  if (auto* refusal = std::get_if<Refusal>(&submitted)) throw std::logic_error("refused: " + refusal->why);
+  return std::get<std::shared_ptr<Job>>(std::move(submitted));
+}
 
 class SenderCore {
  public:
@@ -66,13 +77,11 @@ class SenderCore {
 
   // Inputs.
   // Queues a command (a Stop at the front, overtaking what it stops); its Queued event is the
-  // next taken. Throws QueueFull, TransmitterUnavailable, UnauthenticatedRefused,
-  // command::ParameterError, std::invalid_argument.
-  std::shared_ptr<Job> submit(const command::Command& command, Policy policy,
-                              std::chrono::milliseconds decision_timeout, bool to_front, const LinkProfile* profile,
-                              RobotIndex robot, double now_ms);
-  // The stop for every robot, on the room links (transmitter.h); throws RoomKeyMissing too.
-  std::shared_ptr<Job> submit_every_robot_stop(const LinkProfile* profile, double now_ms);
+  // next taken. Or refuses it: QueueFull, Unavailable, Unauthenticated, Unsendable, NoProfile.
+  Submitted submit(const command::Command& command, Policy policy, std::chrono::milliseconds decision_timeout,
+                   bool to_front, const LinkProfile* profile, RobotIndex robot, double now_ms);
+  // The stop for every robot, on the room links (transmitter.h); refused RoomKeyMissing too.
+  Submitted submit_every_robot_stop(const LinkProfile* profile, double now_ms);
   // Takes back a job whose Queued event could not be recorded: it never goes on the air. Only
   // before it played (its driver calls it as it hands the Queued event over).
   void withdraw(const Job& job, double now_ms);
@@ -158,8 +167,8 @@ class SenderCore {
 
   void add_robot(RobotLinks given);
   void check_default_profile(RobotIndex robot) const;
-  std::shared_ptr<Job> enqueue(link::Link& link, const command::Command& command, Policy policy,
-                               std::chrono::milliseconds decision_timeout, bool to_front, double now_ms);
+  Submitted enqueue(link::Link& link, const command::Command& command, Policy policy,
+                    std::chrono::milliseconds decision_timeout, bool to_front, double now_ms);
   std::vector<std::shared_ptr<Job>> stop_overtakes(const link::Link& link, const command::Command& stop);
   void emit(const std::shared_ptr<Job>& job, ProgressEvent event, double at_ms);
   ProgressEvent attempt_event(const Sending& s, ProgressEvent::Kind kind) const;

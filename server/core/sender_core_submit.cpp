@@ -5,53 +5,70 @@
 
 #include <algorithm>
 
+#include "command/word_codec.h"  // command::ParameterError
+
 namespace dtmf::server {
 
 using Kind = ProgressEvent::Kind;
 
-std::shared_ptr<Job> SenderCore::submit(const command::Command& command, Policy policy,
-                                        std::chrono::milliseconds decision_timeout, bool to_front,
-                                        const LinkProfile* profile, RobotIndex robot, double now_ms) {
-  link::Link& link = link_for(sendable_profile(profile, std::holds_alternative<command::Stop>(command), robot), robot);
-  return enqueue(link, command, policy, decision_timeout, to_front, now_ms);
+Submitted SenderCore::submit(const command::Command& command, Policy policy, std::chrono::milliseconds decision_timeout,
+                             bool to_front, const LinkProfile* profile, RobotIndex robot, double now_ms) {
+  const LinkProfile* sent = nullptr;
+  try {
+    sent = &sendable_profile(profile, std::holds_alternative<command::Stop>(command), robot);
+  } catch (const UnauthenticatedRefused& e) {
+    return Refusal(Refusal::Kind::Unauthenticated, e.what());
+  } catch (const std::invalid_argument& e) {  // a profile it cannot send, or not to this robot
+    return Refusal(Refusal::Kind::NoProfile, e.what());
+  }
+  try {
+    return enqueue(link_for(*sent, robot), command, policy, decision_timeout, to_front, now_ms);
+  } catch (const command::ParameterError& e) {
+    // The profile's frames cannot carry the command (its fields, or its kind).
+    return Refusal(Refusal::Kind::Unsendable, "profile " + sent->name + ": " + e.what());
+  }
 }
 
-std::shared_ptr<Job> SenderCore::submit_every_robot_stop(const LinkProfile* requested, double now_ms) {
+Submitted SenderCore::submit_every_robot_stop(const LinkProfile* requested, double now_ms) {
   link::Link* room = nullptr;
   for (const auto& l : room_links_) {
     const bool usable = l->profile().sample_rate_hz == profile_.sample_rate_hz && l->addresses_robots();
     if (requested ? &l->profile() == requested : usable) {
       if (!usable)
-        throw std::invalid_argument("profile " + requested->name +
-                                    " names no robot in its frames: a stop for every robot needs one that does (fast)");
+        return Refusal(Refusal::Kind::NoProfile,
+                       "profile " + requested->name +
+                           " names no robot in its frames: a stop for every robot needs one that does (fast)");
       room = l.get();
       break;
     }
   }
-  if (!room) throw std::invalid_argument("this server has no profile that can send a stop for every robot");
+  if (!room)
+    return Refusal(Refusal::Kind::NoProfile, "this server has no profile that can send a stop for every robot");
   if (!room->keyed()) {
     for (const Robot& r : robots_) {
       if (r.links.front()->keyed())
-        throw RoomKeyMissing(
+        return Refusal(
+            Refusal::Kind::RoomKeyMissing,
             "robot " + r.name +
-            " has a key, and takes a stop for every robot only under the room key: make one (dtmfctl keygen "
-            "room.key), give it to every robot (dtmf-agent --room-key) and to this server (dtmf-server --room-key)");
+                " has a key, and takes a stop for every robot only under the room key: make one (dtmfctl keygen "
+                "room.key), give it to every robot (dtmf-agent --room-key) and to this server (dtmf-server "
+                "--room-key)");
     }
   }
   return enqueue(*room, command::Stop{true}, Policy::Unanswered, std::chrono::milliseconds(0), true, now_ms);
 }
 
-std::shared_ptr<Job> SenderCore::enqueue(link::Link& link, const command::Command& command, Policy policy,
-                                         std::chrono::milliseconds decision_timeout, bool to_front, double now_ms) {
+Submitted SenderCore::enqueue(link::Link& link, const command::Command& command, Policy policy,
+                              std::chrono::milliseconds decision_timeout, bool to_front, double now_ms) {
   const bool stop = std::holds_alternative<command::Stop>(command);
   auto job = std::make_shared<Job>(link, command, policy, decision_timeout, run_id_);
   if (!command::every_robot(command)) job->set_robot(robots_[robot_of(link)].name);
-  if (stopping_) throw TransmitterUnavailable("the server is shutting down");
-  if (!unavailable_.empty()) throw TransmitterUnavailable(unavailable_);
+  if (stopping_) return Refusal(Refusal::Kind::Unavailable, "the server is shutting down");
+  if (!unavailable_.empty()) return Refusal(Refusal::Kind::Unavailable, unavailable_);
   // A stop is never refused for a full queue: it goes first, and what it stops waits behind it.
   if (queue_.size() >= options_.max_queue && !stop) {
-    throw QueueFull("the transmit queue is full (" + std::to_string(options_.max_queue) +
-                    " commands wait); retry later, or send Stop, which goes first");
+    return Refusal(Refusal::Kind::QueueFull, "the transmit queue is full (" + std::to_string(options_.max_queue) +
+                                                 " commands wait); retry later, or send Stop, which goes first");
   }
   if (stop) {
     for (const auto& o : stop_overtakes(link, command)) o->overtake();

@@ -1,5 +1,5 @@
-// What the transmitter (transmitter.h) is given and tells: its refusals, the robots it
-// drives, its options, and how it shared the air.
+// What the transmitter (transmitter.h) is given and tells: the robots it drives, its options,
+// and how it shared the air. Its refusals of commands are values (refusal.h).
 #pragma once
 
 #include <cstdint>
@@ -15,22 +15,8 @@
 
 namespace dtmf::server {
 
-class QueueFull : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-class TransmitterUnavailable : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-// A stop for every robot, from a sender whose robots have keys and which has no room key:
-// FAILED_PRECONDITION, naming the flags.
-class RoomKeyMissing : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-// A command under a profile without a MAC, from a sender with a key that was not told to
-// allow it: INVALID_ARGUMENT, naming the flag.
+// What sendable_profile() throws for a command under a profile without a MAC, from a sender
+// with a key that was not told to allow it (submit() returns it as Refusal::Unauthenticated).
 class UnauthenticatedRefused : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;

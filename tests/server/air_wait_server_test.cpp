@@ -106,7 +106,8 @@ TEST(AirWaitServer, TheOperatorIsToldWhatHoldsACommandAndTheAirHoldsItNoLongerTh
                                   observer, options);
 
   // In the room's quiet nothing waits, and nothing says so (it also learns the room's floor).
-  const auto quiet = events_of(*transmitter.submit(command::DriveForDuration{30, 0.5}, server::Policy::Continue, 1s));
+  const auto quiet =
+      events_of(*server::taken(transmitter.submit(command::DriveForDuration{30, 0.5}, server::Policy::Continue, 1s)));
   EXPECT_TRUE(of_kind(quiet, {Kind::WaitingForAir}).empty());
   for (const auto& e : of_kind(quiet, {Kind::Transmitting, Kind::Retransmitting})) EXPECT_EQ(e.air_wait_ms, 0);
 
@@ -114,7 +115,8 @@ TEST(AirWaitServer, TheOperatorIsToldWhatHoldsACommandAndTheAirHoldsItNoLongerTh
     Jammer jammer(*jammer_station.speaker);
     ASSERT_TRUE(test_support::wait_until([&] { return transmitter.air_share().busy_blocks > 0; }, 5s))
         << "the sender never heard the jammer";
-    auto drive_job = transmitter.submit(command::DriveForDuration{30, 0.5}, server::Policy::Continue, 1s);
+    auto drive_job =
+        server::taken(transmitter.submit(command::DriveForDuration{30, 0.5}, server::Policy::Continue, 1s));
     const auto drive = events_of(*drive_job);
     // Told once, before its first chord: why, and for how long at most.
     const auto waiting = of_kind(drive, {Kind::WaitingForAir});
@@ -144,14 +146,15 @@ TEST(AirWaitServer, TheOperatorIsToldWhatHoldsACommandAndTheAirHoldsItNoLongerTh
                 sent[0].air_wait_ms, reliability::kMaxDeferToUnknownMs, sent.size());
 
     // A stop into the same jam waits at most its own 400 ms, each attempt.
-    const auto stop = events_of(*transmitter.submit(command::Stop{}, server::Policy::Continue, 1s, true));
+    const auto stop =
+        events_of(*server::taken(transmitter.submit(command::Stop{}, server::Policy::Continue, 1s, true)));
     for (const auto& e : of_kind(stop, {Kind::Transmitting, Kind::Retransmitting})) {
       EXPECT_LE(e.air_wait_ms, reliability::kMaxStopWaitMs + kWakeSlackMs);
       std::printf("stop, attempt %d: waited %.0f ms (bound %.0f ms)\n", e.attempt, e.air_wait_ms,
                   reliability::kMaxStopWaitMs);
     }
     // A stop for every robot never waits.
-    const auto every = events_of(*transmitter.submit_every_robot_stop());
+    const auto every = events_of(*server::taken(transmitter.submit_every_robot_stop()));
     EXPECT_TRUE(of_kind(every, {Kind::WaitingForAir}).empty());
     for (const auto& e : of_kind(every, {Kind::Transmitting})) EXPECT_EQ(e.air_wait_ms, 0);
   }

@@ -46,7 +46,8 @@ struct LiveSystemOptions {
   bool forger = false;
   // Called with each progress event the transmitter emits, before it is recorded, on the
   // transmitter's threads (Queued: the submitting caller's). A test may throw from it on a
-  // Queued event: the transmitter's submit() then throws what it threw.
+  // Queued event: the transmitter's submit() then refuses the command (Refusal::Unrecorded,
+  // naming what it threw).
   std::function<void(const server::ProgressEvent&)> before_recording;
 };
 

@@ -98,7 +98,8 @@ server::AirShare drive_while_an_intruder_answers_for(std::uint8_t intruder_addre
     }
   });
   for (int k = 0; k < kCommands; ++k) {
-    auto job = transmitter.submit(command::DriveForDuration{30, 0.5}, server::Policy::Continue, 1s);  // robot 0: alpha
+    auto job = server::taken(
+        transmitter.submit(command::DriveForDuration{30, 0.5}, server::Policy::Continue, 1s));  // robot 0: alpha
     while (!job->finished_and_drained()) job->next_event(100ms);
   }
   running = false;

@@ -135,7 +135,8 @@ WhatTheAirSaw end_alphas_stream_while_a_renewal_waits(std::size_t kept) {
   std::this_thread::sleep_for(kQuietFirst);
   // A renewal renews the velocity its robot took last: one each, unanswered here.
   for (std::size_t r = 0; r < kept; ++r) {
-    auto job = transmitter.submit(command::Velocity{0.1, 0, 1.0}, server::Policy::Live, 1s, false, nullptr, r);
+    auto job =
+        server::taken(transmitter.submit(command::Velocity{0.1, 0, 1.0}, server::Policy::Live, 1s, false, nullptr, r));
     while (!job->finished_and_drained()) job->next_event(100ms);
   }
   // The first is due kRenewEveryMs after alpha's velocity began: about 1.5 s from now.

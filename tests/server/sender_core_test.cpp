@@ -34,6 +34,11 @@ class Sim {
   // `decision`); a Stop goes to the front, as callers send it.
   std::shared_ptr<Job> submit(const command::Command& command, Policy policy = Policy::Fail,
                               std::chrono::milliseconds decision = std::chrono::seconds(1)) {
+    return taken(offer(command, policy, decision));
+  }
+  // The same, refused or not.
+  Submitted offer(const command::Command& command, Policy policy = Policy::Fail,
+                  std::chrono::milliseconds decision = std::chrono::seconds(1)) {
     const bool front = std::holds_alternative<command::Stop>(command);
     return core.submit(command, policy, decision, front, nullptr, 0, now);
   }
@@ -219,8 +224,11 @@ TEST(SenderCore, AFullQueueRefusesCommandsButNeverAStop) {
   o.max_queue = 2;
   Sim sim(o);
   for (int i = 0; i < 2; ++i) sim.submit(command::Turn{10});
-  EXPECT_THROW(sim.submit(command::Turn{10}), QueueFull);
-  EXPECT_NO_THROW(sim.submit(command::Stop{}));
+  const Submitted full = sim.offer(command::Turn{10});
+  ASSERT_TRUE(std::holds_alternative<Refusal>(full));
+  EXPECT_EQ(std::get<Refusal>(full).kind, Refusal::Kind::QueueFull);
+  EXPECT_NE(std::get<Refusal>(full).why.find("send Stop"), std::string::npos) << std::get<Refusal>(full).why;
+  EXPECT_TRUE(std::holds_alternative<std::shared_ptr<Job>>(sim.offer(command::Stop{})));
 }
 
 TEST(SenderCore, AtShutdownWhatWaitsEndsUnavailableAndNothingMorePlays) {
@@ -233,5 +241,7 @@ TEST(SenderCore, AtShutdownWhatWaitsEndsUnavailableAndNothingMorePlays) {
   EXPECT_TRUE(sim.core.finished());
   EXPECT_EQ(sim.last(*first).outcome, Outcome::Unavailable);
   EXPECT_EQ(sim.last(*second).outcome, Outcome::Unavailable);
-  EXPECT_THROW(sim.submit(command::Turn{10}), TransmitterUnavailable);
+  const Submitted late = sim.offer(command::Turn{10});
+  ASSERT_TRUE(std::holds_alternative<Refusal>(late));
+  EXPECT_EQ(std::get<Refusal>(late).kind, Refusal::Kind::Unavailable);
 }

@@ -138,3 +138,37 @@ TEST(TeleopSession, OnlyALiveStreamThatMovesItsRobotIsRenewable) {
   ended.end_stream();
   EXPECT_FALSE(ended.renewable(0.1));
 }
+
+// The stream looks again only when the session says its rules change: just before that time
+// nothing is due, at it something is.
+TEST(TeleopSession, ItNamesTheNextTimeItsRulesChange) {
+  TeleopSession s(command::burger());
+  EXPECT_FALSE(s.next_change_s(0.0, false)) << "no target: only an input changes anything";
+  s.set_target(v(0.5, 1.0), 0.0);
+  ASSERT_TRUE(s.frame_due(0.0));
+  const auto in_flight = s.next_change_s(0.1, false);
+  ASSERT_TRUE(in_flight);
+  EXPECT_NEAR(*in_flight, server::kClientSilence_s + 0.001, 1e-9)
+      << "a frame in flight: its end is an input, and only the client's silence is timed";
+  s.frame_ended(0.2, true, v(0.5, 1.0), 120);
+  s.set_target(v(0.5, 1.0), 0.3);  // the client repeats its target
+  const auto renewal = s.next_change_s(0.3, false);
+  ASSERT_TRUE(renewal);
+  EXPECT_NEAR(*renewal, 0.5, 1e-9) << "half the lease after the frame was sent";
+  EXPECT_FALSE(s.frame_due(*renewal - 0.001));
+  EXPECT_TRUE(s.frame_due(*renewal));
+  s.halt("a Stop");
+  EXPECT_FALSE(s.next_change_s(0.8, false)) << "halted: nothing changes any more";
+
+  // Renewed jointly, a 2 s lease is renewed by the stream only after 1.5 s: the client's
+  // silence comes first, and then the lease is renewed no more.
+  TeleopSession joint(command::burger());
+  joint.set_target(v(0.5, 2.0), 0.0);
+  ASSERT_TRUE(joint.frame_due(0.0, true));
+  joint.frame_ended(0.2, true, v(0.5, 2.0), 120);
+  const auto silence = joint.next_change_s(0.2, true);
+  ASSERT_TRUE(silence);
+  EXPECT_NEAR(*silence, server::kClientSilence_s + 0.001, 1e-9);
+  EXPECT_TRUE(joint.renewable(*silence - 0.002));
+  EXPECT_FALSE(joint.renewable(*silence)) << "the silent client's lease is renewed no more";
+}
