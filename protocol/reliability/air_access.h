@@ -68,17 +68,13 @@ inline constexpr double kSlotMs = 50;              // a start is heard within a 
 inline constexpr int kBackoffSlots = 8;            // backoff: 0..7 slots
 inline constexpr double kMaxHoldMs = 2000;         // a run of our frames, in a shared room
 inline constexpr double kSharedMemoryMs = 60'000;  // another heard this recently: shared
-// A run of our frames, alone: a listening pause (kOwnLatencyMs, kListenWindowMs and a block or
-// two, about 440 ms) per this costs a lone sender under 2 % of its back-to-back air.
-inline constexpr double kListenEveryMs = 24'000;
-inline constexpr int kStarvedSlots = 3;  // a starved sender's backoff: 0..2 slots
+inline constexpr double kListenEveryMs = 20'000;   // a run of our frames, alone
+inline constexpr int kStarvedSlots = 3;            // a starved sender's backoff: 0..2 slots
 // A starved sender's quiet: longer than the capture latency during which a sender whose
 // exchange just ended cannot tell another's start from its own sound.
 inline constexpr double kStarvedQuietMs = kOwnLatencyMs + kSlotMs;
-// The listening pause's quiet outlasts a starved sender's quiet, backoff and start by two
-// slots: with one, timing jitter in a real-time room made the starved sender miss it one run
-// in four (ListenBeforeTalk.UnkeyedSendersTakeTheOthersAnswersForTheEndOfItsExchanges). 400 ms.
-inline constexpr double kListenWindowMs = kStarvedQuietMs + (kStarvedSlots + 2) * kSlotMs;
+// The listening pause's quiet outlasts a starved sender's quiet, backoff and start.
+inline constexpr double kListenWindowMs = kStarvedQuietMs + (kStarvedSlots + 1) * kSlotMs;
 inline constexpr double kMaxDeferMs = 4000;           // waited this long: starved
 inline constexpr double kBusyNowMs = kOwnLatencyMs;   // a stop waits while sound is this fresh
 inline constexpr double kMaxStopWaitMs = 400;         // ... at most this long: a frame and its answer

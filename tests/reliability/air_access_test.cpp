@@ -40,7 +40,7 @@ TEST(AirAccess, AloneASenderNeverDefersAndPausesToListenOnlyAfterLongRuns) {
   double t = hear_for(sense, 0, 500, kNoiseDbfs);
   double paused_ms = 0;
   const double run_from = t;
-  for (int k = 0; k < 200; ++k) {  // 50 s of frames back to back
+  for (int k = 0; k < 180; ++k) {  // 45 s of frames back to back
     const double at = wait_for_air(sense, air, t, AirUse::Command);
     paused_ms += at - t;
     t = exchange(sense, air, at, 250);
