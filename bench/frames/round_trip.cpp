@@ -173,18 +173,23 @@ nlohmann::json run(const LinkProfile& profile, const Options& o) {
       warm_up_samples = samples;
       next_command(now_ms);
     }
-    // What the loudspeaker plays from this block on: the core's frames, as it names them.
-    for (auto step = sender.next(now_ms); std::holds_alternative<server::SenderCore::Play>(step);
-         step = sender.next(now_ms)) {
-      const auto& play = std::get<server::SenderCore::Play>(step);
-      sender_speaker.queue(play.frame->audio);
-      ++frames_sent;
-      frame_started_ms = now_ms;
-      if (o.trace)
-        std::printf("frame at %.1f ms, %s, %zu samples, lane %d\n", now_ms, play.job->description().c_str(),
-                    play.frame->audio.size(), play.frame->answer_lane);
+    // What the loudspeaker plays from this block on: the core's frames, as it names them. A
+    // command confirmed now hands the next one over now, and the core is asked again, as the
+    // live transmitter's submit wakes its loudspeaker: the next frame may start in this block.
+    for (int handed = command_index;; handed = command_index) {
+      for (auto step = sender.next(now_ms); std::holds_alternative<server::SenderCore::Play>(step);
+           step = sender.next(now_ms)) {
+        const auto& play = std::get<server::SenderCore::Play>(step);
+        sender_speaker.queue(play.frame->audio);
+        ++frames_sent;
+        frame_started_ms = now_ms;
+        if (o.trace)
+          std::printf("frame at %.1f ms, %s, %zu samples, lane %d\n", now_ms, play.job->description().c_str(),
+                      play.frame->audio.size(), play.frame->answer_lane);
+      }
+      take_events(now_ms);
+      if (command_index == handed || command_index >= o.commands) break;
     }
-    take_events(now_ms);
     sender_speaker.next_block(speaker_block);
     robot_speaker.next_block(robot_block);
     samples += static_cast<long long>(o.block_samples);
