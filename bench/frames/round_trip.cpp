@@ -1,32 +1,30 @@
 // dtmf-bench-roundtrip: the link's round trip in a simulated room — command to confirmation.
 //
 // The sender's own core (server/core/sender_core.h: its queue, listen before talk, retries,
-// answer matching, exactly what dtmf-server runs) and a robot face each other `d` metres
-// apart in a simulated room
-// (sim::AcousticChannel both ways: delay, spreading, air absorption, RT60 0.3 s, pink
-// noise at -50 dBFS; each microphone also hears its own loudspeaker from 0.1 m, as in the
-// e2e air), or with --rir in a measured room both ways (room_model.h: near a loudspeaker only
-// its direct sound grows). Both
-// run block by block (--block-samples, 5 ms by default, like low-latency sound cards) in
-// simulated time: the robot answers every verdict with ACK / NACK at its next block; the
-// core is asked what to play at each block's start and hears each block the sender's
-// microphone took, as the live transmitter drives it. The next command is handed over the
-// moment one ends. Per command: the time from being handed over (as an RPC would hand it)
-// to its confirmation. Throughput: payload bits of
-// the confirmed commands (frame_trials.h: command_payload_bits) over the run's audio time.
-// No server, no gRPC: this is the link's own share of a command's latency, which
-// dtmf-bench-e2e measures through the whole system where a profile is wired to it.
+// answer matching, exactly what dtmf-server runs) and a robot face each other `d` metres apart
+// in a simulated room (sim::AcousticChannel both ways: delay, spreading, air absorption, RT60
+// 0.3 s, pink noise at -50 dBFS; each microphone also hears its own loudspeaker from 0.1 m, as
+// in the e2e air), or with --rir in a measured room both ways (room_model.h: near a loudspeaker
+// only its direct sound grows). Both run block by block (--block-samples, 5 ms by default, like
+// low-latency sound cards) in simulated time: the robot answers every verdict with ACK / NACK
+// at its next block; the core is asked what to play at each block's start, and again when a
+// command is handed over, and hears each block the sender's microphone took, as the live
+// transmitter drives it. The next command is handed over the moment one ends. Per command: the
+// time from being handed over (as an RPC would hand it) to its confirmation. Throughput:
+// payload bits of the confirmed commands (frame_trials.h: command_payload_bits) over the run's
+// audio time. No server, no gRPC: the link's own share of a command's latency, which
+// dtmf-bench-e2e measures through the whole system.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 
 #include "common/authenticated_flag.h"
 #include "common/bench_report.h"
 #include "frames/frame_trials.h"
+#include "frames/queued_speaker.h"
 #include "profile/link_profile.h"
 #include "program_main.h"
 #include "reliability/carrier_sense.h"
@@ -52,32 +50,6 @@ struct Options {
   double robot_own_speaker_m = 0.1;  // 0: the robot's microphone does not hear its own loudspeaker
   bool trace = false;
   double answer_delay_ms = 0;
-};
-
-// A speaker playing queued buffers one after another, silence in between.
-class Speaker {
- public:
-  void queue(std::vector<float> audio) { queue_.push_back(std::move(audio)); }
-  bool idle() const { return queue_.empty(); }
-  void next_block(std::span<float> out) {
-    std::fill(out.begin(), out.end(), 0.0f);
-    std::size_t at = 0;
-    while (at < out.size() && !queue_.empty()) {
-      const auto& front = queue_.front();
-      const std::size_t n = std::min(out.size() - at, front.size() - position_);
-      std::copy_n(front.begin() + static_cast<long>(position_), n, out.begin() + static_cast<long>(at));
-      at += n;
-      position_ += n;
-      if (position_ == front.size()) {
-        queue_.pop_front();
-        position_ = 0;
-      }
-    }
-  }
-
- private:
-  std::deque<std::vector<float>> queue_;
-  std::size_t position_ = 0;
 };
 
 double percentile(std::vector<double> v, double p) {
