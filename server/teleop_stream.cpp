@@ -104,7 +104,7 @@ void TeleopReactor::OnCancel() {
 }
 
 void TeleopReactor::OnDone() {
-  slot_.reset();  // gRPC is done with the call: another stream may drive the robot
+  slot_.reset();  // if the stream ended before it was opened, the slot the opening took
   self_.reset();
 }
 

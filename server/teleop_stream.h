@@ -7,7 +7,8 @@
 // done, the client's cancel, a frame's event, a Stop's halt, and the time the session's rules
 // next change (reactor_steps.h runs its step at each). Every way out goes through one end: the
 // frame in flight cancelled (a chord on air completes), renewals stopped, a last FAILED status
-// for a failure, then Finish; the slot is released when gRPC is done with the call.
+// for a failure, the slot released, then Finish (so a client told the stream ended finds the
+// robot free).
 #pragma once
 
 #include <grpcpp/grpcpp.h>

@@ -188,7 +188,12 @@ void TeleopReactor::end_step() {
     return write_status(&last);
   }
   finished_ = true;
-  if (is_open) spdlog::info("teleop stream closed: {}", status.ok() ? "the client ended it" : status.error_message());
+  if (is_open) {
+    // Free the robot before the status goes: a client told the stream ended may open the next
+    // at once, before gRPC calls OnDone (CI saw that one refused as "another stream drives").
+    slot_.reset();
+    spdlog::info("teleop stream closed: {}", status.ok() ? "the client ended it" : status.error_message());
+  }
   Finish(status);
 }
 

@@ -136,6 +136,7 @@ class WatchAirReactor final : public grpc::ServerWriteReactor<v1::WatchAirRespon
   void finish(const grpc::Status& status) {
     if (finished_) return;
     finished_ = true;
+    fanout_.unwatch(watch_);  // before the status goes: a client told it ended may watch again at once
     Finish(status);
   }
 
