@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command/word_codec.h"  // command::ParameterError
+#include "shown_text.h"
 #include "teleop_service.h"
 #include "teleop_session.h"
 
@@ -30,17 +31,35 @@ std::optional<RobotIndex> robot_of(const Transmitter& transmitter, const v1::Com
   }
 }
 
+// Who a Teleop call comes from, for another's refusal: what the client calls itself
+// (dtmf-console names its page) and where it called from, as gRPC saw it.
+std::string driver_of(const grpc::CallbackServerContext& context) {
+  const auto& metadata = context.client_metadata();
+  const auto named = metadata.find("x-dtmf-client");
+  const std::string peer = context.peer();
+  if (named == metadata.end()) return "held by a client at " + peer;
+  // The caller's own text: quoted and bounded.
+  return "held by " + shown(std::string_view(named->second.data(), named->second.size())) + " at " + peer;
+}
+
 }  // namespace
+
+std::string TeleopService::held_by(RobotIndex robot) {
+  std::lock_guard lock(teleop_mutex_);
+  const std::shared_ptr<TeleopSession> holder = teleop_[robot].lock();
+  return holder ? ": " + holder->driver() : "";
+}
 
 std::optional<grpc::Status> TeleopService::refuse_while_teleop(const char* rpc, const v1::CommandOptions& options) {
   const auto robot = robot_of(transmitter_, options);
   if (!robot) return std::nullopt;
   std::lock_guard lock(teleop_mutex_);
   if (teleop_[*robot].expired()) return std::nullopt;
+  const std::shared_ptr<TeleopSession> holder = teleop_[*robot].lock();
   return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
                       std::string(rpc) + " refused: a Teleop stream drives the robot (" +
-                          transmitter_.robot_name(*robot) +
-                          "); end that stream first, or send Stop (which overtakes and ends it)");
+                          transmitter_.robot_name(*robot) + ")" + (holder ? ": " + holder->driver() : "") +
+                          "; end that stream first, or send Stop (which overtakes and ends it)");
 }
 
 namespace {
@@ -70,11 +89,15 @@ void TeleopService::halt_every_teleop() {
   }
 }
 
-grpc::ServerBidiReactor<v1::TeleopRequest, v1::TeleopResponse>* TeleopService::Teleop(grpc::CallbackServerContext*) {
-  return TeleopReactor::start(transmitter_, [this](const v1::TeleopRequest& first) { return open_teleop(first); });
+grpc::ServerBidiReactor<v1::TeleopRequest, v1::TeleopResponse>* TeleopService::Teleop(
+    grpc::CallbackServerContext* context) {
+  return TeleopReactor::start(transmitter_, [this, driver = driver_of(*context)](const v1::TeleopRequest& first) {
+    return open_teleop(first, driver);
+  });
 }
 
-std::variant<TeleopOpened, grpc::Status> TeleopService::open_teleop(const v1::TeleopRequest& first) {
+std::variant<TeleopOpened, grpc::Status> TeleopService::open_teleop(const v1::TeleopRequest& first,
+                                                                    const std::string& driver) {
   CommandSettings settings;
   command::Velocity target;
   try {
@@ -100,12 +123,12 @@ std::variant<TeleopOpened, grpc::Status> TeleopService::open_teleop(const v1::Te
     return grpc::Status{grpc::StatusCode::INVALID_ARGUMENT, "profile " + setup.profile->name + ": " + e.what()};
   }
 
-  opened.session = std::make_shared<TeleopSession>(transmitter_.model_of(settings.robot));
+  opened.session = std::make_shared<TeleopSession>(transmitter_.model_of(settings.robot), driver);
   opened.slot = std::make_unique<TeleopSlot>(teleop_mutex_, teleop_[settings.robot], opened.session);
   if (!opened.slot->held()) {
     return grpc::Status{grpc::StatusCode::FAILED_PRECONDITION,
-                        "another Teleop stream drives the robot (" + transmitter_.robot_name(settings.robot) +
-                            "); one stream drives a robot at a time (end it, or send Stop)"};
+                        "another Teleop stream drives the robot (" + transmitter_.robot_name(settings.robot) + ")" +
+                            held_by(settings.robot) + "; one stream drives a robot at a time (end it, or send Stop)"};
   }
   setup.first_target = target;
   spdlog::info("teleop stream opened (robot {}, {}, lease {:.2f} s)", transmitter_.robot_name(settings.robot),

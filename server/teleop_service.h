@@ -70,8 +70,9 @@ class TeleopService final : public TeleopServiceBase {
                                                   bool to_front);
   // Stop with all_robots: every Teleop stream halted, one stop every robot executes.
   grpc::ServerWriteReactor<v1::StopResponse>* stop_every_robot(const v1::StopRequest& request);
-  // Teleop's first message: checked, and the robot's slot taken (teleop_rpc.cpp).
-  std::variant<TeleopOpened, grpc::Status> open_teleop(const v1::TeleopRequest& first);
+  // Teleop's first message: checked, and the robot's slot taken for `driver` (who calls,
+  // named to any other caller refused meanwhile) (teleop_rpc.cpp).
+  std::variant<TeleopOpened, grpc::Status> open_teleop(const v1::TeleopRequest& first, const std::string& driver);
   // The request's options over the server's defaults, with the profile the command goes out
   // under (Transmitter::sendable_profile: with a key, a Stop always authenticated); throws
   // RequestError.
@@ -84,6 +85,8 @@ class TeleopService final : public TeleopServiceBase {
   // FAILED_PRECONDITION naming `rpc` while a Teleop stream drives the robot `options` name
   // (nothing for a name no robot has: the command's own checks refuse it).
   std::optional<grpc::Status> refuse_while_teleop(const char* rpc, const v1::CommandOptions& options);
+  // ": held by ..." naming the client whose stream drives `robot`, or nothing.
+  std::string held_by(RobotIndex robot);
   // Stop overtook: the driving stream sends nothing more and ends.
   void halt_teleop(const v1::CommandOptions& options);
   void halt_every_teleop();

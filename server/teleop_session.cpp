@@ -5,7 +5,8 @@
 
 namespace dtmf::server {
 
-TeleopSession::TeleopSession(command::RobotModel model) : model_(std::move(model)) {}
+TeleopSession::TeleopSession(command::RobotModel model, std::string driver)
+    : model_(std::move(model)), driver_(std::move(driver)) {}
 
 void TeleopSession::set_target(const command::Velocity& target, double now_s) {
   std::lock_guard lock(mutex_);

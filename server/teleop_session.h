@@ -57,7 +57,9 @@ struct TeleopStatus {
 
 class TeleopSession {
  public:
-  explicit TeleopSession(command::RobotModel model);
+  // `driver` names the client, for a refusal that tells another who drives the robot.
+  explicit TeleopSession(command::RobotModel model, std::string driver = "");
+  const std::string& driver() const { return driver_; }
 
   // The reader: a new target (a Velocity of the robot's model, already checked), heard at now_s.
   void set_target(const command::Velocity& target, double now_s);
@@ -94,6 +96,7 @@ class TeleopSession {
   void forget_old(double now_s);
 
   const command::RobotModel model_;
+  const std::string driver_;
   std::mutex mutex_;
   std::function<void()> on_halt_;
   std::optional<command::Velocity> target_;

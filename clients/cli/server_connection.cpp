@@ -1,5 +1,8 @@
 #include "server_connection.h"
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <fstream>
 
 #include "program_main.h"
@@ -16,15 +19,23 @@ std::string read_text(const std::string& path, const char* what) {
 }
 }  // namespace
 
-ServerConnection::ServerConnection(const ServerOptions& options) {
+ServerChannel open_server_channel(const ServerOptions& options) {
   std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
   if (!options.tls_ca.empty()) {
     grpc::SslCredentialsOptions tls;
     tls.pem_root_certs = read_text(options.tls_ca, "TLS certificate");
     credentials = grpc::SslCredentials(tls);
   }
-  if (!options.token_file.empty()) token_ = read_text(options.token_file, "token");
-  channel_ = grpc::CreateChannel(options.address, credentials);
+  ServerChannel opened;
+  if (!options.token_file.empty()) opened.token = read_text(options.token_file, "token");
+  opened.channel = grpc::CreateChannel(options.address, credentials);
+  return opened;
+}
+
+ServerConnection::ServerConnection(const ServerOptions& options) {
+  ServerChannel opened = open_server_channel(options);
+  channel_ = std::move(opened.channel);
+  token_ = std::move(opened.token);
   if (!channel_->WaitForConnected(std::chrono::system_clock::now() + std::chrono::seconds(5))) {
     throw Unreachable("cannot reach dtmf-server at " + options.address +
                       ": is it running? (start it, or point --server / DTMF_SERVER at it)");
@@ -35,7 +46,20 @@ ServerConnection::ServerConnection(const ServerOptions& options) {
 std::unique_ptr<grpc::ClientContext> ServerConnection::context() const {
   auto context = std::make_unique<grpc::ClientContext>();
   if (!token_.empty()) context->AddMetadata("authorization", "Bearer " + token_);
+  context->AddMetadata("x-dtmf-client", client_name());
   return context;
+}
+
+std::string client_name() {
+  // Who calls, for a server that tells another caller who drives the robot.
+  char host[256] = "";
+  ::gethostname(host, sizeof host - 1);
+  const char* user = std::getenv("USER");
+  std::string name = std::string("dtmfctl of ") + (user ? user : "someone") + " on " + host;
+  // gRPC refuses a call whose metadata value is not printable ASCII.
+  for (char& c : name)
+    if (c < 0x20 || c > 0x7e) c = '?';
+  return name;
 }
 
 int exit_code_for(const grpc::Status& status) {

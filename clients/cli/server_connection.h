@@ -26,6 +26,15 @@ class Unreachable : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The channel to the server and the token its calls carry, without waiting for the server:
+// gRPC connects when first asked, and again after the server restarts (dtmf-console).
+struct ServerChannel {
+  std::shared_ptr<grpc::Channel> channel;
+  std::string token;
+};
+// Throws std::invalid_argument when a file it names cannot be read.
+ServerChannel open_server_channel(const ServerOptions& options);
+
 class ServerConnection {
  public:
   // Connects within a few seconds or throws Unreachable with one clear line.
@@ -40,6 +49,11 @@ class ServerConnection {
   std::unique_ptr<v1::TeleopService::Stub> stub_;
   std::string token_;
 };
+
+// What dtmfctl calls itself to the server ("dtmfctl of USER on HOST"), sent with every call
+// as the metadata x-dtmf-client: a Teleop refused because another stream drives the robot
+// names it.
+std::string client_name();
 
 // The exit code and the one line to print for a finished call.
 int exit_code_for(const grpc::Status& status);

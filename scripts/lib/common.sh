@@ -22,6 +22,8 @@ DTMF_PACKAGES=(
   dpkg-dev lintian help2man file  # scripts/package: dpkg-shlibdeps, the package check, manual pages
   docker-compose  # tests/docker: validates docker/compose.yaml offline (no engine needed)
   python3 python3-pip python3-venv python3-grpcio python3-protobuf python3-pytest python3-matplotlib
+  libcivetweb-dev  # dtmf-console: its HTTP and WebSocket server
+  chromium chromium-driver python3-selenium  # tests/console: the console's page in a real, headless browser
 )
 
 # A robot's build: dtmf-agent and dtmfctl's offline commands (encode, decode, keygen); no

@@ -93,6 +93,7 @@ fleet_up() {
   fi
   for _ in $(seq 100); do "$bin/dtmfctl" health --server "localhost:$port" >/dev/null 2>&1 && break; sleep 0.1; done
   "$bin/dtmfctl" health --server "localhost:$port" || { echo "quickstart: the server did not come up; see $state/server.log" >&2; exit 1; }
+  start_console
 
   local ctl=("$bin/dtmfctl" --server "localhost:$port")
   echo
@@ -106,6 +107,7 @@ fleet_up() {
   cat <<MSG
 
 $n robots are running in one room. Try:
+  open $(sed -n 's/^console at //p' "$state/console.out" | head -n 1) in a browser: the air, every robot, a picker, STOP EVERY ROBOT
   $bin/dtmfctl --server localhost:$port robots
   $bin/dtmfctl --server localhost:$port --robot robot1 teleop      # one terminal per robot: all drive at once
   $bin/dtmfctl --server localhost:$port --robot robot3 turn --rotation 50 --duration 1

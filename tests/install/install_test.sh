@@ -14,8 +14,11 @@ DESTDIR=$stage cmake --install "$build" --prefix /usr >"$stage.log" 2>&1 || { ca
 rm -f "$stage.log"
 
 for f in usr/bin/dtmf-agent usr/bin/dtmf-server usr/bin/dtmfctl usr/bin/dtmf-migrate usr/bin/dtmf-room \
+         usr/bin/dtmf-console usr/share/dtmf-teleop/console/index.html \
+         usr/share/dtmf-teleop/console/vendor/uplot/LICENSE usr/share/doc/dtmf-teleop/console.md \
          usr/lib/systemd/system/dtmf-agent.service usr/lib/systemd/system/dtmf-server.service \
-         etc/default/dtmf-agent etc/default/dtmf-server \
+         usr/lib/systemd/system/dtmf-console.service \
+         etc/default/dtmf-agent etc/default/dtmf-server etc/default/dtmf-console \
          usr/share/dtmf-teleop/migrations/001_schema.sql usr/share/doc/dtmf-teleop/README.md \
          usr/share/doc/dtmf-teleop/protocol.md usr/share/doc/dtmf-teleop/seed.md; do
   [ -e "$stage/$f" ] || fail "not installed: /$f"
@@ -25,13 +28,15 @@ done
 # The installed programs run from where they were installed.
 grep -q -- "--stop-robot" <<<"$("$stage/usr/bin/dtmf-agent" --help)" || fail "dtmf-agent --help does not offer --stop-robot"
 "$stage/usr/bin/dtmf-server" --help >/dev/null || fail "dtmf-server --help failed"
+grep -q -- "/usr/share/dtmf-teleop/console" <<<"$("$stage/usr/bin/dtmf-console" --help)" ||
+  fail "the installed dtmf-console does not look for its page in /usr/share/dtmf-teleop/console"
 [ "$("$stage/usr/bin/dtmfctl" encode --json --word 2861 | grep -o '"frame":"[01]*"')" = '"frame":"1011001011011101"' ] ||
   fail "the installed dtmfctl encodes word 2861 wrongly"
 
 # systemd's own check needs the units the services depend on (sysinit.target, ...): the
 # host's, copied beside ours.
 cp -rn /usr/lib/systemd/system/. "$stage/usr/lib/systemd/system/"
-for unit in dtmf-agent.service dtmf-server.service; do
+for unit in dtmf-agent.service dtmf-server.service dtmf-console.service; do
   out=$(systemd-analyze verify --root="$stage" --recursive-errors=no "$stage/usr/lib/systemd/system/$unit" 2>&1) ||
     fail "systemd-analyze verify $unit: $out"
   [ -z "$out" ] || fail "systemd-analyze verify $unit warns: $out"
@@ -47,7 +52,7 @@ grep -q '^ExecStopPost=-/usr/bin/dtmf-agent --stop-robot$' "$stage/usr/lib/syste
 # (The help is read whole first: `--help | grep -q` under pipefail failed once the help grew
 # past one 4 KiB write, as grep -q left at its first match and the program's next write met
 # a closed pipe.)
-for pair in agent:dtmf-agent server:dtmf-server; do
+for pair in agent:dtmf-agent server:dtmf-server console:dtmf-console; do
   program=${pair#*:}
   help=$("$stage/usr/bin/$program" --help)
   for var in $(sed -n 's/^#\{0,1\}\(DTMF_[A-Z_]*\)=.*/\1/p' "$stage/etc/default/$program"); do

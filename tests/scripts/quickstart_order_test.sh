@@ -16,7 +16,7 @@ dir=$3
 [ -n "$dir" ] && [ "$dir" != / ] || { echo "FAIL: no work directory"; exit 1; }
 export DTMF_QUICKSTART_BIN=$bin DTMF_QUICKSTART_DIR=$dir
 # Ports of its own: the user's quickstart may be running on 50051 and 55433 meanwhile.
-export DTMF_QUICKSTART_PORT=25440 DTMF_QUICKSTART_PG_PORT=25441
+export DTMF_QUICKSTART_PORT=25440 DTMF_QUICKSTART_PG_PORT=25441 DTMF_QUICKSTART_CONSOLE_PORT=25442
 unset DTMF_AUDIO_DEVICE
 server=localhost:$DTMF_QUICKSTART_PORT
 

@@ -1,0 +1,117 @@
+"""The console in Debian's Chromium, headless, through Selenium, against the system that
+run_browser_tests.sh started with scripts/quickstart --robots 3 (robot1..robot3 in one room).
+Helpers to open pages, wait for what a test means, read the simulated robots' pose logs and
+keep screenshots."""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import time
+from pathlib import Path
+from typing import Callable
+
+import pytest
+from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.by import By
+
+CONSOLE_URL = os.environ.get("DTMF_CONSOLE_URL", "http://127.0.0.1:25462/")
+SERVER = os.environ.get("DTMF_SERVER", "localhost:25460")
+SOURCE = Path(os.environ.get("DTMF_SOURCE_DIR", Path(__file__).resolve().parents[3]))
+QUICKSTART_DIR = Path(os.environ.get("DTMF_QUICKSTART_DIR", "build/console-browser"))
+ARTEFACTS = Path(os.environ.get("DTMF_CONSOLE_ARTEFACTS", QUICKSTART_DIR / "screenshots"))
+
+
+def wait_until(predicate: Callable[[], object], timeout_s: float, poll_s: float = 0.05):
+    """Polls predicate until it gives a true value or timeout_s has passed; that value (tried
+    once more at the deadline)."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        value = predicate()
+        if value:
+            return value
+        time.sleep(poll_s)
+    return predicate()
+
+
+def driven_m(robot: str) -> float:
+    """How far the simulated TurtleBot3 `robot` has driven, by its agent's newest pose line."""
+    log = (QUICKSTART_DIR / f"agent{robot[-1]}.log").read_text(errors="replace")
+    found = re.findall(r"sim: (\w+) at t=[\d.]+ s: .*?([\d.]+) m driven", log)
+    return float(found[-1][1]) if found else 0.0
+
+
+def last_pose_word(robot: str) -> str:
+    """'moving' or 'stopped', as the robot's pose log last said (none yet: 'stopped')."""
+    log = (QUICKSTART_DIR / f"agent{robot[-1]}.log").read_text(errors="replace")
+    found = re.findall(r"sim: (\w+) at t=", log)
+    return found[-1] if found else "stopped"
+
+
+def quickstart(*args: str) -> str:
+    run = subprocess.run([str(SOURCE / "scripts" / "quickstart"), *args], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, f"scripts/quickstart {' '.join(args)}: {run.stdout}{run.stderr}"
+    return run.stdout
+
+
+def new_browser() -> webdriver.Chrome:
+    options = webdriver.ChromeOptions()
+    for argument in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1500,1300",
+                     "--disable-dev-shm-usage", "--no-first-run", "--disable-background-networking",
+                     "--disable-component-update", "--disable-sync", "--disable-default-apps"):
+        options.add_argument(argument)
+    options.set_capability("goog:loggingPrefs", {"performance": "ALL", "browser": "ALL"})
+    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+
+
+class ConsolePage:
+    """One browser on the console's page."""
+
+    def __init__(self, browser: webdriver.Chrome):
+        self.browser = browser
+        browser.get(CONSOLE_URL)
+        assert wait_until(lambda: self.state() == "connected", 20), f"the page never went live: {self.badge()}"
+        assert wait_until(lambda: self.robot_names(), 15), "the robots were never listed"
+
+    def js(self, script: str, *args):
+        return self.browser.execute_script(script, *args)
+
+    def state(self) -> str:
+        return self.browser.find_element(By.ID, "connection").get_attribute("data-state")
+
+    def badge(self) -> str:
+        return self.browser.find_element(By.ID, "connection").text
+
+    def robot_names(self) -> list[str]:
+        return [o.get_attribute("value") for o in self.browser.find_elements(By.CSS_SELECTOR, "#robot-picker option")]
+
+    def pick(self, robot: str) -> None:
+        self.js("const p = document.getElementById('robot-picker'); p.value = arguments[0];"
+                "p.dispatchEvent(new Event('change'));", robot)
+
+    def stats(self) -> dict:
+        return self.js("return window.dtmfConsole.spectrogram.stats;")
+
+    def commands(self) -> list[tuple[str, str | None]]:
+        return [(li.text, li.get_attribute("data-outcome"))
+                for li in self.browser.find_elements(By.CSS_SELECTOR, "#commands li")]
+
+    def screenshot(self, name: str) -> Path:
+        ARTEFACTS.mkdir(parents=True, exist_ok=True)
+        path = ARTEFACTS / f"{name}.png"
+        self.browser.save_screenshot(str(path))
+        return path
+
+
+@pytest.fixture
+def browser():
+    b = new_browser()
+    yield b
+    b.quit()
+
+
+@pytest.fixture
+def page(browser) -> ConsolePage:
+    return ConsolePage(browser)
