@@ -1,5 +1,6 @@
 #include "call_relay.h"
 
+#include <google/protobuf/descriptor.h>
 #include <google/protobuf/util/json_util.h>
 
 #include <stdexcept>
@@ -26,7 +27,8 @@ bool from_buffer(const grpc::ByteBuffer& buffer, google::protobuf::Message& mess
 }
 
 std::unique_ptr<google::protobuf::Message> new_message(const google::protobuf::Descriptor& type) {
-  const google::protobuf::Message* prototype = google::protobuf::MessageFactory::generated_factory()->GetPrototype(&type);
+  const google::protobuf::Message* prototype =
+      google::protobuf::MessageFactory::generated_factory()->GetPrototype(&type);
   return std::unique_ptr<google::protobuf::Message>(prototype->New());
 }
 
@@ -40,7 +42,10 @@ bool is_droppable(const google::protobuf::Message& message) {
 }  // namespace
 
 const google::protobuf::MethodDescriptor* find_method(const std::string& name) {
-  return v1::TeleopService::descriptor()->FindMethodByName(name);
+  // teleop.proto's descriptor, registered when its messages are linked in (as they are here).
+  (void)v1::WatchAirResponse::descriptor();
+  const auto* service = google::protobuf::DescriptorPool::generated_pool()->FindServiceByName("dtmf.v1.TeleopService");
+  return service ? service->FindMethodByName(name) : nullptr;
 }
 
 std::unique_ptr<google::protobuf::Message> request_from_json(const google::protobuf::MethodDescriptor& method,
@@ -57,7 +62,10 @@ std::unique_ptr<google::protobuf::Message> request_from_json(const google::proto
 
 CallRelay::CallRelay(std::unique_ptr<grpc::ClientContext> context, const google::protobuf::MethodDescriptor& method,
                      CallSink sink)
-    : context_(std::move(context)), method_(method), sink_(std::move(sink)), reply_(new_message(*method.output_type())) {}
+    : context_(std::move(context)),
+      method_(method),
+      sink_(std::move(sink)),
+      reply_(new_message(*method.output_type())) {}
 
 std::shared_ptr<CallRelay> CallRelay::start(grpc::GenericStub& stub, std::unique_ptr<grpc::ClientContext> context,
                                             const google::protobuf::MethodDescriptor& method,

@@ -104,8 +104,9 @@ std::unique_ptr<Console> start_console(const ConsoleFlags& flags) {
         " drive the robots: add --tls-cert, --tls-key and --auth-token-file, serve this machine only (--address "
         "127.0.0.1, the default), or accept the risk with --allow-anyone-on-the-network");
   if (!flags.auth_token_file.empty() && !tls && !loopback)
-    throw std::invalid_argument("--auth-token-file without HTTPS would send the token in clear text: add --tls-cert "
-                                "and --tls-key");
+    throw std::invalid_argument(
+        "--auth-token-file without HTTPS would send the token in clear text: add --tls-cert "
+        "and --tls-key");
   if (!loopback && !guarded)
     spdlog::warn("the console on {} is open to anyone who reaches port {}: they can drive the robots", flags.address,
                  flags.port);
@@ -119,7 +120,8 @@ std::unique_ptr<Console> start_console(const ConsoleFlags& flags) {
   web.guard.token = web.token_in_page ? new_page_token() : server::read_token_file(flags.auth_token_file);
   std::optional<JoinedPem> pem;
   if (tls) {
-    pem.emplace(server::read_secret_file(flags.tls_key, "TLS key"), server::read_public_file(flags.tls_cert, "TLS certificate"));
+    pem.emplace(server::read_secret_file(flags.tls_key, "TLS key"),
+                server::read_public_file(flags.tls_cert, "TLS certificate"));
     web.tls_pem = pem->path();
   }
 
@@ -140,7 +142,7 @@ std::unique_ptr<Console> start_console(const ConsoleFlags& flags) {
       [link, pages](std::shared_ptr<PageOutbox> outbox, const std::string& peer) {
         return std::make_shared<PageSession>(link, page_name(++*pages, peer), std::move(outbox));
       });
-  const std::string host = loopback && flags.address != "::1" ? "127.0.0.1"
+  const std::string host = loopback && flags.address != "::1"             ? "127.0.0.1"
                            : flags.address.find(':') != std::string::npos ? "[" + flags.address + "]"
                                                                           : flags.address;
   console->url = std::string(tls ? "https" : "http") + "://" + host + ":" + std::to_string(console->web->port()) + "/";

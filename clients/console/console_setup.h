@@ -13,14 +13,14 @@
 namespace dtmf::console {
 
 struct ConsoleFlags {
-  cli::ServerOptions server;           // --server, --tls-ca, --token-file: as dtmfctl's
-  std::string address = "127.0.0.1";   // --address: where the page is served
-  int port = 8080;                     // --port
-  std::string tls_cert, tls_key;       // --tls-cert, --tls-key: serve HTTPS
-  std::string auth_token_file;         // --auth-token-file: the operator's token, for an address not loopback
+  cli::ServerOptions server;               // --server, --tls-ca, --token-file: as dtmfctl's
+  std::string address = "127.0.0.1";       // --address: where the page is served
+  int port = 8080;                         // --port
+  std::string tls_cert, tls_key;           // --tls-cert, --tls-key: serve HTTPS
+  std::string auth_token_file;             // --auth-token-file: the operator's token, for an address not loopback
   std::vector<std::string> allowed_hosts;  // --allowed-host: other names the page is opened by
-  bool allow_anyone = false;           // --allow-anyone-on-the-network
-  std::string assets;                  // --assets: the page's files
+  bool allow_anyone = false;               // --allow-anyone-on-the-network
+  std::string assets;                      // --assets: the page's files
 };
 
 // Adds the flags; the page is looked for next to the binary (`program`, argv[0], when

@@ -36,10 +36,10 @@ std::vector<std::string> allowed_hosts(const std::string& address, int port);
 // A request's head, as the HTTP server read it (absent headers empty).
 struct RequestHead {
   std::string method;
-  std::string path;    // without the query
-  std::string host;    // Host
-  std::string origin;  // Origin
-  std::string token;   // the socket's token (its query's token=...)
+  std::string path;      // without the query
+  std::string host;      // Host
+  std::string origin;    // Origin
+  std::string token;     // the socket's token (its query's token=...)
   bool upgrade = false;  // a WebSocket handshake
 };
 

@@ -11,23 +11,11 @@ namespace {
 using nlohmann::json;
 
 const char* status_name(grpc::StatusCode code) {
-  static constexpr const char* kNames[] = {"OK",
-                                           "CANCELLED",
-                                           "UNKNOWN",
-                                           "INVALID_ARGUMENT",
-                                           "DEADLINE_EXCEEDED",
-                                           "NOT_FOUND",
-                                           "ALREADY_EXISTS",
-                                           "PERMISSION_DENIED",
-                                           "RESOURCE_EXHAUSTED",
-                                           "FAILED_PRECONDITION",
-                                           "ABORTED",
-                                           "OUT_OF_RANGE",
-                                           "UNIMPLEMENTED",
-                                           "INTERNAL",
-                                           "UNAVAILABLE",
-                                           "DATA_LOSS",
-                                           "UNAUTHENTICATED"};
+  static constexpr const char* kNames[] = {
+      "OK",        "CANCELLED",      "UNKNOWN",           "INVALID_ARGUMENT",   "DEADLINE_EXCEEDED",
+      "NOT_FOUND", "ALREADY_EXISTS", "PERMISSION_DENIED", "RESOURCE_EXHAUSTED", "FAILED_PRECONDITION",
+      "ABORTED",   "OUT_OF_RANGE",   "UNIMPLEMENTED",     "INTERNAL",           "UNAVAILABLE",
+      "DATA_LOSS", "UNAUTHENTICATED"};
   const auto i = static_cast<std::size_t>(code);
   return i < std::size(kNames) ? kNames[i] : "UNKNOWN";
 }
@@ -45,7 +33,7 @@ std::optional<long long> id_of(const json& message, const char* key) {
 PageSession::PageSession(ServerLink link, std::string client, std::shared_ptr<PageOutbox> outbox)
     : link_(std::move(link)), client_(std::move(client)), outbox_(std::move(outbox)) {
   put(json{{"hello", {{"server", link_.address}, {"client", client_}}}}.dump(-1, ' ', false,
-                                                                           json::error_handler_t::replace),
+                                                                             json::error_handler_t::replace),
       false);
 }
 
@@ -62,11 +50,9 @@ PageSession::~PageSession() {
 
 void PageSession::hear(std::string_view text) {
   if (text.size() > kMaxMessageBytes)
-    return error("a message of " + std::to_string(text.size()) + " bytes: at most " +
-                 std::to_string(kMaxMessageBytes));
+    return error("a message of " + std::to_string(text.size()) + " bytes: at most " + std::to_string(kMaxMessageBytes));
   const json message = json::parse(text.begin(), text.end(), nullptr, false);
-  if (message.is_discarded() || !message.is_object())
-    return error("not a JSON object: " + server::shown(text));
+  if (message.is_discarded() || !message.is_object()) return error("not a JSON object: " + server::shown(text));
   if (const auto id = id_of(message, "open")) {
     const auto method = message.find("method");
     const auto request = message.find("request");
@@ -120,13 +106,12 @@ void PageSession::open(long long id, const std::string& method_name, const std::
   }
   std::weak_ptr<PageSession> session = weak_from_this();
   auto outbox = outbox_;
-  CallSink sink{
-      [outbox, id](std::string message, bool droppable) {
-        outbox->put("{\"call\":" + std::to_string(id) + ",\"message\":" + message + "}", droppable);
-      },
-      [session, id](const grpc::Status& status) {
-        if (auto s = session.lock()) s->ended(id, status);
-      }};
+  CallSink sink{[outbox, id](std::string message, bool droppable) {
+                  outbox->put("{\"call\":" + std::to_string(id) + ",\"message\":" + message + "}", droppable);
+                },
+                [session, id](const grpc::Status& status) {
+                  if (auto s = session.lock()) s->ended(id, status);
+                }};
   auto call = CallRelay::start(*link_.stub, link_.context(client_), *method, *first, std::move(sink));
   std::lock_guard lock(mutex_);
   const auto place = calls_.find(id);

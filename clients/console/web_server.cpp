@@ -84,7 +84,9 @@ static int request_trampoline(mg_connection* conn) {
 static int connect_trampoline(const mg_connection* conn, void* server) {
   return static_cast<WebServer*>(server)->on_socket_connect(conn);
 }
-static void ready_trampoline(mg_connection* conn, void* server) { static_cast<WebServer*>(server)->on_socket_ready(conn); }
+static void ready_trampoline(mg_connection* conn, void* server) {
+  static_cast<WebServer*>(server)->on_socket_ready(conn);
+}
 static int data_trampoline(mg_connection* conn, int bits, char* data, size_t length, void* server) {
   return static_cast<WebServer*>(server)->on_socket_data(conn, bits, data, length);
 }
@@ -93,9 +95,9 @@ static void close_trampoline(const mg_connection* conn, void* server) {
 }
 }
 
-WebServer::WebServer(WebServerOptions options, std::map<std::string, Asset> assets,
-                     std::function<std::shared_ptr<PageSession>(std::shared_ptr<PageOutbox>, const std::string&)>
-                         new_page)
+WebServer::WebServer(
+    WebServerOptions options, std::map<std::string, Asset> assets,
+    std::function<std::shared_ptr<PageSession>(std::shared_ptr<PageOutbox>, const std::string&)> new_page)
     : options_(std::move(options)), assets_(std::move(assets)), new_page_(std::move(new_page)) {
   const auto index = assets_.find("/");
   if (index == assets_.end()) throw std::runtime_error("the console's assets have no index.html");
@@ -105,11 +107,12 @@ WebServer::WebServer(WebServerOptions options, std::map<std::string, Asset> asse
   page_html_.replace(mark, std::string(kTokenMark).size(), options_.token_in_page ? options_.guard.token : "");
 
   const bool tls = !options_.tls_pem.empty();
-  const std::string listen = (options_.address.find(':') != std::string::npos ? "[" + options_.address + "]"
-                                                                               : options_.address) +
-                             ":" + std::to_string(options_.port) + (tls ? "s" : "");
-  std::vector<const char*> config{"listening_ports", listen.c_str(), "num_threads", "24", "request_timeout_ms",
-                                  "10000", "enable_keep_alive", "no", "websocket_timeout_ms", "3600000"};
+  const std::string listen =
+      (options_.address.find(':') != std::string::npos ? "[" + options_.address + "]" : options_.address) + ":" +
+      std::to_string(options_.port) + (tls ? "s" : "");
+  std::vector<const char*> config{"listening_ports",      listen.c_str(), "num_threads",       "24",
+                                  "request_timeout_ms",   "10000",        "enable_keep_alive", "no",
+                                  "websocket_timeout_ms", "3600000"};
   if (tls) {
     config.push_back("ssl_certificate");
     config.push_back(options_.tls_pem.c_str());

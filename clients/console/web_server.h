@@ -34,11 +34,11 @@ std::map<std::string, Asset> load_assets(const std::string& dir);
 
 struct WebServerOptions {
   std::string address = "127.0.0.1";
-  int port = 8080;  // 0: any free port (port() says which)
-  std::string tls_pem;  // a PEM with the key and the certificate: serve HTTPS
-  PageGuard guard;      // the token; its hosts and scheme are set from where it listens
+  int port = 8080;                       // 0: any free port (port() says which)
+  std::string tls_pem;                   // a PEM with the key and the certificate: serve HTTPS
+  PageGuard guard;                       // the token; its hosts and scheme are set from where it listens
   std::vector<std::string> extra_hosts;  // other names the page is opened by (host:port)
-  bool token_in_page = true;  // false when the operator's own token guards the socket (not on loopback)
+  bool token_in_page = true;             // false when the operator's own token guards the socket (not on loopback)
 };
 
 class WebServer {
@@ -49,8 +49,7 @@ class WebServer {
 
   // Starts serving; throws std::runtime_error naming what failed (the port taken, say).
   WebServer(WebServerOptions options, std::map<std::string, Asset> assets,
-            std::function<std::shared_ptr<PageSession>(std::shared_ptr<PageOutbox>, const std::string& peer)>
-                new_page);
+            std::function<std::shared_ptr<PageSession>(std::shared_ptr<PageOutbox>, const std::string& peer)> new_page);
   ~WebServer();
   int port() const { return port_; }
   std::size_t pages() const { return pages_; }

@@ -29,7 +29,8 @@ RequestHead socket_request() {
 }  // namespace
 
 TEST(PageGuard, AnswersToTheLoopbackNamesWithItsPortAndToTheAddressItServes) {
-  EXPECT_EQ(allowed_hosts("127.0.0.1", 8080), (std::vector<std::string>{"127.0.0.1:8080", "localhost:8080", "[::1]:8080"}));
+  EXPECT_EQ(allowed_hosts("127.0.0.1", 8080),
+            (std::vector<std::string>{"127.0.0.1:8080", "localhost:8080", "[::1]:8080"}));
   EXPECT_EQ(allowed_hosts("0.0.0.0", 80).size(), 3u) << "a wildcard names no host: --allowed-host does";
   EXPECT_EQ(allowed_hosts("console.lab", 443).back(), "console.lab:443");
   EXPECT_EQ(allowed_hosts("fd00::5", 8443).back(), "[fd00::5]:8443");

@@ -88,13 +88,14 @@ TEST(ConsolePage, ADriveIsRelayedWithItsProgressAndItsStatus) {
   LiveSystem system;
   Page page(system);
   ASSERT_TRUE(page.heard([](const json& m) { return m.contains("hello"); }));
-  page.say(json{{"open", 1}, {"method", "Drive"}, {"request", {{"speed_percent", 40}, {"duration_s", 1}, {"options", {{"profile", "fast"}}}}}});
+  page.say(json{{"open", 1},
+                {"method", "Drive"},
+                {"request", {{"speed_percent", 40}, {"duration_s", 1}, {"options", {{"profile", "fast"}}}}}});
   const auto status = page.status_of(1, 10s);
   ASSERT_TRUE(status);
   EXPECT_EQ(status->at("name"), "OK") << status->dump();
   bool confirmed = false;
-  for (const auto& m : page.messages_of(1))
-    confirmed = confirmed || m["progress"]["event"] == "FRAME_EVENT_CONFIRMED";
+  for (const auto& m : page.messages_of(1)) confirmed = confirmed || m["progress"]["event"] == "FRAME_EVENT_CONFIRMED";
   EXPECT_TRUE(confirmed) << "the progress the server streamed reached the page";
   EXPECT_GT(system.last_velocity().linear_mps, 0.0);
 }
@@ -141,7 +142,9 @@ TEST(ConsolePage, WhatIsNotAPagesMessageIsAnsweredWithAnErrorNamingIt) {
 TEST(ConsolePage, ATeleopStreamTakesTargetsAndEndsWhenThePageCloses) {
   LiveSystem system;
   Page page(system, "console page 1 (127.0.0.1)");
-  page.say(json{{"open", 1}, {"method", "Teleop"}, {"request", {{"linear_mps", 0.05}, {"lease_s", 0.5}, {"options", {{"profile", "fast"}}}}}});
+  page.say(json{{"open", 1},
+                {"method", "Teleop"},
+                {"request", {{"linear_mps", 0.05}, {"lease_s", 0.5}, {"options", {{"profile", "fast"}}}}}});
   ASSERT_TRUE(wait_until([&] { return system.last_velocity().linear_mps > 0.04; }, 5s));
   page.say(json{{"send", 1}, {"request", {{"linear_mps", 0.1}, {"lease_s", 0.5}}}});
   ASSERT_TRUE(wait_until([&] { return system.last_velocity().linear_mps > 0.09; }, 5s));
@@ -149,7 +152,8 @@ TEST(ConsolePage, ATeleopStreamTakesTargetsAndEndsWhenThePageCloses) {
   // Another page is refused, and told who drives.
   {
     Page other(system, "console page 2 (127.0.0.1)");
-    other.say(json{{"open", 1}, {"method", "Teleop"}, {"request", {{"linear_mps", 0.02}, {"options", {{"profile", "fast"}}}}}});
+    other.say(json{
+        {"open", 1}, {"method", "Teleop"}, {"request", {{"linear_mps", 0.02}, {"options", {{"profile", "fast"}}}}}});
     const auto refused = other.status_of(1);
     ASSERT_TRUE(refused);
     EXPECT_EQ(refused->at("name"), "FAILED_PRECONDITION");
@@ -169,12 +173,16 @@ TEST(ConsolePage, APageThatGoesAwayCancelsItsCalls) {
   LiveSystem system;
   {
     Page page(system);
-    page.say(json{{"open", 1}, {"method", "Teleop"}, {"request", {{"linear_mps", 0.05}, {"lease_s", 0.5}, {"options", {{"profile", "fast"}}}}}});
+    page.say(json{{"open", 1},
+                  {"method", "Teleop"},
+                  {"request", {{"linear_mps", 0.05}, {"lease_s", 0.5}, {"options", {{"profile", "fast"}}}}}});
     ASSERT_TRUE(wait_until([&] { return system.last_velocity().linear_mps > 0.04; }, 5s));
   }  // the tab closed
   EXPECT_TRUE(wait_until([&] { return system.last_velocity() == agent::Velocity{}; }, 3s))
       << "the robot stopped within its lease";
   Page next(system);
-  next.say(json{{"open", 1}, {"method", "Teleop"}, {"request", {{"linear_mps", 0.02}, {"lease_s", 0.5}, {"options", {{"profile", "fast"}}}}}});
+  next.say(json{{"open", 1},
+                {"method", "Teleop"},
+                {"request", {{"linear_mps", 0.02}, {"lease_s", 0.5}, {"options", {{"profile", "fast"}}}}}});
   EXPECT_TRUE(wait_until([&] { return system.last_velocity().linear_mps > 0.01; }, 5s)) << "the robot is free";
 }
