@@ -95,8 +95,11 @@ class ConsolePage:
         return self.js("return window.dtmfConsole.spectrogram.stats;")
 
     def commands(self) -> list[tuple[str, str | None]]:
-        return [(li.text, li.get_attribute("data-outcome"))
-                for li in self.browser.find_elements(By.CSS_SELECTOR, "#commands li")]
+        """Each command listed, newest first: its text and outcome, read at one instant (read
+        apart, a text read before the last progress and an outcome read after it disagree)."""
+        rows = self.js("return [...document.querySelectorAll('#commands li')]"
+                       ".map((li) => [li.textContent, li.dataset.outcome || null]);")
+        return [(text, outcome) for text, outcome in rows]
 
     def screenshot(self, name: str) -> Path:
         ARTEFACTS.mkdir(parents=True, exist_ok=True)

@@ -45,22 +45,21 @@ def test_keyboard_teleop_moves_the_robot_and_closing_the_tab_stops_it(browser):
 
 def test_the_picker_drives_only_the_chosen_robot_and_one_button_stops_them_all(page):
     before = {r: driven_m(r) for r in ROBOTS}
+    page.browser.find_element(By.CSS_SELECTOR, "#drive-form input[name=duration_s]").clear()  # until the next command
     page.pick("robot3")
-    page.browser.find_element(By.CSS_SELECTOR, "#drive-form input[name=duration_s]").clear()
-    page.browser.find_element(By.CSS_SELECTOR, "#drive-form input[name=duration_s]").send_keys("3")
     page.browser.find_element(By.ID, "drive-button").click()
-    assert wait_until(lambda: driven_m("robot3") > before["robot3"] + 0.02, 8), "robot3 did not drive"
+    assert wait_until(lambda: driven_m("robot3") > before["robot3"] + 0.02, 8), f"robot3 did not drive: {page.commands()}"
     assert driven_m("robot1") == before["robot1"] and driven_m("robot2") == before["robot2"], "another robot moved"
-    # All three moving (robot1 and robot2 by dtmfctl-like calls of the page itself), then one stop.
+    # All three moving, then one stop for every robot.
     for robot in ("robot1", "robot2"):
         page.pick(robot)
         page.browser.find_element(By.ID, "drive-button").click()
     assert wait_until(lambda: all(last_pose_word(r) == "moving" for r in ROBOTS), 8), \
-        {r: last_pose_word(r) for r in ROBOTS}
+        ({r: last_pose_word(r) for r in ROBOTS}, page.commands())
     page.browser.find_element(By.ID, "stop-every-robot").click()
     assert wait_until(lambda: all(last_pose_word(r) == "stopped" for r in ROBOTS), 5), \
-        {r: last_pose_word(r) for r in ROBOTS}
-    assert wait_until(lambda: any("STOP EVERY ROBOT" in t and o == "ok" for t, o in page.commands()), 5)
+        ({r: last_pose_word(r) for r in ROBOTS}, page.commands())
+    assert wait_until(lambda: any("STOP EVERY ROBOT" in t and o == "ok" for t, o in page.commands()), 5), page.commands()
     page.screenshot("stop-every-robot")
 
 
