@@ -1,7 +1,8 @@
 # Debian packages, one per install component (scripts/package builds them):
 #
 #   dtmf-teleop-agent   dtmf-agent, its systemd unit and /etc/default/dtmf-agent
-#   dtmf-teleop-server  dtmf-server, dtmf-migrate, the migrations, its unit and defaults
+#   dtmf-teleop-server  dtmf-server, dtmf-migrate, the migrations, its unit and defaults; and
+#                       dtmf-console (the web console), its page, unit and defaults
 #   dtmf-teleop-cli     dtmfctl and dtmf-room
 #
 # CPack's DEB generator with dpkg-shlibdeps: each package's Depends are the libraries its
@@ -16,6 +17,9 @@ set(DTMF_PACKAGE_MAINTAINER "dtmf-teleop maintainers <maintainers@users.noreply.
 # Which programs each component installs, for the manual pages.
 set(DTMF_COMPONENT_PROGRAMS_agent dtmf-agent)
 set(DTMF_COMPONENT_PROGRAMS_server dtmf-server dtmf-migrate)
+if(DTMF_BUILD_CONSOLE)
+  list(APPEND DTMF_COMPONENT_PROGRAMS_server dtmf-console)
+endif()
 set(DTMF_COMPONENT_PROGRAMS_cli dtmfctl)
 if(DTMF_BUILD_SIMULATOR)
   list(APPEND DTMF_COMPONENT_PROGRAMS_cli dtmf-room)
@@ -108,7 +112,8 @@ through a loudspeaker, listens for the robot's ACK or NACK, retransmits, and
 streams each frame's progress to gRPC callers (TeleopService, health,
 reflection). It logs every transmission to PostgreSQL; dtmf-migrate creates
 the schema. It runs as the systemd service dtmf-server, configured in
-/etc/default/dtmf-server.")
+/etc/default/dtmf-server. dtmf-console serves the web console on this machine
+(the air live, the robots, driving, the report) as a client of dtmf-server.")
 set(CPACK_COMPONENT_CLI_DESCRIPTION "dtmf-teleop ${DTMF_COMPONENT_SUMMARY_cli}
 dtmfctl drives the robot through dtmf-server (drive, turn, stop, the seed's
 test sequence, reports) and works offline on audio files: encode commands to
@@ -119,7 +124,11 @@ through a simulated or measured room.")
 foreach(component IN ITEMS agent server)
   if(component IN_LIST DTMF_PACKAGE_COMPONENTS)
     string(TOUPPER ${component} c)
-    file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/packaging/${component}/conffiles "/etc/default/dtmf-${component}\n")
+    set(conffiles "/etc/default/dtmf-${component}\n")
+    if(component STREQUAL "server" AND DTMF_BUILD_CONSOLE)
+      string(APPEND conffiles "/etc/default/dtmf-console\n")
+    endif()
+    file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/packaging/${component}/conffiles "${conffiles}")
     set(CPACK_DEBIAN_${c}_PACKAGE_CONTROL_EXTRA ${CMAKE_CURRENT_BINARY_DIR}/packaging/${component}/conffiles)
   endif()
 endforeach()

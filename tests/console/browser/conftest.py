@@ -43,6 +43,12 @@ def driven_m(robot: str) -> float:
     return float(found[-1][1]) if found else 0.0
 
 
+def pose_lines(robot: str) -> list[str]:
+    """The robot's pose log lines, oldest first."""
+    log = (QUICKSTART_DIR / f"agent{robot[-1]}.log").read_text(errors="replace")
+    return [line for line in log.splitlines() if "sim: " in line]
+
+
 def last_pose_word(robot: str) -> str:
     """'moving' or 'stopped', as the robot's pose log last said (none yet: 'stopped')."""
     log = (QUICKSTART_DIR / f"agent{robot[-1]}.log").read_text(errors="replace")

@@ -55,7 +55,7 @@ def test_the_spectrogram_moves_and_marks_a_frame_and_its_answer_within_a_second(
     kinds = [li.get_attribute("data-kind") for li in page.browser.find_elements(By.CSS_SELECTOR, "#air-log li")]
     assert "frame" in kinds and "ack" in kinds, kinds[:10]
     text = page.browser.find_element(By.ID, "air-log").text
-    assert "robot1" in text and "🔒" in text, "the frame is marked with its robot and as authenticated"
+    assert "robot1" in text and "(auth)" in text, "the frame is marked with its robot and as authenticated"
     # The marks are drawn on the picture: some of the marks canvas is no longer transparent.
     painted = page.js("const c = document.getElementById('marks'); const d = c.getContext('2d')"
                       ".getImageData(0, 0, c.width, c.height).data; let n = 0;"

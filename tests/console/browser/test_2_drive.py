@@ -10,7 +10,7 @@ import time
 from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 
-from conftest import ConsolePage, driven_m, last_pose_word, wait_until
+from conftest import ConsolePage, driven_m, last_pose_word, pose_lines, wait_until
 
 ROBOTS = ("robot1", "robot2", "robot3")
 
@@ -33,7 +33,10 @@ def test_keyboard_teleop_moves_the_robot_and_closing_the_tab_stops_it(browser):
     ActionChains(page.browser).send_keys("wwwww").perform()  # 0.05 m/s
     assert wait_until(lambda: "0.05 m/s" in page.browser.find_element(By.ID, "teleop-confirmed").text, 5), \
         page.browser.find_element(By.ID, "teleop-confirmed").text
-    assert wait_until(lambda: driven_m("robot2") > start + 0.02, 5), "the pose log shows no drive"
+    # The pose log says where the robot is once a second while it moves.
+    assert wait_until(lambda: driven_m("robot2") > start + 0.02, 5), \
+        ("the pose log shows no drive", start, pose_lines("robot2")[-4:],
+         page.browser.find_element(By.ID, "teleop-status").text, page.browser.find_element(By.ID, "teleop-message").text)
     assert "%" in page.browser.find_element(By.ID, "teleop-quality").text
     page.screenshot("keyboard-teleop")
     # Closing the tab: the socket goes, the console cancels the stream, the lease (0.5 s) lapses.

@@ -21,7 +21,7 @@ export function describeProgress(p) {
   const frame = p.frame_count > 1 ? ` frame ${p.frame_index + 1}/${p.frame_count}` : "";
   const attempt = p.attempt > 1 ? ` attempt ${p.attempt}` : "";
   const rt = p.response_time_ms ? ` ${Math.round(p.response_time_ms)} ms` : "";
-  const lock = p.answer_authenticated ? " 🔒" : "";
+  const lock = p.answer_authenticated ? " (auth)" : "";
   return `${name}${frame}${attempt}${rt}${lock}${p.detail ? `: ${p.detail}` : ""}`;
 }
 

@@ -56,6 +56,7 @@ export class Report {
         return o;
       }));
       if (chosen) this.e.runPicker.value = chosen;
+      if (!runs.length) return this.say("No runs yet: the report is per run. Start one with Test sequence.");
       await this.load();
     } catch (error) {
       this.say(`The runs cannot be read now: ${error.message}`);

@@ -38,7 +38,7 @@ class RobotCard {
       <ol class="commands log" aria-label="its commands"></ol>
       <ol class="receptions log" aria-label="what it heard and did"></ol>`;
     this.element.querySelector("h3").textContent =
-      `${robot.name} (address ${robot.address}, ${robot.model}${robot.key_id ? ", keyed 🔒" : ""})`;
+      `${robot.name} (address ${robot.address}, ${robot.model}${robot.key_id ? ", keyed" : ""})`;
     parent.append(this.element);
     this.plot = new uPlot({
       width: 300, height: 90, legend: { show: false }, cursor: { show: false },
@@ -103,7 +103,7 @@ class RobotCard {
       const why = r.reason ? ` (${r.reason})` : "";
       const what = r.command ? `: ${r.command}` : "";
       li.textContent = `${new Date(Number(r.heard_unix_ms)).toLocaleTimeString()} ${r.event}${why}${what}` +
-        `${r.authenticated ? " 🔒" : ""}${r.reply ? `, answered ${r.reply}` : ""}`;
+        `${r.authenticated ? " (auth)" : ""}${r.reply ? `, answered ${r.reply}` : ""}`;
       return li;
     }));
     const points = heard.filter((a) => a.rt !== undefined);

@@ -83,14 +83,14 @@ export class Spectrogram {
       const who = f.robots.length ? f.robots.join("+") : "every robot";
       const number = f.sequence !== undefined ? ` seq ${f.sequence}` : f.counter !== undefined ? ` #${f.counter}` : "";
       const retry = f.attempt > 1 ? ` (attempt ${f.attempt})` : "";
-      const label = `${who} ${f.kind}${number}${f.authenticated ? " 🔒" : ""}${retry}`;
+      const label = `${who} ${f.kind}${number}${f.authenticated ? " (auth)" : ""}${retry}`;
       this.frames.push({ ms, chordMs: f.chord_ms, label, authenticated: f.authenticated });
       this.stats.framesMarked++;
       this.note("frame", `${label}: ${f.command}`, watch);
     } else if (watch.frame_answered) {
       const a = watch.frame_answered;
       const rt = a.response_time_ms !== undefined ? ` after ${Math.round(a.response_time_ms)} ms` : "";
-      const label = `${a.robot} ${a.answer.toUpperCase()}${a.authenticated ? " 🔒" : ""}`;
+      const label = `${a.robot} ${a.answer.toUpperCase()}${a.authenticated ? " (auth)" : ""}`;
       this.answers.push({ ms, answer: a.answer, label });
       this.stats.answersMarked++;
       this.keep(this.stats.markDelaysMs, Date.now() - Number(watch.time_unix_ms));
