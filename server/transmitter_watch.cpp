@@ -120,9 +120,18 @@ void Transmitter::publish_levels(std::span<const float> block, double end_audio_
                                                          kMaxColumnBins, kMaxColumnsPerS);
     columns_start_ms_ = end_audio_ms - 1000.0 * static_cast<double>(block.size()) / profile().sample_rate_hz;
   }
+  // A column's wall time is when its last sample reached the sender, as far as it can tell:
+  // now, less the audio still queued behind this block (the device's and the capture
+  // thread's) and the block's audio after the column. Stamped at the FFT instead, a watcher's
+  // "air to page" delay would leave out the capture's own delay.
+  const store::WallClock::time_point now = store::WallClock::now();
+  const double queued_ms = microphone_->queued_ms();
   for (signal::ColumnLevels& c : columns_->feed(block)) {
+    const double column_end_ms = columns_start_ms_ + c.end_audio_ms;
+    const auto behind = std::chrono::duration<double, std::milli>(queued_ms + (end_audio_ms - column_end_ms));
     SpectrumColumn column{columns_->low_hz(), columns_->step_hz(), columns_->window_ms(), std::move(c.level_dbfs)};
-    air_events_.publish_column(columns_start_ms_ + c.end_audio_ms, store::WallClock::now(), column);
+    air_events_.publish_column(column_end_ms, now - std::chrono::duration_cast<store::WallClock::duration>(behind),
+                               column);
   }
 }
 

@@ -3,8 +3,9 @@
 the whole system as scripts/quickstart starts it (one keyed robot through the seminar room, the
 server, the console) with Debian's Chromium, headless, as the page's browser:
 
-  - the sender's CPU (dtmf-server's, from /proc) over a phase with no page, then a phase with
-    one page open (its WatchAir at 25 spectrum columns a second of 160 bins);
+  - the sender machine's CPU for the console (dtmf-server's and dtmf-console's, from /proc) over
+    a phase with no page, then a phase with one page open (its WatchAir at 25 spectrum columns a
+    second of 160 bins);
   - air → spectrogram column drawn: the column's wall time at the sender to the page drawing it;
   - a frame's mark: the sender taking a frame's answer to the page drawing its mark, over Drives
     clicked in the page;
@@ -34,11 +35,12 @@ def cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def cpu_share(pid: int, seconds: float) -> float:
-    """dtmf-server's CPU over `seconds` of wall time, in percent of one core."""
-    start_cpu, start = cpu_seconds(pid), time.monotonic()
+def cpu_shares(pids: dict, seconds: float) -> dict:
+    """Each process's CPU over the same `seconds` of wall time, in percent of one core."""
+    start_cpu, start = {name: cpu_seconds(pid) for name, pid in pids.items()}, time.monotonic()
     time.sleep(seconds)  # the phase's length is the measurement
-    return 100 * (cpu_seconds(pid) - start_cpu) / (time.monotonic() - start)
+    wall_s = time.monotonic() - start
+    return {name: 100 * (cpu_seconds(pid) - start_cpu[name]) / wall_s for name, pid in pids.items()}
 
 
 def percentile(values, p):
@@ -87,9 +89,11 @@ def main():
         sys.exit(f"console_bench: scripts/quickstart failed: {up.stdout}{up.stderr}")
     page = None
     try:
-        server = int(Path(args.work, "server.pid").read_text())
+        # The sender machine's share of the console: dtmf-server's extra work for a watcher and
+        # dtmf-console's own (the browser is the user's, elsewhere in a real deployment).
+        pids = {name: int(Path(args.work, f"{name}.pid").read_text()) for name in ("server", "console")}
         time.sleep(5)  # the system settles: its first seconds are not the sender's steady state
-        unwatched = cpu_share(server, args.seconds)
+        unwatched = cpu_shares(pids, args.seconds)
         page = browser()
         page.get(f"http://127.0.0.1:{PORTS['DTMF_QUICKSTART_CONSOLE_PORT']}/")
         if not wait_until(lambda: page.find_element(By.ID, "connection").get_attribute("data-state") == "connected", 30):
@@ -97,7 +101,7 @@ def main():
         weight = page.execute_script(
             "return performance.getEntriesByType('resource').reduce((s, e) => s + e.encodedBodySize, 0)"
             " + performance.getEntriesByType('navigation')[0].encodedBodySize;")
-        watched = cpu_share(server, args.seconds)
+        watched = cpu_shares(pids, args.seconds)
         for _ in range(args.drives):
             before = page.execute_script("return window.dtmfConsole.spectrogram.stats.answersMarked")
             page.find_element(By.ID, "drive-button").click()
@@ -105,10 +109,11 @@ def main():
             time.sleep(1.2)  # the Drive (1 s) ends before the next: one command on the air at a time
         stats = page.execute_script("return window.dtmfConsole.spectrogram.stats")
         result = {
+            "measured_utc": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
             "seconds_per_phase": args.seconds,
             "cpu_unwatched_pct_core": unwatched,
             "cpu_watched_pct_core": watched,
-            "extra_cpu_pct_core": watched - unwatched,
+            "extra_cpu_pct_core": sum(watched.values()) - sum(unwatched.values()),
             "column_delay_ms": summary(stats["columnDelaysMs"]),
             "mark_delay_ms": summary(stats["markDelaysMs"]),
             "columns_drawn": stats["columns"],

@@ -1,5 +1,6 @@
-"""Driving from the page: a Drive clicked, keyboard teleop and closing the tab, the robot
-picker and the stop for every robot, and the report with its plots and CSV."""
+"""Driving from the page: a Drive clicked, the seed's sequence and the report with its plots
+and CSV (before the rest, so that their pages show a run), keyboard teleop and closing the tab,
+the robot picker and the stop for every robot."""
 
 from __future__ import annotations
 
@@ -23,6 +24,26 @@ def test_a_drive_clicked_in_the_page_is_confirmed_and_the_page_says_so(page):
     text, outcome = done[0]
     assert outcome == "ok" and "confirmed" in text and "robot1" in text, text
     page.screenshot("drive-confirmed")
+
+
+def test_the_seeds_sequence_runs_from_the_page_and_its_reports_plots_draw_and_csv_parses(page):
+    page.pick("robot1")
+    page.browser.find_element(By.ID, "sequence-button").click()
+    done = wait_until(lambda: [c for c in page.commands() if c[1] and "Test sequence" in c[0]], 90)
+    assert done and done[0][1] == "ok", page.commands()[:2]
+    page.browser.find_element(By.ID, "report-refresh").click()
+    assert wait_until(lambda: page.browser.find_elements(By.CSS_SELECTOR, "#report-table tr"), 10), \
+        page.browser.find_element(By.ID, "report-message").text
+    for plot in ("plot-rates", "plot-histogram", "plot-over-run"):
+        assert page.browser.find_elements(By.CSS_SELECTOR, f"#{plot} .uplot canvas"), f"{plot} was not drawn"
+    page.browser.find_element(By.ID, "report-csv").click()
+    text = wait_until(lambda: page.js("return window.dtmfLastCsv || ''"), 5)
+    figures, frames = text.split("\r\n\r\n", 1)
+    rows = list(csv.reader(io.StringIO(figures)))
+    assert rows[0] == ["figure", "value"] and any(r[0] == "Transmissions sent" for r in rows), rows[:3]
+    frame_rows = list(csv.DictReader(io.StringIO(frames)))
+    assert frame_rows and all(r["answer"] in ("ack", "nack", "none", "") for r in frame_rows), frame_rows[:3]
+    page.screenshot("report")
 
 
 def test_keyboard_teleop_moves_the_robot_and_closing_the_tab_stops_it(browser):
@@ -60,6 +81,7 @@ def test_the_picker_drives_only_the_chosen_robot_and_one_button_stops_them_all(p
         page.browser.find_element(By.ID, "drive-button").click()
     assert wait_until(lambda: all(last_pose_word(r) == "moving" for r in ROBOTS), 8), \
         ({r: last_pose_word(r) for r in ROBOTS}, page.commands())
+    page.screenshot("three-robots-driving")  # the README's picture (docs/console.png)
     page.browser.find_element(By.ID, "stop-every-robot").click()
     assert wait_until(lambda: all(last_pose_word(r) == "stopped" for r in ROBOTS), 5), \
         ({r: last_pose_word(r) for r in ROBOTS}, page.commands())
@@ -75,23 +97,3 @@ def test_the_key_e_stops_every_robot(page):
     page.browser.find_element(By.TAG_NAME, "body").click()
     ActionChains(page.browser).send_keys("e").perform()
     assert wait_until(lambda: last_pose_word("robot1") == "stopped", 5), "e did not stop robot1"
-
-
-def test_the_seeds_sequence_runs_from_the_page_and_its_reports_plots_draw_and_csv_parses(page):
-    page.pick("robot1")
-    page.browser.find_element(By.ID, "sequence-button").click()
-    done = wait_until(lambda: [c for c in page.commands() if c[1] and "Test sequence" in c[0]], 90)
-    assert done and done[0][1] == "ok", page.commands()[:2]
-    page.browser.find_element(By.ID, "report-refresh").click()
-    assert wait_until(lambda: page.browser.find_elements(By.CSS_SELECTOR, "#report-table tr"), 10), \
-        page.browser.find_element(By.ID, "report-message").text
-    for plot in ("plot-rates", "plot-histogram", "plot-over-run"):
-        assert page.browser.find_elements(By.CSS_SELECTOR, f"#{plot} .uplot canvas"), f"{plot} was not drawn"
-    page.browser.find_element(By.ID, "report-csv").click()
-    text = wait_until(lambda: page.js("return window.dtmfLastCsv || ''"), 5)
-    figures, frames = text.split("\r\n\r\n", 1)
-    rows = list(csv.reader(io.StringIO(figures)))
-    assert rows[0] == ["figure", "value"] and any(r[0] == "Transmissions sent" for r in rows), rows[:3]
-    frame_rows = list(csv.DictReader(io.StringIO(frames)))
-    assert frame_rows and all(r["answer"] in ("ack", "nack", "none", "") for r in frame_rows), frame_rows[:3]
-    page.screenshot("report")

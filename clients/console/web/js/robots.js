@@ -40,11 +40,15 @@ class RobotCard {
     this.element.querySelector("h3").textContent =
       `${robot.name} (address ${robot.address}, ${robot.model}${robot.key_id ? ", keyed" : ""})`;
     parent.append(this.element);
+    // The last minute, whatever it holds: left to itself, uPlot spreads one point over years.
     this.plot = new uPlot({
-      width: 300, height: 90, legend: { show: false }, cursor: { show: false },
-      scales: { x: { time: true } },
-      series: [{}, { stroke: "#39f", points: { show: true, size: 4 }, width: 0 }],
-      axes: [{ size: 20 }, { size: 40 }],
+      width: 300, height: 110, legend: { show: false }, cursor: { show: false },
+      scales: {
+        x: { time: true, range: () => { const now = Date.now() / 1000; return [now - kWindowMs / 1000, now]; } },
+        y: { range: (u, min, max) => [0, Math.max(100, Math.ceil(((max ?? 0) * 1.2) / 100) * 100)] },
+      },
+      series: [{}, { label: "response time, ms", stroke: "#39f", points: { show: true, size: 4 }, width: 0 }],
+      axes: [{ size: 30 }, { size: 40 }],
     }, [[], []], this.element.querySelector(".plot"));
   }
 
@@ -81,7 +85,8 @@ class RobotCard {
     const heard = this.answers.filter((a) => a.answer !== "none");
     const q = this.element.querySelector(".quality");
     q.textContent = this.answers.length
-      ? `${Math.round((100 * heard.length) / this.answers.length)} % of ${this.answers.length} frames answered` : "no frames";
+      ? `${Math.round((100 * heard.length) / this.answers.length)} % of ${this.answers.length} ` +
+        `frame${this.answers.length === 1 ? "" : "s"} answered` : "no frames";
     const times = heard.filter((a) => a.rt !== undefined).map((a) => a.rt);
     const m = median(times);
     this.element.querySelector(".response").textContent = m === null ? "–" : `median ${Math.round(m)} ms`;

@@ -8,8 +8,19 @@ const kShownMs = 12000;        // the width of the picture, in audio time
 const kFloorDbfs = -110;       // drawn black
 const kTopDbfs = -20;          // drawn white
 const kKeptStats = 2000;
+const kLabelRows = 2;          // rows of frame labels above the picture, and of answer labels below
 
 // A dark-to-bright palette (black, blue, magenta, orange, white) as 256 RGB entries.
+// Draws a label in the first of `rows` (each the x where its last label ended) where it
+// overlaps none drawn before it; with no room in any, leaves it out: the log under the picture
+// names every frame and answer, and labels written over each other name none.
+function placeLabel(ctx, rows, text, x, y, rowStepPx) {
+  const row = rows.findIndex((end) => x >= end);
+  if (row < 0) return;
+  ctx.fillText(text, x, y + row * rowStepPx);
+  rows[row] = x + ctx.measureText(text).width + 6;
+}
+
 function palette() {
   const stops = [[0, 0, 0], [20, 30, 120], [150, 40, 150], [250, 140, 30], [255, 255, 230]];
   const lut = new Uint8ClampedArray(256 * 3);
@@ -140,14 +151,15 @@ export class Spectrogram {
       ctx.fillStyle = "rgba(255, 200, 0, 0.8)";
       ctx.fillRect(x0, height - 5, Math.max(2, x1 - x0), 5);
     }
+    const frameRows = new Array(kLabelRows).fill(-Infinity);
     for (const f of this.frames) {
       const x0 = this.xOf(f.ms);
       const x1 = this.xOf(f.ms + f.chordMs);
       ctx.strokeStyle = f.authenticated ? "#7fffd4" : "#ffffff";
       ctx.lineWidth = 1.5;
-      ctx.strokeRect(x0, 14, Math.max(2, x1 - x0), height - 24);
+      ctx.strokeRect(x0, 14 + 12 * (kLabelRows - 1), Math.max(2, x1 - x0), height - 24 - 12 * (kLabelRows - 1));
       ctx.fillStyle = ctx.strokeStyle;
-      ctx.fillText(f.label, x0 + 2, 11);
+      placeLabel(ctx, frameRows, f.label, x0 + 2, 11, 12);
     }
     if (this.band) {  // the frequency axis, in kHz
       ctx.fillStyle = "rgba(255, 255, 255, 0.7)";
@@ -159,6 +171,7 @@ export class Spectrogram {
       }
     }
     const symbols = { ack: ["▲", "#3c3"], nack: ["▼", "#f44"], none: ["✕", "#aaa"] };
+    const answerRows = new Array(kLabelRows).fill(-Infinity);
     for (const a of this.answers) {
       const [symbol, colour] = symbols[a.answer] || ["?", "#fff"];
       const x = this.xOf(a.ms);
@@ -166,7 +179,7 @@ export class Spectrogram {
       ctx.font = "16px sans-serif";
       ctx.fillText(symbol, x - 6, height - 10);
       ctx.font = "11px sans-serif";
-      ctx.fillText(a.label, x + 8, height - 12);
+      placeLabel(ctx, answerRows, a.label, x + 8, height - 12, -12);
     }
   }
 }
