@@ -23,9 +23,10 @@ import sys
 import time
 from pathlib import Path
 
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts" / "lib"))
+from headless_chromium import new_browser, wait_until  # noqa: E402
 
 PORTS = {"DTMF_QUICKSTART_PORT": "25470", "DTMF_QUICKSTART_PG_PORT": "25471", "DTMF_QUICKSTART_CONSOLE_PORT": "25472"}
 
@@ -53,24 +54,6 @@ def summary(values):
             "count": len(values)} if values else None
 
 
-def browser():
-    options = webdriver.ChromeOptions()
-    for argument in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1500,1300",
-                     "--disable-dev-shm-usage", "--disable-background-networking"):
-        options.add_argument(argument)
-    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
-
-
-def wait_until(predicate, timeout_s):
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        value = predicate()
-        if value:
-            return value
-        time.sleep(0.05)
-    return predicate()
-
-
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("source")
@@ -94,7 +77,7 @@ def main():
         pids = {name: int(Path(args.work, f"{name}.pid").read_text()) for name in ("server", "console")}
         time.sleep(5)  # the system settles: its first seconds are not the sender's steady state
         unwatched = cpu_shares(pids, args.seconds)
-        page = browser()
+        page = new_browser()
         page.get(f"http://127.0.0.1:{PORTS['DTMF_QUICKSTART_CONSOLE_PORT']}/")
         if not wait_until(lambda: page.find_element(By.ID, "connection").get_attribute("data-state") == "connected", 30):
             sys.exit("console_bench: the page never went live")

@@ -6,24 +6,13 @@ come: a foreign Host (DNS rebinding) and a command socket without the page's tok
 refused. Prints what it saw; exits non-zero naming what failed."""
 
 import sys
-import time
 import urllib.error
 import urllib.request
 from urllib.parse import urlsplit
 
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
 
-
-def wait_until(predicate, timeout_s):
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        value = predicate()
-        if value:
-            return value
-        time.sleep(0.1)
-    return predicate()
+from headless_chromium import new_browser, wait_until
 
 
 def status_of(url, headers):
@@ -36,11 +25,7 @@ def status_of(url, headers):
 
 def main():
     url = sys.argv[1]
-    options = webdriver.ChromeOptions()
-    for argument in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                     "--window-size=1500,1300", "--disable-background-networking"):
-        options.add_argument(argument)
-    browser = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+    browser = new_browser()
     try:
         browser.get(url)
         badge = lambda: browser.find_element(By.ID, "connection")  # noqa: E731

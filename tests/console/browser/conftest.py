@@ -8,13 +8,11 @@ from __future__ import annotations
 import os
 import re
 import subprocess
-import time
+import sys
 from pathlib import Path
-from typing import Callable
 
 import pytest
 from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
 
 CONSOLE_URL = os.environ.get("DTMF_CONSOLE_URL", "http://127.0.0.1:25462/")
@@ -23,17 +21,8 @@ SOURCE = Path(os.environ.get("DTMF_SOURCE_DIR", Path(__file__).resolve().parents
 QUICKSTART_DIR = Path(os.environ.get("DTMF_QUICKSTART_DIR", "build/console-browser"))
 ARTEFACTS = Path(os.environ.get("DTMF_CONSOLE_ARTEFACTS", QUICKSTART_DIR / "screenshots"))
 
-
-def wait_until(predicate: Callable[[], object], timeout_s: float, poll_s: float = 0.05):
-    """Polls predicate until it gives a true value or timeout_s has passed; that value (tried
-    once more at the deadline)."""
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        value = predicate()
-        if value:
-            return value
-        time.sleep(poll_s)
-    return predicate()
+sys.path.insert(0, str(SOURCE / "scripts" / "lib"))
+from headless_chromium import new_browser as _new_browser, wait_until  # noqa: E402,F401 (the tests' wait_until)
 
 
 def driven_m(robot: str) -> float:
@@ -63,13 +52,8 @@ def quickstart(*args: str) -> str:
 
 
 def new_browser() -> webdriver.Chrome:
-    options = webdriver.ChromeOptions()
-    for argument in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1500,1300",
-                     "--disable-dev-shm-usage", "--no-first-run", "--disable-background-networking",
-                     "--disable-component-update", "--disable-sync", "--disable-default-apps"):
-        options.add_argument(argument)
-    options.set_capability("goog:loggingPrefs", {"performance": "ALL", "browser": "ALL"})
-    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+    """The tests' browser logs every request: the page must make none that leaves the machine."""
+    return _new_browser(log_network=True)
 
 
 class ConsolePage:
