@@ -165,6 +165,16 @@ def has_health(svc):
         return not hc.get("disable") and hc.get("test") not in (["NONE"], "NONE")
     return bool(svc.get("_stages") and effective(svc["_stages"], svc["_target"], "health"))
 
+# A service that runs another program than its image's entrypoint must not keep the image's
+# health check, which asks that program (the console, in the server's image, never turned
+# healthy under the server's `dtmfctl health`).
+for name, svc in services.items():
+    if svc.get("_stages") and svc.get("entrypoint") and effective(svc["_stages"], svc["_target"], "health"):
+        own = str(svc["entrypoint"][0] if isinstance(svc["entrypoint"], list) else svc["entrypoint"]).split()[0]
+        image_entry = effective(svc["_stages"], svc["_target"], "entry")
+        check(own == image_entry or "healthcheck" in svc,
+              f"service {name} runs {own}, not its image's {image_entry}, yet keeps the image's health check: give it its own")
+
 server = services.get("server")
 check(server is not None, "no service 'server'")
 if server:
