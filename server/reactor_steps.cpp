@@ -31,8 +31,16 @@ void ReactorSteps::run() {
 }
 
 void ReactorSteps::run_at(std::chrono::steady_clock::time_point at) {
+  // Alarms whose callbacks are done, destroyed after the lock is let go: destroying the last
+  // gRPC object shuts gRPC down, which joins its executor threads, and one of them may be in
+  // another alarm's callback, waiting for this lock (a test's hang, found 2026-12-07).
+  std::list<Timer> done;
   std::lock_guard lock(mutex_);
-  timers_.remove_if([](const Timer& t) { return t.fired; });
+  for (auto t = timers_.begin(); t != timers_.end();) {
+    const auto next = std::next(t);
+    if (t->fired) done.splice(done.end(), timers_, t);
+    t = next;
+  }
   if (std::any_of(timers_.begin(), timers_.end(), [at](const Timer& t) { return t.at <= at; })) return;
   Timer& timer = timers_.emplace_back();
   timer.at = at;
@@ -50,9 +58,11 @@ void ReactorSteps::run_at(std::chrono::steady_clock::time_point at) {
 void ReactorSteps::fired(Timer& timer) {
   {
     std::lock_guard lock(mutex_);
-    timer.fired = true;
+    timer.at = std::chrono::steady_clock::time_point::max();  // due no more: a new time is no longer covered by it
   }
   run();
+  std::lock_guard lock(mutex_);
+  timer.fired = true;  // its callback is done with it: run_at may destroy it now
 }
 
 }  // namespace dtmf::server

@@ -47,8 +47,9 @@ class ReactorSteps {
   std::mutex mutex_;
   bool running_ = false;
   bool again_ = false;
-  // Pending alarms, and fired ones until the next run_at() clears them (an alarm is not
-  // destroyed by its own callback's caller: it may be running it).
+  // Pending alarms, and those whose callbacks are done (`fired`), which the next run_at()
+  // destroys outside the lock: never one whose callback still runs, and never under the lock
+  // that callback takes.
   std::list<Timer> timers_;
 };
 
