@@ -109,6 +109,10 @@ void Transmitter::listen() {
     }
     publish_levels(heard_block, audio_ms, busy, level_dbfs, floor_dbfs);
     const std::vector<HeardAnswer> answers = ears.feed(heard_block);  // outside the lock: the FFTs
+    // Watchers hear an answer before what the core makes of it (the frame answered, the
+    // command ended), as the air had it: published after, a watcher could read a command's
+    // end before the answer that ended it.
+    for (const HeardAnswer& heard : answers) publish_heard(heard, heard.answer.heard_ms, level_dbfs);
     if (!answers.empty()) {
       std::lock_guard lock(mutex_);
       // The block just read ends now; each answer was heard a little earlier.
@@ -116,7 +120,6 @@ void Transmitter::listen() {
       ++inputs_;
     }
     if (!answers.empty()) woken_.notify_all();
-    for (const HeardAnswer& heard : answers) publish_heard(heard, heard.answer.heard_ms, level_dbfs);
   }
 }
 
