@@ -9,6 +9,7 @@ const kFloorDbfs = -110;       // drawn black
 const kTopDbfs = -20;          // drawn white
 const kKeptStats = 2000;
 const kLabelRows = 2;          // rows of frame labels above the picture, and of answer labels below
+const kLabelRowPx = 12;        // one row's height (11 px text)
 
 // A dark-to-bright palette (black, blue, magenta, orange, white) as 256 RGB entries.
 // Draws a label in the first of `rows` (each the x where its last label ended) where it
@@ -157,9 +158,10 @@ export class Spectrogram {
       const x1 = this.xOf(f.ms + f.chordMs);
       ctx.strokeStyle = f.authenticated ? "#7fffd4" : "#ffffff";
       ctx.lineWidth = 1.5;
-      ctx.strokeRect(x0, 14 + 12 * (kLabelRows - 1), Math.max(2, x1 - x0), height - 24 - 12 * (kLabelRows - 1));
+      const top = 14 + kLabelRowPx * (kLabelRows - 1);
+      ctx.strokeRect(x0, top, Math.max(2, x1 - x0), height - 10 - top);
       ctx.fillStyle = ctx.strokeStyle;
-      placeLabel(ctx, frameRows, f.label, x0 + 2, 11, 12);
+      placeLabel(ctx, frameRows, f.label, x0 + 2, 11, kLabelRowPx);
     }
     if (this.band) {  // the frequency axis, in kHz
       ctx.fillStyle = "rgba(255, 255, 255, 0.7)";
@@ -179,7 +181,7 @@ export class Spectrogram {
       ctx.font = "16px sans-serif";
       ctx.fillText(symbol, x - 6, height - 10);
       ctx.font = "11px sans-serif";
-      placeLabel(ctx, answerRows, a.label, x + 8, height - 12, -12);
+      placeLabel(ctx, answerRows, a.label, x + 8, height - 12, -kLabelRowPx);
     }
   }
 }
