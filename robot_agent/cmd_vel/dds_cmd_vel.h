@@ -2,7 +2,7 @@
 //
 // ROS 2 topics are plain DDS, so the agent drives a TurtleBot3 without ROS installed: it
 // writes the DDS topic "rt/<name>" with the DDS types ROS 2 generates for geometry_msgs
-// (ros2_msgs.idl), through CycloneDDS's C API. TurtleBot3 on Jazzy subscribes to cmd_vel as
+// (common/ros2/ros2_msgs.idl), through CycloneDDS's C API. TurtleBot3 on Jazzy subscribes to cmd_vel as
 // TwistStamped, on Humble as Twist; it reads only linear.x and angular.z, so the other
 // components go out as 0. The QoS is the one turtlebot3_node subscribes with (reliable,
 // volatile, keep-last 10), and the data representation is pinned to XCDR1, the only one
@@ -12,28 +12,22 @@
 //
 // Nothing on the robot stops the wheels when cmd_vel stops arriving: the last velocity
 // persists, so publishing a stop before letting go of this object is the caller's job.
+// The writer carries ros2::kAgentCmdVelUserData, by which the sender's ROS 2 bridge knows the
+// robot's output from an operator's cmd_vel on the same domain.
 #pragma once
 
 #include <chrono>
 #include <cstdint>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 
 #include "cmd_vel/velocity.h"
+#include "ros2/dds_support.h"
 
 namespace dtmf::agent {
 
-// A DDS call failed. what() names the step and Cyclone's error text, and what to check.
-class DdsError : public std::runtime_error {
- public:
-  DdsError(const std::string& message, int retcode) : std::runtime_error(message), retcode_(retcode) {}
-  int retcode() const { return retcode_; }  // a DDS_RETCODE_*
-
- private:
-  int retcode_;
-};
+using ros2::DdsError;  // every failure below throws it
 
 struct DdsOptions {
   std::string topic = "cmd_vel";  // the ROS name; "/cmd_vel" is the same topic
@@ -42,8 +36,7 @@ struct DdsOptions {
   std::string frame_id;           // header.frame_id of TwistStamped
 };
 
-// The DDS topic ROS 2 uses for a topic name: "cmd_vel" and "/cmd_vel" are "rt/cmd_vel".
-std::string dds_topic_name(std::string_view ros_topic);
+using ros2::dds_topic_name;
 
 class DdsCmdVel final : public CmdVelOutput {
  public:

@@ -99,6 +99,7 @@ TEST_F(DdsCmdVelTest, TwistStampedArrivesInOrderWithItsStamp) {
     SCOPED_TRACE(i);
     EXPECT_EQ(samples[i].linear.x, kVelocities[i].linear_mps);
     EXPECT_EQ(samples[i].angular.z, kVelocities[i].angular_radps);
+    EXPECT_TRUE(samples[i].from_agent) << "the writer carries the agent's user data (the ROS 2 bridge skips it)";
     EXPECT_EQ(samples[i].linear.y, 0);
     EXPECT_EQ(samples[i].linear.z, 0);
     EXPECT_EQ(samples[i].angular.x, 0);

@@ -2,9 +2,11 @@
 
 #include <dds/dds.h>
 
+#include <cstring>
 #include <stdexcept>
 
-#include "cmd_vel/ros2_msgs.h"
+#include "ros2/dds_support.h"
+#include "ros2/ros2_msgs.h"
 
 namespace dtmf::test_support {
 namespace {
@@ -82,12 +84,25 @@ void CmdVelSubscriber::take(std::int32_t reader) {
           r.angular = vector3(m->angular);
         }
         r.received = now;
+        r.from_agent = written_by_agent(reader, infos[i].publication_handle);
         samples_.push_back(std::move(r));
       }
     }
     arrived_.notify_all();
     dds_return_loan(reader, loans, n);
   }
+}
+
+bool CmdVelSubscriber::written_by_agent(std::int32_t reader, std::uint64_t publication) const {
+  dds_builtintopic_endpoint_t* writer = dds_get_matched_publication_data(reader, publication);
+  if (writer == nullptr) return false;
+  void* data = nullptr;
+  size_t size = 0;
+  const bool agent = dds_qget_userdata(writer->qos, &data, &size) && size == ros2::kAgentCmdVelUserData.size() &&
+                     std::memcmp(data, ros2::kAgentCmdVelUserData.data(), size) == 0;
+  dds_free(data);
+  dds_builtintopic_free_endpoint(writer);
+  return agent;
 }
 
 bool CmdVelSubscriber::wait_for(std::size_t count, std::chrono::milliseconds timeout) const {

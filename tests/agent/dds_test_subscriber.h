@@ -27,6 +27,9 @@ struct ReceivedCmdVel {
   std::uint32_t stamp_nanosec = 0;
   std::string frame_id;
   std::chrono::steady_clock::time_point received;
+  // Written by a dtmf-agent (its writer carries ros2::kAgentCmdVelUserData): the robot's
+  // output, as against an operator's cmd_vel on the same topic (the ROS 2 bridge's input).
+  bool from_agent = false;
 };
 
 class CmdVelSubscriber {
@@ -45,6 +48,7 @@ class CmdVelSubscriber {
  private:
   static void on_data_available(std::int32_t reader, void* self);
   void take(std::int32_t reader);
+  bool written_by_agent(std::int32_t reader, std::uint64_t publication) const;
 
   bool stamped_;
   std::int32_t participant_ = 0;  // dds_entity_t
