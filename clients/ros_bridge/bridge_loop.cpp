@@ -45,7 +45,7 @@ BridgeLoop::BridgeLoop(std::shared_ptr<grpc::Channel> channel, BridgeSettings se
       settings_(std::move(settings)),
       topics_(bridge_topics(names_of(settings_.robots))),
       inputs_(settings_.domain, topics_),
-      outputs_(inputs_.stamped_participant(), inputs_.bare_participant(), topics_),
+      outputs_(inputs_.participant(), topics_),
       events_([this] { inputs_.wake(); }) {
   for (const BridgeRobot& r : settings_.robots) {
     robots_.push_back({r.name, TwistInput(r.limits, settings_.timeout_ms), TeleopPlan(settings_.lease_s * 1000.0),

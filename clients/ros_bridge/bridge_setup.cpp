@@ -15,8 +15,18 @@ constexpr const char* kConnection = "The server (as dtmfctl's)";
 constexpr const char* kRos = "ROS 2";
 
 // Loopback only: no other machine's cmd_vel reaches the robots through the bridge, and
-// nothing the bridge publishes leaves this one. The agents' and the tests' setting too.
-constexpr const char* kLoopbackOnly = R"(<General><Interfaces><NetworkInterface name="lo"/></Interfaces></General>)";
+// nothing the bridge publishes leaves this one. Discovery as ROS 2 Jazzy's own
+// ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST sets it for CycloneDDS (no multicast, the
+// well-known ports of DDS processes 0-32 on localhost), so that ROS 2 nodes on this machine
+// find the bridge: Cyclone ones in that mode, Fast DDS ones (Jazzy's default) in any, as
+// they listen on those ports on every interface. No sample over 64 KiB is taken: a cmd_vel is
+// under 100 bytes, and a TwistStamped with a huge frame_id must not cost the bridge its
+// memory. scripts/lib/quickstart_clients.sh (QUICKSTART_LOOPBACK_DDS) gives its agents the same.
+constexpr const char* kLoopbackOnly =
+    R"(<General><Interfaces><NetworkInterface name="lo"/></Interfaces><AllowMulticast>false</AllowMulticast></General>)"
+    R"(<Discovery><ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>32</MaxAutoParticipantIndex>)"
+    R"(<Peers><Peer address="localhost"/></Peers></Discovery>)"
+    R"(<Internal><MaxSampleSize>65536B</MaxSampleSize></Internal>)";
 
 void choose_dds_network(const BridgeFlags& flags) {
   const char* given = std::getenv("CYCLONEDDS_URI");

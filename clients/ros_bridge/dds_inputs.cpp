@@ -32,19 +32,18 @@ dds_qos_t* reader_qos() {
 }  // namespace
 
 DdsInputs::DdsInputs(int domain, const BridgeTopics& topics) : skipped_from_agent_(topics.robots.size(), 0) {
-  stamped_participant_ = ros2::create_participant(kWho, domain);
+  participant_ = ros2::create_participant(kWho, domain);
   try {
-    bare_participant_ = ros2::create_participant(kWho, domain);
     waitset_ = dds_create_waitset(DDS_CYCLONEDDS_HANDLE);
     check(waitset_, "creating the waitset");
     guard_ = dds_create_guardcondition(DDS_CYCLONEDDS_HANDLE);
     check(guard_, "creating the guard condition");
     check(dds_waitset_attach(waitset_, guard_, guard_), "attaching the guard condition");
     for (std::size_t i = 0; i < topics.robots.size(); ++i) {
-      add_reader(stamped_participant_, &geometry_msgs_msg_dds__TwistStamped__desc, topics.robots[i].cmd_vel, i);
-      add_reader(bare_participant_, &geometry_msgs_msg_dds__Twist__desc, topics.robots[i].cmd_vel, i);
+      add_reader(&geometry_msgs_msg_dds__TwistStamped__desc, topics.robots[i].cmd_vel, i);
+      add_reader(&geometry_msgs_msg_dds__Twist__desc, topics.robots[i].cmd_vel, i);
     }
-    add_reader(bare_participant_, &std_msgs_msg_dds__Empty__desc, topics.stop_every_robot, 0);
+    add_reader(&std_msgs_msg_dds__Empty__desc, topics.stop_every_robot, 0);
   } catch (...) {
     release();  // the destructor does not run when the constructor throws
     throw;
@@ -55,20 +54,19 @@ DdsInputs::~DdsInputs() { release(); }
 
 void DdsInputs::release() {
   // Deleting a participant deletes its topics, readers and conditions.
-  for (dds_entity_t* e : {&waitset_, &guard_, &bare_participant_, &stamped_participant_}) {
+  for (dds_entity_t* e : {&waitset_, &guard_, &participant_}) {
     if (*e > 0) dds_delete(*e);
     *e = 0;
   }
 }
 
-void DdsInputs::add_reader(std::int32_t participant, const void* type, const std::string& ros_topic,
-                           std::size_t robot) {
+void DdsInputs::add_reader(const void* type, const std::string& ros_topic, std::size_t robot) {
   const auto* descriptor = static_cast<const dds_topic_descriptor_t*>(type);
   const std::string name = ros2::dds_topic_name(ros_topic);
-  const dds_entity_t topic = dds_create_topic(participant, descriptor, name.c_str(), nullptr, nullptr);
+  const dds_entity_t topic = dds_create_topic(participant_, descriptor, name.c_str(), nullptr, nullptr);
   check(topic, "creating DDS topic \"" + name + "\" (" + descriptor->m_typename + ")");
   dds_qos_t* qos = reader_qos();
-  const dds_entity_t reader = dds_create_reader(participant, topic, qos, nullptr);
+  const dds_entity_t reader = dds_create_reader(participant_, topic, qos, nullptr);
   dds_delete_qos(qos);
   check(reader, "creating a reader on \"" + name + "\"");
   const dds_entity_t condition = dds_create_readcondition(reader, DDS_ANY_STATE);

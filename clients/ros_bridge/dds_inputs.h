@@ -5,8 +5,8 @@
 // Readers are BEST_EFFORT, VOLATILE, KEEP_LAST 16, XCDR1: a best-effort reader matches every
 // writer, RELIABLE or not, as ROS 2's tools have them (teleop_twist_keyboard: RELIABLE, keep
 // last 10), and 16 deep keeps a single key press that arrives with other writers' samples.
-// Twist and TwistStamped on one topic name need one participant each: a participant has one
-// type per topic name.
+// Twist and TwistStamped are read on the same topic name at once, as two DDS topics of one
+// participant (CycloneDDS keeps a topic per name and type).
 //
 // The robot's own output is never taken: the agent's cmd_vel writer carries
 // ros2::kAgentCmdVelUserData, and a sample from such a writer is skipped (counted). A sample
@@ -47,18 +47,16 @@ class DdsInputs {
 
   // Samples of the robot's own output (its agent's cmd_vel) skipped on its topic.
   long long skipped_from_agent(std::size_t robot) const { return skipped_from_agent_.at(robot); }
-  // The stamped and the bare participant, for the bridge's writers (dds_outputs.h).
-  std::int32_t stamped_participant() const { return stamped_participant_; }
-  std::int32_t bare_participant() const { return bare_participant_; }
+  // The participant, for the bridge's writers (dds_outputs.h).
+  std::int32_t participant() const { return participant_; }
 
  private:
   enum class Writer { Operator, Agent, Unknown };
   void release();
   Writer writer_of(std::int32_t reader, std::uint64_t publication);
-  void add_reader(std::int32_t participant, const void* type, const std::string& topic, std::size_t robot);
+  void add_reader(const void* type, const std::string& topic, std::size_t robot);
 
-  std::int32_t stamped_participant_ = 0;
-  std::int32_t bare_participant_ = 0;
+  std::int32_t participant_ = 0;
   std::int32_t waitset_ = 0;
   std::int32_t guard_ = 0;
   struct Reader {

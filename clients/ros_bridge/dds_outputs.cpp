@@ -37,11 +37,11 @@ char* text(const std::string& s) { return const_cast<char*>(s.c_str()); }
 
 }  // namespace
 
-DdsOutputs::DdsOutputs(std::int32_t stamped_participant, std::int32_t bare_participant, const BridgeTopics& topics) {
-  diagnostics_writer_ = create_writer(bare_participant, &diagnostic_msgs_msg_dds__DiagnosticArray__desc, topics.diagnostics);
+DdsOutputs::DdsOutputs(std::int32_t participant, const BridgeTopics& topics) {
+  diagnostics_writer_ = create_writer(participant, &diagnostic_msgs_msg_dds__DiagnosticArray__desc, topics.diagnostics);
   for (const RobotTopics& robot : topics.robots) {
     confirmed_writers_.push_back(
-        create_writer(stamped_participant, &geometry_msgs_msg_dds__TwistStamped__desc, robot.cmd_vel_confirmed));
+        create_writer(participant, &geometry_msgs_msg_dds__TwistStamped__desc, robot.cmd_vel_confirmed));
   }
 }
 

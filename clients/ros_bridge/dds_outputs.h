@@ -21,9 +21,8 @@ struct RobotHealth {
 
 class DdsOutputs {
  public:
-  // Writers in the given participants (dds_inputs.h): TwistStamped's and the bare one.
-  // Throws ros2::DdsError when DDS refuses one.
-  DdsOutputs(std::int32_t stamped_participant, std::int32_t bare_participant, const BridgeTopics& topics);
+  // Writers in the given participant (dds_inputs.h). Throws ros2::DdsError when DDS refuses one.
+  DdsOutputs(std::int32_t participant, const BridgeTopics& topics);
 
   void publish_diagnostics(const std::vector<RobotHealth>& robots, std::chrono::system_clock::time_point stamp);
   void publish_confirmed(std::size_t robot, Twist confirmed, std::chrono::system_clock::time_point stamp);

@@ -41,6 +41,9 @@ HealthReport LinkHealth::report(StreamState stream, double now_ms) const {
     if (unanswered_in_a_row_ >= kErrorUnanswered) {
       r.level = HealthLevel::Error;
       r.message = "not answering: the last " + std::to_string(unanswered_in_a_row_) + " frames unanswered";
+    } else if (last_->frames_in_window == 0) {
+      // The server's window holds no ended frame yet (a stream's first response): nothing lost.
+      r.message = "no frame ended in the last " + fixed(last_->window_s, 0) + " s";
     } else if (last_->link_quality < 1.0) {
       r.level = HealthLevel::Warn;
       r.message = "answers lost: " + counts;

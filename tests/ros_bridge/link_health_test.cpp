@@ -52,6 +52,17 @@ TEST(LinkHealth, WarnWhenAnswersAreLostAndOkAgainOnceTheWindowIsClean) {
   EXPECT_EQ(health.report(StreamState::Open, 6000).level, HealthLevel::Ok);
 }
 
+TEST(LinkHealth, AWindowWithNoEndedFrameIsNoLoss) {
+  LinkHealth health;
+  LinkReading first;  // a stream's first response: the server's window is empty, its quality 0
+  first.link_quality = 0;
+  first.window_s = 3;
+  health.on_reading(first, 0);
+  const HealthReport r = health.report(StreamState::Open, 0);
+  EXPECT_EQ(r.level, HealthLevel::Ok);
+  EXPECT_EQ(r.message, "no frame ended in the last 3 s");
+}
+
 TEST(LinkHealth, ErrorAfterThreeUnansweredFramesInARow) {
   LinkHealth health;
   health.on_reading(answered(1.0, 5), 0);
