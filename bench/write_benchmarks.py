@@ -30,6 +30,7 @@ from fleet_section import fleet_section  # noqa: E402
 from robot_section import robot_section  # noqa: E402
 from watch_section import watch_section  # noqa: E402
 from console_section import console_section  # noqa: E402
+from ros_bridge_section import ros_bridge_section  # noqa: E402
 from round_trip_rooms_section import load_rooms, round_trip_rooms_section, round_trip_targets_section  # noqa: E402
 
 BENCHES = ["decoder", "snr", "distance", "distance_loud", "rooms", "answers", "talkoff_speech", "talkoff_music",
@@ -529,6 +530,7 @@ def main() -> int:
     robot_section(w, args.directory)
     watch_section(w, args.directory)
     console_section(w, args.directory)
+    ros_bridge_section(w, args.directory)
     targets_section(w, data, profiles, ok, decoder_factor)
     round_trip_targets_section(w, rooms_round_trip, profiles)
     with open(args.out, "w") as f:

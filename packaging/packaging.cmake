@@ -1,8 +1,9 @@
 # Debian packages, one per install component (scripts/package builds them):
 #
 #   dtmf-teleop-agent   dtmf-agent, its systemd unit and /etc/default/dtmf-agent
-#   dtmf-teleop-server  dtmf-server, dtmf-migrate, the migrations, its unit and defaults; and
-#                       dtmf-console (the web console), its page, unit and defaults
+#   dtmf-teleop-server  dtmf-server, dtmf-migrate, the migrations, its unit and defaults;
+#                       dtmf-console (the web console), its page, unit and defaults; and
+#                       dtmf-ros-bridge (ROS 2's cmd_vel in, over DDS), its unit and defaults
 #   dtmf-teleop-cli     dtmfctl and dtmf-room
 #
 # CPack's DEB generator with dpkg-shlibdeps: each package's Depends are the libraries its
@@ -19,6 +20,9 @@ set(DTMF_COMPONENT_PROGRAMS_agent dtmf-agent)
 set(DTMF_COMPONENT_PROGRAMS_server dtmf-server dtmf-migrate)
 if(DTMF_BUILD_CONSOLE)
   list(APPEND DTMF_COMPONENT_PROGRAMS_server dtmf-console)
+endif()
+if(DTMF_BUILD_ROS_BRIDGE)
+  list(APPEND DTMF_COMPONENT_PROGRAMS_server dtmf-ros-bridge)
 endif()
 set(DTMF_COMPONENT_PROGRAMS_cli dtmfctl)
 if(DTMF_BUILD_SIMULATOR)
@@ -113,7 +117,10 @@ streams each frame's progress to gRPC callers (TeleopService, health,
 reflection). It logs every transmission to PostgreSQL; dtmf-migrate creates
 the schema. It runs as the systemd service dtmf-server, configured in
 /etc/default/dtmf-server. dtmf-console serves the web console on this machine
-(the air live, the robots, driving, the report) as a client of dtmf-server.")
+(the air live, the robots, driving, the report) as a client of dtmf-server.
+dtmf-ros-bridge drives the robots from ROS 2's cmd_vel (Twist or TwistStamped,
+over DDS, from this machine only unless told otherwise) through dtmf-server,
+and publishes each robot's link health on /diagnostics.")
 set(CPACK_COMPONENT_CLI_DESCRIPTION "dtmf-teleop ${DTMF_COMPONENT_SUMMARY_cli}
 dtmfctl drives the robot through dtmf-server (drive, turn, stop, the seed's
 test sequence, reports) and works offline on audio files: encode commands to
@@ -127,6 +134,9 @@ foreach(component IN ITEMS agent server)
     set(conffiles "/etc/default/dtmf-${component}\n")
     if(component STREQUAL "server" AND DTMF_BUILD_CONSOLE)
       string(APPEND conffiles "/etc/default/dtmf-console\n")
+    endif()
+    if(component STREQUAL "server" AND DTMF_BUILD_ROS_BRIDGE)
+      string(APPEND conffiles "/etc/default/dtmf-ros-bridge\n")
     endif()
     file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/packaging/${component}/conffiles "${conffiles}")
     set(CPACK_DEBIAN_${c}_PACKAGE_CONTROL_EXTRA ${CMAKE_CURRENT_BINARY_DIR}/packaging/${component}/conffiles)

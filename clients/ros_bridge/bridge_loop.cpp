@@ -17,9 +17,12 @@ std::vector<std::string> names_of(const std::vector<BridgeRobot>& robots) {
 StreamEnd end_of(const grpc::Status& status) {
   switch (status.error_code()) {
     case grpc::StatusCode::OK:
-    case grpc::StatusCode::CANCELLED: return StreamEnd::Finished;
-    case grpc::StatusCode::ABORTED: return StreamEnd::Stopped;
-    default: return StreamEnd::Failed;
+    case grpc::StatusCode::CANCELLED:
+      return StreamEnd::Finished;
+    case grpc::StatusCode::ABORTED:
+      return StreamEnd::Stopped;
+    default:
+      return StreamEnd::Failed;
   }
 }
 
@@ -121,7 +124,8 @@ void BridgeLoop::handle_stream_end(Robot& robot, const grpc::Status& status, dou
 
 void BridgeLoop::handle(const BridgeEvent& event, double now_ms) {
   if (event.kind == BridgeEvent::Kind::StopEnded) {
-    if (!event.status.ok()) spdlog::error("the stop for every robot: \"{}\"", event.status.error_message().substr(0, 200));
+    if (!event.status.ok())
+      spdlog::error("the stop for every robot: \"{}\"", event.status.error_message().substr(0, 200));
     stop_call_.reset();
     return;
   }

@@ -19,7 +19,8 @@ namespace {
 
 std::string topic_list(const dtmf::ros_bridge::BridgeTopics& topics) {
   std::string list;
-  for (const auto& r : topics.robots) list += "/" + r.cmd_vel + " (" + (r.robot.empty() ? "the robot" : r.robot) + "), ";
+  for (const auto& r : topics.robots)
+    list += "/" + r.cmd_vel + " (" + (r.robot.empty() ? "the robot" : r.robot) + "), ";
   return list + "/" + topics.stop_every_robot + ", /" + topics.diagnostics;
 }
 
@@ -48,8 +49,7 @@ int main(int argc, char** argv) {
           bridge->stop();
         });
         signals.detach();  // it outlives run() only when run() failed, and the process then ends
-        std::cout << "ros bridge on domain " << bridge->domain() << ": " << topic_list(bridge->topics())
-                  << std::endl;
+        std::cout << "ros bridge on domain " << bridge->domain() << ": " << topic_list(bridge->topics()) << std::endl;
         bridge->run();
         return program::kExitOk;
       },

@@ -33,9 +33,10 @@ void choose_dds_network(const BridgeFlags& flags) {
   if (given != nullptr && *given != '\0') {
     spdlog::info("DDS: CYCLONEDDS_URI is set, its network is used as given");
   } else if (flags.allow_ros_network) {
-    spdlog::warn("DDS: taking cmd_vel from the whole ROS network (--allow-ros-network): anyone who can publish on "
-                 "domain {} drives the robots by sound, keyed or not",
-                 ros2::resolve_domain("dtmf-ros-bridge", flags.domain));
+    spdlog::warn(
+        "DDS: taking cmd_vel from the whole ROS network (--allow-ros-network): anyone who can publish on "
+        "domain {} drives the robots by sound, keyed or not",
+        ros2::resolve_domain("dtmf-ros-bridge", flags.domain));
   } else {
     ::setenv("CYCLONEDDS_URI", kLoopbackOnly, 1);
   }

@@ -66,7 +66,7 @@ class DdsInputs {
   };
   std::vector<Reader> twist_readers_;
   std::int32_t stop_reader_ = 0;
-  std::map<std::uint64_t, Writer> writers_;  // by publication handle, once known
+  std::map<std::uint64_t, Writer> writers_;    // by publication handle, once known
   std::vector<long long> skipped_from_agent_;  // by robot
 };
 

@@ -45,7 +45,8 @@ DdsOutputs::DdsOutputs(std::int32_t participant, const BridgeTopics& topics) {
   }
 }
 
-void DdsOutputs::publish_diagnostics(const std::vector<RobotHealth>& robots, std::chrono::system_clock::time_point stamp) {
+void DdsOutputs::publish_diagnostics(const std::vector<RobotHealth>& robots,
+                                     std::chrono::system_clock::time_point stamp) {
   // The strings below must outlive dds_write: they are built first, then pointed at.
   std::vector<std::string> names;
   for (const RobotHealth& r : robots) names.push_back("dtmf-teleop: link to " + r.robot);

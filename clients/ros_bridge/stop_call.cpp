@@ -1,7 +1,5 @@
 #include "stop_call.h"
 
-
-
 namespace dtmf::ros_bridge {
 
 StopCall::StopCall(v1::TeleopService::Stub& stub, const std::string& profile, const std::string& token,
@@ -20,8 +18,6 @@ void StopCall::OnReadDone(bool ok) {
   if (ok) StartRead(&response_);
 }
 
-void StopCall::OnDone(const grpc::Status& status) {
-  events_.push({BridgeEvent::Kind::StopEnded, 0, 0, {}, status});
-}
+void StopCall::OnDone(const grpc::Status& status) { events_.push({BridgeEvent::Kind::StopEnded, 0, 0, {}, status}); }
 
 }  // namespace dtmf::ros_bridge

@@ -1,7 +1,5 @@
 #include "teleop_call.h"
 
-
-
 namespace dtmf::ros_bridge {
 
 TeleopCall::TeleopCall(v1::TeleopService::Stub& stub, const TeleopCallOptions& options, Twist first,

@@ -4,11 +4,16 @@ namespace dtmf::ros_bridge {
 
 std::string to_string(StreamState state) {
   switch (state) {
-    case StreamState::Closed: return "closed";
-    case StreamState::Open: return "open";
-    case StreamState::Stopping: return "stopping";
-    case StreamState::Closing: return "closing";
-    case StreamState::Held: return "held after a stop";
+    case StreamState::Closed:
+      return "closed";
+    case StreamState::Open:
+      return "open";
+    case StreamState::Stopping:
+      return "stopping";
+    case StreamState::Closing:
+      return "closing";
+    case StreamState::Held:
+      return "held after a stop";
   }
   return "?";
 }
@@ -80,15 +85,18 @@ void TeleopPlan::on_stream_end(StreamEnd end, double now_ms) {
 
 std::optional<double> TeleopPlan::next_deadline_ms() const {
   switch (state_) {
-    case StreamState::Open: return sent_ms_ + kRepeatMs;
+    case StreamState::Open:
+      return sent_ms_ + kRepeatMs;
     case StreamState::Stopping: {
       const double close_at = stopping_since_ms_ + lease_ms_;
       const double repeat_at = sent_ms_ + kRepeatMs;
       return close_at < repeat_at ? close_at : repeat_at;
     }
-    case StreamState::Closed: return retry_at_ms_;
+    case StreamState::Closed:
+      return retry_at_ms_;
     case StreamState::Closing:
-    case StreamState::Held: return std::nullopt;
+    case StreamState::Held:
+      return std::nullopt;
   }
   return std::nullopt;
 }

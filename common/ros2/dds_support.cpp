@@ -41,9 +41,9 @@ std::string topic_string(dds_return_t (*get)(dds_entity_t, char*, size_t), dds_e
 }  // namespace
 
 void dds_fail(std::string_view who, const std::string& step, int retcode, const std::string& hint) {
-  throw DdsError(std::string(who) + ": " + step + " failed: " + dds_strretcode(retcode) +
-                     (hint.empty() ? "" : ". " + hint),
-                 retcode);
+  throw DdsError(
+      std::string(who) + ": " + step + " failed: " + dds_strretcode(retcode) + (hint.empty() ? "" : ". " + hint),
+      retcode);
 }
 
 int resolve_domain(std::string_view who, const std::optional<int>& given) {

@@ -1,7 +1,8 @@
 # scripts/quickstart --robots N: one sender and N simulated TurtleBot3s in one measured room
 # (room_air.sh, "A room of several robots"). Sourced by scripts/quickstart, after the air and
 # PostgreSQL are up; uses its variables (state, fleet, bin, port, rir, keyed, sequence) and
-# functions (start_room_process, stop_process, alive, robot_paired).
+# functions (start_room_process, stop_process, alive, robot_paired; start_console and
+# start_ros_bridge of quickstart_clients.sh).
 #
 #   robot k (1..N): dtmf-agent --address k --host robot<k> --topic /robot<k>/cmd_vel, its own
 #                   key robot<k>.key and the room key room.key, state in agent<k>-state/
@@ -29,7 +30,7 @@ fleet_up() {
 
   eval "$(scripts/pg start "$state/pg" "$pg_port")"
   echo "database: $DTMF_DB_URL"
-  export CYCLONEDDS_URI=${CYCLONEDDS_URI:-'<General><Interfaces><NetworkInterface name="lo"/></Interfaces></General>'}
+  export CYCLONEDDS_URI=${CYCLONEDDS_URI:-$QUICKSTART_LOOPBACK_DDS}
 
   # Keys: one per robot, and the room key every robot and the sender hold. A robot keeps its
   # key while it has its counter state for it; without, that robot is paired afresh with a new
@@ -94,6 +95,7 @@ fleet_up() {
   for _ in $(seq 100); do "$bin/dtmfctl" health --server "localhost:$port" >/dev/null 2>&1 && break; sleep 0.1; done
   "$bin/dtmfctl" health --server "localhost:$port" || { echo "quickstart: the server did not come up; see $state/server.log" >&2; exit 1; }
   start_console
+  start_ros_bridge "$n"
 
   local ctl=("$bin/dtmfctl" --server "localhost:$port")
   echo
@@ -113,6 +115,7 @@ $n robots are running in one room. Try:
   $bin/dtmfctl --server localhost:$port --robot robot3 turn --rotation 50 --duration 1
   $bin/dtmfctl --server localhost:$port stop --all                 # every robot, one frame (e in teleop)
   grep sim: $state/agent2.log | tail -3                                  # where robot2 is
+  $ros_bridge_try    # robot1 from ROS 2 (robot<k>/cmd_vel)
 Stop it all with: scripts/quickstart down
 MSG
 }

@@ -65,6 +65,11 @@ for name in agent server cli; do
 done
 grep -q "libddsc" <<<"$(dpkg-deb -f "${deb[agent]}" Depends)" || fail "the agent's package does not depend on CycloneDDS"
 grep -q "libgrpc++" <<<"$(dpkg-deb -f "${deb[server]}" Depends)" || fail "the server's package does not depend on gRPC"
+# dtmf-ros-bridge links CycloneDDS too (computed as the agent's: nothing in packaging.cmake names it).
+if grep -q '/usr/bin/dtmf-ros-bridge$' <<<"$(dpkg-deb -c "${deb[server]}")"; then
+  grep -q "libddsc" <<<"$(dpkg-deb -f "${deb[server]}" Depends)" ||
+    fail "the server's package holds dtmf-ros-bridge but does not depend on CycloneDDS"
+fi
 
 # The programs, from the unpacked root.
 for program in dtmf-agent dtmf-server dtmf-migrate dtmfctl dtmf-room; do

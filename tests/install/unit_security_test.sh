@@ -31,12 +31,16 @@ $(printf '%s\n' "$report" | grep '✗')"
   ! grep -Eq '^PrivateDevices=(yes|true)' "$file" || fail "$name hides the sound card (PrivateDevices=yes)"
   echo "$name: exposure level $score"
 done
-# The console touches no device and needs no real time: only its exposure is judged.
-file=$source_dir/clients/console/systemd/dtmf-console.service
-report=$(systemd-analyze security --offline=true "$file" 2>&1) || fail "systemd-analyze security dtmf-console.service: $report"
-score=$(printf '%s\n' "$report" | sed -n "s/.*Overall exposure level for dtmf-console.service: \([0-9][0-9.]*\).*/\1/p")
-[ -n "$score" ] || fail "systemd-analyze security dtmf-console.service gave no overall exposure level: $report"
-awk -v s="$score" 'BEGIN { exit !(s <= 2.0) }' || fail "dtmf-console.service: exposure level $score, above 2.0:
+# The console and the ROS 2 bridge touch no device and need no real time: only their
+# exposure is judged.
+for unit in clients/console/systemd/dtmf-console.service clients/ros_bridge/systemd/dtmf-ros-bridge.service; do
+  file=$source_dir/$unit
+  name=$(basename "$unit")
+  report=$(systemd-analyze security --offline=true "$file" 2>&1) || fail "systemd-analyze security $name: $report"
+  score=$(printf '%s\n' "$report" | sed -n "s/.*Overall exposure level for $name: \([0-9][0-9.]*\).*/\1/p")
+  [ -n "$score" ] || fail "systemd-analyze security $name gave no overall exposure level: $report"
+  awk -v s="$score" 'BEGIN { exit !(s <= 2.0) }' || fail "$name: exposure level $score, above 2.0:
 $(printf '%s\n' "$report" | grep '✗')"
-echo "dtmf-console.service: exposure level $score"
+  echo "$name: exposure level $score"
+done
 echo "PASS"

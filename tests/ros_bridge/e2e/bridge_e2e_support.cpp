@@ -1,5 +1,6 @@
 #include "ros_bridge/e2e/bridge_e2e_support.h"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -31,13 +32,14 @@ BridgeSystem BridgeSystem::from_environment() {
   const char* state = std::getenv("DTMF_E2E_STATE");
   const char* domain = std::getenv("ROS_DOMAIN_ID");
   if (state == nullptr || domain == nullptr) {
-    throw std::runtime_error("DTMF_E2E_STATE and ROS_DOMAIN_ID unset: run through tests/ros_bridge/e2e/run_bridge_e2e.sh");
+    throw std::runtime_error(
+        "DTMF_E2E_STATE and ROS_DOMAIN_ID unset: run through tests/ros_bridge/e2e/run_bridge_e2e.sh");
   }
   return {state, std::atoi(domain)};
 }
 
-RobotCmdVel::RobotCmdVel(const BridgeSystem& system, const std::string& robot)
-    : subscriber_(std::make_unique<CmdVelSubscriber>(system.domain, "rt/" + robot + "/cmd_vel", true)) {}
+RobotCmdVel::RobotCmdVel(const BridgeSystem& system, const std::string& ros_topic)
+    : subscriber_(std::make_unique<CmdVelSubscriber>(system.domain, "rt/" + ros_topic, true)) {}
 
 std::optional<ReceivedCmdVel> RobotCmdVel::first_after(Clock::time_point since,
                                                        const std::function<bool(const ReceivedCmdVel&)>& accept,
@@ -106,13 +108,25 @@ double cpu_seconds(pid_t pid) {
   return static_cast<double>(ticks) / static_cast<double>(::sysconf(_SC_CLK_TCK));
 }
 
-ChildProcess::ChildProcess(const std::vector<std::string>& argv) {
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::string& stdout_path) {
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
-  if (posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), environ) != 0) {
-    throw std::runtime_error("cannot start " + argv[0]);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (!stdout_path.empty()) {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   }
+  const int rc = posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error("cannot start " + argv[0]);
+}
+
+void ChildProcess::terminate() {
+  if (pid_ <= 0) return;
+  ::kill(pid_, SIGTERM);
+  ::waitpid(pid_, nullptr, 0);
+  pid_ = -1;
 }
 
 ChildProcess::~ChildProcess() { kill9(); }

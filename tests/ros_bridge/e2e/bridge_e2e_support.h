@@ -29,7 +29,8 @@ struct BridgeSystem {
 // A robot's cmd_vel as its agent publishes it (TwistStamped; the agent's writer only).
 class RobotCmdVel {
  public:
-  RobotCmdVel(const BridgeSystem& system, const std::string& robot);
+  // `ros_topic`: the agent's cmd_vel, "robot2/cmd_vel" (several robots) or "cmd_vel" (one).
+  RobotCmdVel(const BridgeSystem& system, const std::string& ros_topic);
   // The first sample from the agent received after `since` for which `accept` holds, within `timeout`.
   std::optional<ReceivedCmdVel> first_after(Clock::time_point since,
                                             const std::function<bool(const ReceivedCmdVel&)>& accept,
@@ -63,9 +64,11 @@ double cpu_seconds(pid_t pid);
 // A program run in a process of its own; killed with SIGKILL when destroyed if still running.
 class ChildProcess {
  public:
-  explicit ChildProcess(const std::vector<std::string>& argv);
+  // `stdout_path`: where its standard output goes (empty: this process's).
+  explicit ChildProcess(const std::vector<std::string>& argv, const std::string& stdout_path = "");
   ~ChildProcess();
   void kill9();
+  void terminate();  // SIGTERM, then waits for it
   pid_t pid() const { return pid_; }
 
  private:

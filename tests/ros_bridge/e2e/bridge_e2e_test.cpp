@@ -28,14 +28,17 @@ constexpr double kLinearStepMps = 0.22 / 2047 / 2 + 1e-9;
 constexpr double kAngularStepRadps = 2.84 / 127 / 2 + 1e-9;
 
 bool near(const ReceivedCmdVel& v, double linear_mps, double angular_radps) {
-  return std::abs(v.linear.x - linear_mps) <= kLinearStepMps && std::abs(v.angular.z - angular_radps) <= kAngularStepRadps;
+  return std::abs(v.linear.x - linear_mps) <= kLinearStepMps &&
+         std::abs(v.angular.z - angular_radps) <= kAngularStepRadps;
 }
 
 class BridgeE2E : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     system_ = BridgeSystem::from_environment();
-    for (const char* robot : {"robot1", "robot2", "robot3"}) robots_.emplace_back(new RobotCmdVel(system_, robot));
+    for (const char* topic : {"robot1/cmd_vel", "robot2/cmd_vel", "robot3/cmd_vel"}) {
+      robots_.emplace_back(new RobotCmdVel(system_, topic));
+    }
     diagnostics_ = new DiagnosticsSubscriber(system_.domain);
   }
   static void TearDownTestSuite() {
@@ -83,8 +86,10 @@ TEST_F(BridgeE2E, AKeyboardLikePublisherDrivesEachKeyAndTheRobotStopsWhenItIsRel
   const auto left_at = Clock::now();
   const auto released_at = hold(keys, 0.1, 0.5, 1500ms, 100ms);
 
-  const auto forward = robots_[0]->first_after(forward_at, [](auto& v) { return near(v, 0.1, 0); }, 100ms);
-  const auto left = robots_[0]->first_after(left_at, [](auto& v) { return near(v, 0.1, 0.5); }, 100ms);
+  const auto forward = robots_[0]->first_after(
+      forward_at, [](auto& v) { return near(v, 0.1, 0); }, 100ms);
+  const auto left = robots_[0]->first_after(
+      left_at, [](auto& v) { return near(v, 0.1, 0.5); }, 100ms);
   ASSERT_TRUE(forward) << "robot1's cmd_vel never followed the first key";
   ASSERT_TRUE(left) << "robot1's cmd_vel never followed the second key";
   const double stopped_ms = stop_ms(0, released_at);
@@ -102,7 +107,8 @@ TEST_F(BridgeE2E, AFastDdsPublisherKilledWithMinus9MidDriveStopsTheRobot) {
                           "robot1/cmd_vel", "--linear-mps", "0.05", "--angular-radps", "-0.3", "--rate-hz", "10",
                           "--duration-s", "60"});
   const auto started = Clock::now();
-  const auto moving = robots_[0]->first_after(started, [](auto& v) { return near(v, 0.05, -0.3); }, 15000ms);
+  const auto moving = robots_[0]->first_after(
+      started, [](auto& v) { return near(v, 0.05, -0.3); }, 15000ms);
   ASSERT_TRUE(moving) << "the Fast DDS publisher's velocity never reached robot1's cmd_vel";
   std::this_thread::sleep_for(1s);
   const auto killed_at = Clock::now();
@@ -126,7 +132,8 @@ TEST_F(BridgeE2E, StampedBestEffortAtOneKilohertzIsClampedDropsNaNAndCostsTheBri
   }
   const double elapsed_s = ms_between(start, Clock::now()) / 1000;
   const double cpu_share = (cpu_seconds(bridge) - cpu_before) / elapsed_s;
-  const auto clamped = robots_[2]->first_after(start, [](auto& v) { return near(v, kBurgerMaxLinearMps, 0); }, 100ms);
+  const auto clamped = robots_[2]->first_after(
+      start, [](auto& v) { return near(v, kBurgerMaxLinearMps, 0); }, 100ms);
   ASSERT_TRUE(clamped) << "robot3 never drove at its top speed";
   for (const ReceivedCmdVel& v : robots_[2]->after(start)) {
     ASSERT_FALSE(std::isnan(v.linear.x));
@@ -136,10 +143,8 @@ TEST_F(BridgeE2E, StampedBestEffortAtOneKilohertzIsClampedDropsNaNAndCostsTheBri
   EXPECT_LT(stop_ms(2, Clock::now()), kStopBoundMs);
   std::printf("1 kHz for %.1f s: the bridge used %.1f %% of a core\n", elapsed_s, 100 * cpu_share);
   EXPECT_LT(cpu_share, 0.25) << "1000 messages a second must cost the bridge little";
-  EXPECT_EQ(bridge_log_count(system_, "beyond robot3's limits"), 1)
-      << "clamping is said once";
-  EXPECT_EQ(bridge_log_count(system_, "NaN or infinite"), 1)
-      << "a NaN dropped is said once";
+  EXPECT_EQ(bridge_log_count(system_, "beyond robot3's limits"), 1) << "clamping is said once";
+  EXPECT_EQ(bridge_log_count(system_, "NaN or infinite"), 1) << "a NaN dropped is said once";
 }
 
 TEST_F(BridgeE2E, ThreeRobotsThreeTopicsEachMovesOnlyOnItsOwnAndNoneHearsItsOwnOutputBack) {
@@ -147,7 +152,8 @@ TEST_F(BridgeE2E, ThreeRobotsThreeTopicsEachMovesOnlyOnItsOwnAndNoneHearsItsOwnO
   ASSERT_TRUE(only2.wait_for_readers(1, 10s));
   const auto start = Clock::now();
   const auto released = hold(only2, 0.1, 0.2, 2000ms, 100ms);
-  ASSERT_TRUE(robots_[1]->first_after(start, [](auto& v) { return near(v, 0.1, 0.2); }, 100ms));
+  ASSERT_TRUE(robots_[1]->first_after(
+      start, [](auto& v) { return near(v, 0.1, 0.2); }, 100ms));
   ASSERT_LT(stop_ms(1, released), kStopBoundMs);
   // Robot2's agent published its velocity on robot2/cmd_vel all along, 20 times a second; had
   // the bridge taken it, robot2 would drive again now. It stays stopped for 3 s.
@@ -156,7 +162,8 @@ TEST_F(BridgeE2E, ThreeRobotsThreeTopicsEachMovesOnlyOnItsOwnAndNoneHearsItsOwnO
   for (const ReceivedCmdVel& v : robots_[1]->after(after_stop)) ASSERT_TRUE(is_stopped(v)) << "robot2 drove again";
   for (int other : {0, 2}) {
     for (const ReceivedCmdVel& v : robots_[other]->after(start)) {
-      ASSERT_TRUE(is_stopped(v)) << "robot" << other + 1 << " moved on robot2's topic";
+      ASSERT_TRUE(is_stopped(v)) << "robot" << other + 1 << " moved on robot2's topic: " << v.linear.x << " m/s "
+                                 << v.angular.z << " rad/s, " << ms_between(start, v.received) << " ms in";
     }
   }
   const ReceivedStatus status = diagnostics_->wait_for(
@@ -176,7 +183,8 @@ TEST_F(BridgeE2E, ANav2LikeSquareEndsWhereItsVelocitiesSay) {
   constexpr double kSideMps = 0.2, kTurnRadps = 1.5707963;
   const auto start_at = Clock::now();
   hold(nav2, kSideMps, 0, 1500ms, 50ms);
-  const auto first = robots_[1]->first_after(start_at, [](auto& v) { return near(v, kSideMps, 0); }, 100ms);
+  const auto first = robots_[1]->first_after(
+      start_at, [](auto& v) { return near(v, kSideMps, 0); }, 100ms);
   ASSERT_TRUE(first);
   hold(nav2, 0, kTurnRadps, 1000ms, 50ms);
   hold(nav2, kSideMps, 0, 1500ms, 50ms);
@@ -188,10 +196,11 @@ TEST_F(BridgeE2E, ANav2LikeSquareEndsWhereItsVelocitiesSay) {
   const double want_y = start.y_m + 0.3 * std::sin(heading) + 0.3 * std::cos(heading);
   const Pose end = pose_of(system_, "robot2");
   const double heading_error = std::remainder(end.heading_deg - (start.heading_deg + 180), 360);
-  std::printf("square: first velocity on cmd_vel after %.0f ms; ended at x=%.3f y=%.3f heading %.1f; the velocities "
-              "say x=%.3f y=%.3f heading %.1f\n",
-              ms_between(start_at, first->received), end.x_m, end.y_m, end.heading_deg, want_x, want_y,
-              start.heading_deg + 180);
+  std::printf(
+      "square: first velocity on cmd_vel after %.0f ms; ended at x=%.3f y=%.3f heading %.1f; the velocities "
+      "say x=%.3f y=%.3f heading %.1f\n",
+      ms_between(start_at, first->received), end.x_m, end.y_m, end.heading_deg, want_x, want_y,
+      start.heading_deg + 180);
   // Each change of velocity reaches the robot a frame later, all by about the same delay:
   // what is left is that delay's jitter (tens of ms) over each side, and the ramps. Robot2 has
   // driven before (the test above); a robot's very first frame under its key follows a
@@ -218,7 +227,8 @@ TEST_F(BridgeE2E, DiagnosticsTurnWarnWhenTheRobotsAnswersAreCutAndOkAgainAfter) 
   EXPECT_EQ(ok.level, 0) << "robot3 answering: OK";
   const pid_t agent = pid_of(system_, "agent3");
   ::kill(agent, SIGSTOP);  // the robot hears nothing and answers nothing
-  const ReceivedStatus warn = diagnostics_->wait_for("robot3", [](auto& s) { return s.level >= 1; }, 5000ms);
+  const ReceivedStatus warn = diagnostics_->wait_for(
+      "robot3", [](auto& s) { return s.level >= 1; }, 5000ms);
   ::kill(agent, SIGCONT);
   EXPECT_GE(warn.level, 1) << "answers cut, yet /diagnostics stayed OK: " << warn.message;
   std::printf("answers cut: level %d, \"%s\"\n", warn.level, warn.message.c_str());
@@ -238,19 +248,23 @@ TEST_F(BridgeE2E, TheStopForEveryRobotHoldsAgainstAPublisherThatGoesOnUntilItsIn
   ASSERT_TRUE(stop.wait_for_readers(1, 10s));
   const auto start = Clock::now();
   hold(nav2, 0.1, 0, 1500ms, 50ms);
-  ASSERT_TRUE(robots_[0]->first_after(start, [](auto& v) { return near(v, 0.1, 0); }, 100ms));
+  ASSERT_TRUE(robots_[0]->first_after(
+      start, [](auto& v) { return near(v, 0.1, 0); }, 100ms));
   const auto stopped_at = Clock::now();
   stop.publish();
   hold(nav2, 0.1, 0, 3000ms, 50ms);  // Nav2 goes on at 20 Hz
   const auto stopped = robots_[0]->first_after(stopped_at, is_stopped, 100ms);
   ASSERT_TRUE(stopped) << "the stop for every robot did not stop robot1";
   std::printf("stop_every_robot -> robot1 stopped: %.0f ms\n", ms_between(stopped_at, stopped->received));
-  for (const ReceivedCmdVel& v : robots_[0]->after(stopped->received)) ASSERT_TRUE(is_stopped(v)) << "driven after a stop";
+  for (const ReceivedCmdVel& v : robots_[0]->after(stopped->received))
+    ASSERT_TRUE(is_stopped(v)) << "driven after a stop";
   // Silent for the timeout: the input is zero, and the next message drives again.
   std::this_thread::sleep_for(std::chrono::milliseconds(static_cast<int>(kTimeoutMs) + 200));
   const auto again = Clock::now();
   const auto released = hold(nav2, 0.1, 0, 1500ms, 50ms);
-  EXPECT_TRUE(robots_[0]->first_after(again, [](auto& v) { return near(v, 0.1, 0); }, 100ms)) << "never drove again";
+  EXPECT_TRUE(robots_[0]->first_after(
+      again, [](auto& v) { return near(v, 0.1, 0); }, 100ms))
+      << "never drove again";
   EXPECT_LT(stop_ms(0, released), kStopBoundMs);
 }
 

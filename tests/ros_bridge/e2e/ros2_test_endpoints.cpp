@@ -107,8 +107,8 @@ bool EmptyPublisher::wait_for_readers(int n, std::chrono::milliseconds timeout) 
 
 DiagnosticsSubscriber::DiagnosticsSubscriber(int domain) {
   participant_ = participant_on(domain);
-  const dds_entity_t topic =
-      dds_create_topic(participant_, &diagnostic_msgs_msg_dds__DiagnosticArray__desc, "rt/diagnostics", nullptr, nullptr);
+  const dds_entity_t topic = dds_create_topic(participant_, &diagnostic_msgs_msg_dds__DiagnosticArray__desc,
+                                              "rt/diagnostics", nullptr, nullptr);
   if (topic < 0) fail("creating rt/diagnostics", topic);
   dds_qos_t* qos = ros_qos(true);
   dds_listener_t* listener = dds_create_listener(this);
