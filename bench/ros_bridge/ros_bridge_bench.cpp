@@ -148,8 +148,9 @@ json measure_nav2(const Options& o, TwistPublisher& nav2, const RobotCmdVel& rob
   std::ifstream in(watched);
   for (std::string line; std::getline(in, line);) {
     const json m = json::parse(line, nullptr, false);
-    if (m.is_discarded() || !m.contains("framePlayed")) continue;
-    const double t = std::stod(m.value("timeUnixMs", std::string("0")));
+    // dtmfctl --json keeps the proto's field names; an int64 is a string in proto3's JSON.
+    if (m.is_discarded() || !m.contains("frame_played")) continue;
+    const double t = std::stod(m.value("time_unix_ms", std::string("0")));
     frames += t >= from_unix_ms && t <= static_cast<double>(end_unix_ms);
   }
   int lapses = 0;
