@@ -37,12 +37,6 @@ struct Options {
   bool keyed = true;
 };
 
-// Half a VELOCITY step (1/2047 of a Burger's 0.22 m/s, 1/127 of its 2.84 rad/s).
-bool near(const ReceivedCmdVel& v, double linear_mps, double angular_radps) {
-  return std::abs(v.linear.x - linear_mps) <= 0.22 / 2047 / 2 + 1e-9 &&
-         std::abs(v.angular.z - angular_radps) <= 2.84 / 127 / 2 + 1e-9;
-}
-
 json summary(std::vector<double> ms) {
   if (ms.empty()) return nullptr;
   std::sort(ms.begin(), ms.end());
@@ -50,21 +44,6 @@ json summary(std::vector<double> ms) {
     return ms[std::min(ms.size() - 1, static_cast<std::size_t>(p * (ms.size() - 1) + 0.5))];
   };
   return {{"median", at(0.5)}, {"p95", at(0.95)}, {"max", ms.back()}, {"count", ms.size()}};
-}
-
-// Publishes (v, w) every `period` for `duration`; returns when the last one went out.
-Clock::time_point hold(TwistPublisher& p, double v, double w, std::chrono::milliseconds duration,
-                       std::chrono::milliseconds period) {
-  const auto start = Clock::now();
-  auto next = start;
-  Clock::time_point last;
-  while (next - start < duration) {
-    p.publish(v, w);
-    last = Clock::now();
-    next += period;
-    std::this_thread::sleep_until(next);
-  }
-  return last;
 }
 
 double stopped_after(const RobotCmdVel& robot, Clock::time_point since) {
@@ -81,9 +60,9 @@ json measure_changes(const Options& o, TwistPublisher& keys, const RobotCmdVel& 
   for (int i = 0; i <= o.changes; ++i) {
     const auto [v, w] = values[static_cast<std::size_t>(i) % values.size()];
     const auto at = Clock::now();
-    hold(keys, v, w, 1200ms, 100ms);
+    keys.hold(v, w, 1200ms, 100ms);
     const auto seen = robot.first_after(
-        at, [&](auto& s) { return near(s, v, w); }, 100ms);
+        at, [&](auto& s) { return at_velocity(s, v, w); }, 100ms);
     const double delay = seen ? ms_between(at, seen->received) : 1e9;
     if (i == 0) {
       opening_ms = delay;
@@ -109,12 +88,12 @@ json measure_stops(const Options& o, TwistPublisher& keys, const RobotCmdVel& ro
       ChildProcess fast({o.fastdds, "--domain", std::to_string(o.domain), "--topic", o.topic, "--linear-mps", "0.1",
                          "--rate-hz", "10", "--duration-s", "60"});
       robot.first_after(
-          Clock::now(), [](auto& s) { return near(s, 0.1, 0); }, 10000ms);
+          Clock::now(), [](auto& s) { return at_velocity(s, 0.1, 0); }, 10000ms);
       std::this_thread::sleep_for(1000ms);
       last = Clock::now();
       fast.kill9();
     } else {
-      last = hold(keys, 0.1, 0, 2000ms, 100ms);
+      last = keys.hold(0.1, 0, 2000ms, 100ms);
     }
     const double ms = stopped_after(robot, last);
     trials.push_back({{"kind", kill ? "killed -9 (Fast DDS)" : "silent"}, {"ms", ms}});
@@ -132,7 +111,7 @@ json measure_nav2(const Options& o, TwistPublisher& nav2, const RobotCmdVel& rob
   const auto start_unix_ms =
       std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
           .count();
-  hold(nav2, 0.1, 0.2, std::chrono::milliseconds(static_cast<long>(o.nav2_s * 1000)), 50ms);
+  nav2.hold(0.1, 0.2, std::chrono::milliseconds(static_cast<long>(o.nav2_s * 1000)), 50ms);
   const auto end_unix_ms =
       std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
           .count();
@@ -142,7 +121,7 @@ json measure_nav2(const Options& o, TwistPublisher& nav2, const RobotCmdVel& rob
   watch.terminate();
   // Frames played from when the robot first moved to the stream's end.
   const auto moving = robot.first_after(
-      start, [](auto& s) { return near(s, 0.1, 0.2); }, 100ms);
+      start, [](auto& s) { return at_velocity(s, 0.1, 0.2); }, 100ms);
   const double from_unix_ms = static_cast<double>(start_unix_ms) + (moving ? ms_between(start, moving->received) : 0);
   int frames = 0;
   std::ifstream in(watched);

@@ -64,8 +64,11 @@ std::vector<ReceivedCmdVel> RobotCmdVel::after(Clock::time_point since) const {
 
 bool is_stopped(const ReceivedCmdVel& v) { return v.linear.x == 0 && v.angular.z == 0; }
 
-bool moves_at(const ReceivedCmdVel& v, double linear_mps, double angular_radps) {
-  return std::abs(v.linear.x - linear_mps) < 1e-6 && std::abs(v.angular.z - angular_radps) < 1e-6;
+bool at_velocity(const ReceivedCmdVel& v, double linear_mps, double angular_radps) {
+  constexpr double kHalfLinearStepMps = 0.22 / 2047 / 2 + 1e-9;
+  constexpr double kHalfAngularStepRadps = 2.84 / 127 / 2 + 1e-9;
+  return std::abs(v.linear.x - linear_mps) <= kHalfLinearStepMps &&
+         std::abs(v.angular.z - angular_radps) <= kHalfAngularStepRadps;
 }
 
 double ms_between(Clock::time_point from, Clock::time_point to) {

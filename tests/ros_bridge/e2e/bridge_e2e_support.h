@@ -43,7 +43,9 @@ class RobotCmdVel {
 };
 
 bool is_stopped(const ReceivedCmdVel& v);
-bool moves_at(const ReceivedCmdVel& v, double linear_mps, double angular_radps);
+// Within half a VELOCITY step of (linear, angular): 1/2047 of a Burger's 0.22 m/s and 1/127
+// of its 2.84 rad/s, the resolution a frame carries a velocity at.
+bool at_velocity(const ReceivedCmdVel& v, double linear_mps, double angular_radps);
 double ms_between(Clock::time_point from, Clock::time_point to);
 
 struct Pose {

@@ -23,14 +23,7 @@ constexpr double kTimeoutMs = 500;  // the bridge's --timeout-s, as the runner s
 constexpr double kLeaseMs = 1000;   // its --lease-s
 constexpr double kStopBoundMs = kTimeoutMs + kLeaseMs + 200;
 constexpr double kBurgerMaxLinearMps = 0.22;
-// VELOCITY's steps are 1/2047 of the top speed and 1/127 of the top turn rate: half a step.
-constexpr double kLinearStepMps = 0.22 / 2047 / 2 + 1e-9;
-constexpr double kAngularStepRadps = 2.84 / 127 / 2 + 1e-9;
-
-bool near(const ReceivedCmdVel& v, double linear_mps, double angular_radps) {
-  return std::abs(v.linear.x - linear_mps) <= kLinearStepMps &&
-         std::abs(v.angular.z - angular_radps) <= kAngularStepRadps;
-}
+constexpr double kLinearStepMps = 0.22 / 2047 / 2 + 1e-9;  // half a VELOCITY step
 
 class BridgeE2E : public ::testing::Test {
  protected:
@@ -45,21 +38,6 @@ class BridgeE2E : public ::testing::Test {
     for (RobotCmdVel* r : robots_) delete r;
     robots_.clear();
     delete diagnostics_;
-  }
-
-  // Publishes (v, w) every `period` for `duration`; returns when the last one went out.
-  static Clock::time_point hold(TwistPublisher& publisher, double v, double w, std::chrono::milliseconds duration,
-                                std::chrono::milliseconds period) {
-    const auto start = Clock::now();
-    auto next = start;
-    Clock::time_point last;
-    while (next - start < duration) {
-      publisher.publish(v, w);
-      last = Clock::now();
-      next += period;
-      std::this_thread::sleep_until(next);
-    }
-    return last;
   }
 
   // The time from `since` until the robot's cmd_vel is zero and stays zero for 1 s after.
@@ -82,14 +60,14 @@ TEST_F(BridgeE2E, AKeyboardLikePublisherDrivesEachKeyAndTheRobotStopsWhenItIsRel
   TwistPublisher keys(system_.domain, "robot1/cmd_vel", {.stamped = false, .reliable = true});
   ASSERT_TRUE(keys.wait_for_readers(1, 10s)) << "the bridge's reader on robot1/cmd_vel";
   const auto forward_at = Clock::now();
-  hold(keys, 0.1, 0, 2000ms, 100ms);
+  keys.hold(0.1, 0, 2000ms, 100ms);
   const auto left_at = Clock::now();
-  const auto released_at = hold(keys, 0.1, 0.5, 1500ms, 100ms);
+  const auto released_at = keys.hold(0.1, 0.5, 1500ms, 100ms);
 
   const auto forward = robots_[0]->first_after(
-      forward_at, [](auto& v) { return near(v, 0.1, 0); }, 100ms);
+      forward_at, [](auto& v) { return at_velocity(v, 0.1, 0); }, 100ms);
   const auto left = robots_[0]->first_after(
-      left_at, [](auto& v) { return near(v, 0.1, 0.5); }, 100ms);
+      left_at, [](auto& v) { return at_velocity(v, 0.1, 0.5); }, 100ms);
   ASSERT_TRUE(forward) << "robot1's cmd_vel never followed the first key";
   ASSERT_TRUE(left) << "robot1's cmd_vel never followed the second key";
   const double stopped_ms = stop_ms(0, released_at);
@@ -108,7 +86,7 @@ TEST_F(BridgeE2E, AFastDdsPublisherKilledWithMinus9MidDriveStopsTheRobot) {
                           "--duration-s", "60"});
   const auto started = Clock::now();
   const auto moving = robots_[0]->first_after(
-      started, [](auto& v) { return near(v, 0.05, -0.3); }, 15000ms);
+      started, [](auto& v) { return at_velocity(v, 0.05, -0.3); }, 15000ms);
   ASSERT_TRUE(moving) << "the Fast DDS publisher's velocity never reached robot1's cmd_vel";
   std::this_thread::sleep_for(1s);
   const auto killed_at = Clock::now();
@@ -133,7 +111,7 @@ TEST_F(BridgeE2E, StampedBestEffortAtOneKilohertzIsClampedDropsNaNAndCostsTheBri
   const double elapsed_s = ms_between(start, Clock::now()) / 1000;
   const double cpu_share = (cpu_seconds(bridge) - cpu_before) / elapsed_s;
   const auto clamped = robots_[2]->first_after(
-      start, [](auto& v) { return near(v, kBurgerMaxLinearMps, 0); }, 100ms);
+      start, [](auto& v) { return at_velocity(v, kBurgerMaxLinearMps, 0); }, 100ms);
   ASSERT_TRUE(clamped) << "robot3 never drove at its top speed";
   for (const ReceivedCmdVel& v : robots_[2]->after(start)) {
     ASSERT_FALSE(std::isnan(v.linear.x));
@@ -151,9 +129,9 @@ TEST_F(BridgeE2E, ThreeRobotsThreeTopicsEachMovesOnlyOnItsOwnAndNoneHearsItsOwnO
   TwistPublisher only2(system_.domain, "robot2/cmd_vel", {.stamped = false, .reliable = true});
   ASSERT_TRUE(only2.wait_for_readers(1, 10s));
   const auto start = Clock::now();
-  const auto released = hold(only2, 0.1, 0.2, 2000ms, 100ms);
+  const auto released = only2.hold(0.1, 0.2, 2000ms, 100ms);
   ASSERT_TRUE(robots_[1]->first_after(
-      start, [](auto& v) { return near(v, 0.1, 0.2); }, 100ms));
+      start, [](auto& v) { return at_velocity(v, 0.1, 0.2); }, 100ms));
   ASSERT_LT(stop_ms(1, released), kStopBoundMs);
   // Robot2's agent published its velocity on robot2/cmd_vel all along, 20 times a second; had
   // the bridge taken it, robot2 would drive again now. It stays stopped for 3 s.
@@ -182,13 +160,13 @@ TEST_F(BridgeE2E, ANav2LikeSquareEndsWhereItsVelocitiesSay) {
   // at its goal). Integrated: 0.3 m ahead, a quarter turn left, 0.3 m to the left, another.
   constexpr double kSideMps = 0.2, kTurnRadps = 1.5707963;
   const auto start_at = Clock::now();
-  hold(nav2, kSideMps, 0, 1500ms, 50ms);
+  nav2.hold(kSideMps, 0, 1500ms, 50ms);
   const auto first = robots_[1]->first_after(
-      start_at, [](auto& v) { return near(v, kSideMps, 0); }, 100ms);
+      start_at, [](auto& v) { return at_velocity(v, kSideMps, 0); }, 100ms);
   ASSERT_TRUE(first);
-  hold(nav2, 0, kTurnRadps, 1000ms, 50ms);
-  hold(nav2, kSideMps, 0, 1500ms, 50ms);
-  hold(nav2, 0, kTurnRadps, 1000ms, 50ms);
+  nav2.hold(0, kTurnRadps, 1000ms, 50ms);
+  nav2.hold(kSideMps, 0, 1500ms, 50ms);
+  nav2.hold(0, kTurnRadps, 1000ms, 50ms);
   nav2.publish(0, 0);
   ASSERT_LT(stop_ms(1, Clock::now()), kStopBoundMs);
   const double heading = start.heading_deg * M_PI / 180;
@@ -247,12 +225,12 @@ TEST_F(BridgeE2E, TheStopForEveryRobotHoldsAgainstAPublisherThatGoesOnUntilItsIn
   ASSERT_TRUE(nav2.wait_for_readers(1, 10s));
   ASSERT_TRUE(stop.wait_for_readers(1, 10s));
   const auto start = Clock::now();
-  hold(nav2, 0.1, 0, 1500ms, 50ms);
+  nav2.hold(0.1, 0, 1500ms, 50ms);
   ASSERT_TRUE(robots_[0]->first_after(
-      start, [](auto& v) { return near(v, 0.1, 0); }, 100ms));
+      start, [](auto& v) { return at_velocity(v, 0.1, 0); }, 100ms));
   const auto stopped_at = Clock::now();
   stop.publish();
-  hold(nav2, 0.1, 0, 3000ms, 50ms);  // Nav2 goes on at 20 Hz
+  nav2.hold(0.1, 0, 3000ms, 50ms);  // Nav2 goes on at 20 Hz
   const auto stopped = robots_[0]->first_after(stopped_at, is_stopped, 100ms);
   ASSERT_TRUE(stopped) << "the stop for every robot did not stop robot1";
   std::printf("stop_every_robot -> robot1 stopped: %.0f ms\n", ms_between(stopped_at, stopped->received));
@@ -261,9 +239,9 @@ TEST_F(BridgeE2E, TheStopForEveryRobotHoldsAgainstAPublisherThatGoesOnUntilItsIn
   // Silent for the timeout: the input is zero, and the next message drives again.
   std::this_thread::sleep_for(std::chrono::milliseconds(static_cast<int>(kTimeoutMs) + 200));
   const auto again = Clock::now();
-  const auto released = hold(nav2, 0.1, 0, 1500ms, 50ms);
+  const auto released = nav2.hold(0.1, 0, 1500ms, 50ms);
   EXPECT_TRUE(robots_[0]->first_after(
-      again, [](auto& v) { return near(v, 0.1, 0); }, 100ms))
+      again, [](auto& v) { return at_velocity(v, 0.1, 0); }, 100ms))
       << "never drove again";
   EXPECT_LT(stop_ms(0, released), kStopBoundMs);
 }

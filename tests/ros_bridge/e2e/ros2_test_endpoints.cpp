@@ -84,6 +84,21 @@ void TwistPublisher::publish(double linear_mps, double angular_radps) {
   if (rc != DDS_RETCODE_OK) fail("writing a twist", rc);
 }
 
+std::chrono::steady_clock::time_point TwistPublisher::hold(double linear_mps, double angular_radps,
+                                                           std::chrono::milliseconds duration,
+                                                           std::chrono::milliseconds period) {
+  const auto start = std::chrono::steady_clock::now();
+  auto next = start;
+  std::chrono::steady_clock::time_point last;
+  while (next - start < duration) {
+    publish(linear_mps, angular_radps);
+    last = std::chrono::steady_clock::now();
+    next += period;
+    std::this_thread::sleep_until(next);
+  }
+  return last;
+}
+
 bool TwistPublisher::wait_for_readers(int n, std::chrono::milliseconds timeout) const {
   return readers_matched(writer_, n, timeout);
 }

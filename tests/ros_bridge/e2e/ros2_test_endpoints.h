@@ -29,6 +29,10 @@ class TwistPublisher {
   TwistPublisher& operator=(const TwistPublisher&) = delete;
 
   void publish(double linear_mps, double angular_radps);
+  // Publishes (v, w) every `period` for `duration`, as a keyboard's repeat or Nav2's
+  // controller does; returns when the last one went out.
+  std::chrono::steady_clock::time_point hold(double linear_mps, double angular_radps,
+                                             std::chrono::milliseconds duration, std::chrono::milliseconds period);
   // Until `n` readers match (the bridge's); false if `timeout` passes first.
   bool wait_for_readers(int n, std::chrono::milliseconds timeout) const;
 
