@@ -96,9 +96,20 @@ TEST_F(BridgeE2E, AFastDdsPublisherKilledWithMinus9MidDriveStopsTheRobot) {
   EXPECT_LE(stopped_ms, kStopBoundMs);
 }
 
-TEST_F(BridgeE2E, StampedBestEffortAtOneKilohertzIsClampedDropsNaNAndCostsTheBridgeLittle) {
+TEST_F(BridgeE2E, StampedBestEffortAtOneKilohertzIsClampedDropsNaNAndHugeSamplesAndCostsTheBridgeLittle) {
   TwistPublisher fast(system_.domain, "robot3/cmd_vel", {.stamped = true, .reliable = false});
   ASSERT_TRUE(fast.wait_for_readers(1, 10s));
+  // A sample over 64 KiB (a 200 kB frame_id) never reaches the bridge's reader (CycloneDDS's
+  // MaxSampleSize): its velocity is not taken, and the bridge goes on.
+  const auto huge_at = Clock::now();
+  const std::string huge(200 * 1024, 'x');
+  for (int i = 0; i < 15; ++i) {  // 1.5 s at 10 Hz: long enough to drive, were it taken
+    fast.publish(0.1, 0, huge);
+    std::this_thread::sleep_for(100ms);
+  }
+  std::this_thread::sleep_for(500ms);
+  EXPECT_FALSE(robots_[2]->first_after(huge_at, [](auto& v) { return at_velocity(v, 0.1, 0); }, 0ms))
+      << "a 200 kB sample drove the robot";
   const pid_t bridge = pid_of(system_, "ros-bridge");
   const double cpu_before = cpu_seconds(bridge);
   const auto start = Clock::now();

@@ -66,7 +66,7 @@ TwistPublisher::TwistPublisher(int domain, const std::string& ros_topic, TwistQo
 
 TwistPublisher::~TwistPublisher() { dds_delete(participant_); }
 
-void TwistPublisher::publish(double linear_mps, double angular_radps) {
+void TwistPublisher::publish(double linear_mps, double angular_radps, const std::string& frame_id) {
   geometry_msgs_msg_dds__Twist_ twist{};
   twist.linear.x = linear_mps;
   twist.angular.z = angular_radps;
@@ -75,7 +75,7 @@ void TwistPublisher::publish(double linear_mps, double angular_radps) {
     geometry_msgs_msg_dds__TwistStamped_ stamped{};
     const ros2::RosTime now = ros2::ros_time(std::chrono::system_clock::now());
     stamped.header.stamp = {now.sec, now.nanosec};
-    stamped.header.frame_id = const_cast<char*>("base_link");
+    stamped.header.frame_id = const_cast<char*>(frame_id.c_str());  // dds_write only reads it
     stamped.twist = twist;
     rc = dds_write(writer_, &stamped);
   } else {

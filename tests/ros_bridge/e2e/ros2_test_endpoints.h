@@ -28,7 +28,8 @@ class TwistPublisher {
   TwistPublisher(const TwistPublisher&) = delete;
   TwistPublisher& operator=(const TwistPublisher&) = delete;
 
-  void publish(double linear_mps, double angular_radps);
+  // `frame_id`: a TwistStamped's header.frame_id ("base_link" when not given).
+  void publish(double linear_mps, double angular_radps, const std::string& frame_id = "base_link");
   // Publishes (v, w) every `period` for `duration`, as a keyboard's repeat or Nav2's
   // controller does; returns when the last one went out.
   std::chrono::steady_clock::time_point hold(double linear_mps, double angular_radps,
