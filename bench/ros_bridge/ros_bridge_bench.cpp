@@ -104,38 +104,23 @@ json measure_stops(const Options& o, TwistPublisher& keys, const RobotCmdVel& ro
 }
 
 json measure_nav2(const Options& o, TwistPublisher& nav2, const RobotCmdVel& robot) {
-  const std::string watched = o.state_dir + "/bench-watch.jsonl";
-  ChildProcess watch({o.dtmfctl, "--server", o.server, "--json", "watch"}, watched);
-  std::this_thread::sleep_for(1000ms);
+  AirWatch air(o.dtmfctl, o.server, o.state_dir + "/bench-watch.jsonl");
   const auto start = Clock::now();
-  const auto start_unix_ms =
-      std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
-          .count();
+  const std::int64_t start_unix_ms = unix_ms_now();
   nav2.hold(0.1, 0.2, std::chrono::milliseconds(static_cast<long>(o.nav2_s * 1000)), 50ms);
-  const auto end_unix_ms =
-      std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
-          .count();
+  const std::int64_t end_unix_ms = unix_ms_now();
   const auto end = Clock::now();
   nav2.publish(0, 0);
   std::this_thread::sleep_for(1000ms);
-  watch.terminate();
   // Frames played from when the robot first moved to the stream's end.
   const auto moving = robot.first_after(
       start, [](auto& s) { return at_velocity(s, 0.1, 0.2); }, 100ms);
-  const double from_unix_ms = static_cast<double>(start_unix_ms) + (moving ? ms_between(start, moving->received) : 0);
-  int frames = 0;
-  std::ifstream in(watched);
-  for (std::string line; std::getline(in, line);) {
-    const json m = json::parse(line, nullptr, false);
-    // dtmfctl --json keeps the proto's field names; an int64 is a string in proto3's JSON.
-    if (m.is_discarded() || !m.contains("frame_played")) continue;
-    const double t = std::stod(m.value("time_unix_ms", std::string("0")));
-    frames += t >= from_unix_ms && t <= static_cast<double>(end_unix_ms);
-  }
+  const std::int64_t from_unix_ms = start_unix_ms + (moving ? std::llround(ms_between(start, moving->received)) : 0);
+  const int frames = air.frames_played(from_unix_ms, end_unix_ms);
   int lapses = 0;
   for (const ReceivedCmdVel& s : robot.after(moving ? moving->received : end))
     lapses += s.received < end && is_stopped(s);
-  const double seconds = (static_cast<double>(end_unix_ms) - from_unix_ms) / 1000;
+  const double seconds = static_cast<double>(end_unix_ms - from_unix_ms) / 1000;
   std::printf("nav2: %d frames in %.1f s (%.2f a second), %d lapses\n", frames, seconds, frames / seconds, lapses);
   return {{"seconds", seconds}, {"frames", frames}, {"frames_per_s", frames / seconds}, {"lapses", lapses}};
 }
@@ -158,7 +143,7 @@ int main(int argc, char** argv) {
   app.add_option("--json", o.json_path, "where to write the figures")->required();
   CLI11_PARSE(app, argc, argv);
 
-  const BridgeSystem system{o.state_dir, o.domain};
+  const BridgeSystem system{o.state_dir, o.domain, o.server};
   RobotCmdVel robot(system, o.topic);
   TwistPublisher keys(o.domain, o.topic, {.stamped = false, .reliable = true});
   if (!keys.wait_for_readers(1, 10s)) {

@@ -6,9 +6,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
@@ -31,11 +33,12 @@ std::string read_file(const std::string& path) {
 BridgeSystem BridgeSystem::from_environment() {
   const char* state = std::getenv("DTMF_E2E_STATE");
   const char* domain = std::getenv("ROS_DOMAIN_ID");
+  const char* server = std::getenv("DTMF_SERVER");
   if (state == nullptr || domain == nullptr) {
     throw std::runtime_error(
         "DTMF_E2E_STATE and ROS_DOMAIN_ID unset: run through tests/ros_bridge/e2e/run_bridge_e2e.sh");
   }
-  return {state, std::atoi(domain)};
+  return {state, std::atoi(domain), server != nullptr ? server : "localhost:50051"};
 }
 
 RobotCmdVel::RobotCmdVel(const BridgeSystem& system, const std::string& ros_topic)
@@ -139,6 +142,32 @@ void ChildProcess::kill9() {
   ::kill(pid_, SIGKILL);
   ::waitpid(pid_, nullptr, 0);
   pid_ = -1;
+}
+
+std::int64_t unix_ms_now() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+AirWatch::AirWatch(const std::string& dtmfctl, const std::string& server, const std::string& path)
+    : path_(path), watch_({dtmfctl, "--server", server, "--json", "watch"}, path) {
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // the stream set up
+}
+
+int AirWatch::frames_played(std::int64_t from_unix_ms, std::int64_t to_unix_ms, const std::string& robot) {
+  watch_.terminate();
+  std::ifstream in(path_);
+  int frames = 0;
+  for (std::string line; std::getline(in, line);) {
+    // dtmfctl --json keeps the proto's field names; an int64 is a string in proto3's JSON.
+    const nlohmann::json m = nlohmann::json::parse(line, nullptr, false);
+    if (m.is_discarded() || !m.contains("frame_played")) continue;
+    const std::int64_t t = std::stoll(m.value("time_unix_ms", std::string("0")));
+    const auto robots = m["frame_played"].value("robots", std::vector<std::string>{});
+    const bool for_robot = robot.empty() || std::find(robots.begin(), robots.end(), robot) != robots.end();
+    frames += for_robot && t >= from_unix_ms && t <= to_unix_ms;
+  }
+  return frames;
 }
 
 }  // namespace dtmf::test_support

@@ -7,6 +7,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -23,6 +24,7 @@ using Clock = std::chrono::steady_clock;
 struct BridgeSystem {
   std::string state_dir;  // DTMF_E2E_STATE
   int domain = 0;         // ROS_DOMAIN_ID
+  std::string server;     // DTMF_SERVER
   static BridgeSystem from_environment();
 };
 
@@ -75,6 +77,21 @@ class ChildProcess {
 
  private:
   pid_t pid_ = -1;
+};
+
+// The wall clock in ms since 1970, as WatchAir stamps what it streams.
+std::int64_t unix_ms_now();
+
+// The air as the sender plays it: `dtmfctl --json watch` into a file from construction on.
+class AirWatch {
+ public:
+  AirWatch(const std::string& dtmfctl, const std::string& server, const std::string& path);
+  // Ends the watch; the frames played for `robot` (empty: for any) between the two wall times.
+  int frames_played(std::int64_t from_unix_ms, std::int64_t to_unix_ms, const std::string& robot = "");
+
+ private:
+  std::string path_;
+  ChildProcess watch_;
 };
 
 }  // namespace dtmf::test_support

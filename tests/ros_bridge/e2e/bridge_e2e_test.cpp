@@ -58,6 +58,8 @@ class BridgeE2E : public ::testing::Test {
 
 TEST_F(BridgeE2E, AKeyboardLikePublisherDrivesEachKeyAndTheRobotStopsWhenItIsReleased) {
   TwistPublisher keys(system_.domain, "robot1/cmd_vel", {.stamped = false, .reliable = true});
+  // What the bridge says the robot confirmed it executes (its writer, not an agent's).
+  CmdVelSubscriber confirmed(system_.domain, "rt/robot1/cmd_vel_confirmed", true);
   ASSERT_TRUE(keys.wait_for_readers(1, 10s)) << "the bridge's reader on robot1/cmd_vel";
   const auto forward_at = Clock::now();
   keys.hold(0.1, 0, 2000ms, 100ms);
@@ -76,6 +78,12 @@ TEST_F(BridgeE2E, AKeyboardLikePublisherDrivesEachKeyAndTheRobotStopsWhenItIsRel
   EXPECT_LT(ms_between(forward_at, forward->received), 1000);
   EXPECT_LT(ms_between(left_at, left->received), 1000);
   EXPECT_LE(stopped_ms, kStopBoundMs);
+  std::vector<std::pair<double, double>> said;
+  for (const ReceivedCmdVel& c : confirmed.samples()) said.emplace_back(c.linear.x, c.angular.z);
+  ASSERT_GE(said.size(), 3u) << "cmd_vel_confirmed: forward, left, stopped";
+  EXPECT_NEAR(said[0].first, 0.1, kLinearStepMps);
+  EXPECT_NEAR(said[1].second, 0.5, 0.02);
+  EXPECT_EQ(said.back(), std::make_pair(0.0, 0.0)) << "the last velocity confirmed is the stop";
 }
 
 TEST_F(BridgeE2E, AFastDdsPublisherKilledWithMinus9MidDriveStopsTheRobot) {
@@ -108,22 +116,33 @@ TEST_F(BridgeE2E, StampedBestEffortAtOneKilohertzIsClampedDropsNaNAndHugeSamples
     std::this_thread::sleep_for(100ms);
   }
   std::this_thread::sleep_for(500ms);
-  EXPECT_FALSE(robots_[2]->first_after(huge_at, [](auto& v) { return at_velocity(v, 0.1, 0); }, 0ms))
+  EXPECT_FALSE(robots_[2]->first_after(
+      huge_at, [](auto& v) { return at_velocity(v, 0.1, 0); }, 0ms))
       << "a 200 kB sample drove the robot";
   const pid_t bridge = pid_of(system_, "ros-bridge");
+  AirWatch air(DTMFCTL_PATH, system_.server, system_.state_dir + "/air-1khz.jsonl");
   const double cpu_before = cpu_seconds(bridge);
   const auto start = Clock::now();
+  const std::int64_t start_unix_ms = unix_ms_now();
   auto next = start;
-  for (int i = 0; i < 3000; ++i) {  // 3 s at 1 kHz: 1.0 m/s, beyond a Burger's 0.22; every 10th a NaN
-    fast.publish(i % 10 == 9 ? std::nan("") : 1.0, 0);
+  // 3 s at 1 kHz, a new velocity each time: 1.0 m/s (beyond a Burger's 0.22) and 0.15 in
+  // turn, every 10th a NaN.
+  for (int i = 0; i < 3000; ++i) {
+    fast.publish(i % 10 == 9 ? std::nan("") : (i % 2 == 0 ? 1.0 : 0.15), 0);
     next += 1ms;
     std::this_thread::sleep_until(next);
   }
   const double elapsed_s = ms_between(start, Clock::now()) / 1000;
   const double cpu_share = (cpu_seconds(bridge) - cpu_before) / elapsed_s;
+  const int frames = air.frames_played(start_unix_ms, unix_ms_now(), "robot3");
+  // The server sends only the newest velocity, one frame at a time: no more than the air
+  // carries back to back (a fast frame is 102.5 ms), whatever the publisher's rate.
+  std::printf("1 kHz of changing velocities for %.1f s: %d frames on air for robot3\n", elapsed_s, frames);
+  EXPECT_LE(frames, static_cast<int>(elapsed_s * 1000 / 102.5) + 1);
+  EXPECT_GT(frames, 0);
   const auto clamped = robots_[2]->first_after(
-      start, [](auto& v) { return at_velocity(v, kBurgerMaxLinearMps, 0); }, 100ms);
-  ASSERT_TRUE(clamped) << "robot3 never drove at its top speed";
+      start, [](auto& v) { return at_velocity(v, kBurgerMaxLinearMps, 0) || at_velocity(v, 0.15, 0); }, 100ms);
+  ASSERT_TRUE(clamped) << "robot3 never drove at its top speed or at 0.15 m/s";
   for (const ReceivedCmdVel& v : robots_[2]->after(start)) {
     ASSERT_FALSE(std::isnan(v.linear.x));
     ASSERT_LE(v.linear.x, kBurgerMaxLinearMps + kLinearStepMps);

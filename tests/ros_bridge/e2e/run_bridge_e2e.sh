@@ -29,4 +29,4 @@ quickstart --robots 3 --no-sequence || { echo "FAIL: scripts/quickstart --robots
 # The test's publishers and subscribers set up as the README has a user's ROS 2 tools: on
 # loopback, Fast DDS and CycloneDDS alike (the files the package installs).
 source "$src/clients/ros_bridge/ros/localhost.sh"
-DTMF_E2E_STATE=$dir "$tests" "$@"
+DTMF_E2E_STATE=$dir DTMF_SERVER=localhost:$DTMF_QUICKSTART_PORT "$tests" "$@"
