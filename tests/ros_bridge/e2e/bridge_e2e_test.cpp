@@ -158,6 +158,13 @@ TEST_F(BridgeE2E, StampedBestEffortAtOneKilohertzIsClampedDropsNaNAndHugeSamples
 TEST_F(BridgeE2E, ThreeRobotsThreeTopicsEachMovesOnlyOnItsOwnAndNoneHearsItsOwnOutputBack) {
   TwistPublisher only2(system_.domain, "robot2/cmd_vel", {.stamped = false, .reliable = true});
   ASSERT_TRUE(only2.wait_for_readers(1, 10s));
+  // The others idle first: the bridge has closed their streams (the test before drove robot3),
+  // so that nothing of theirs is still on the air.
+  for (const char* other : {"robot1", "robot3"}) {
+    const ReceivedStatus idle = diagnostics_->wait_for(
+        other, [](auto& s) { return s.values.count("stream") && s.values.at("stream") == "closed"; }, 5000ms);
+    ASSERT_GE(idle.level, 0) << other << "'s stream was not closed within 5 s";
+  }
   const auto start = Clock::now();
   const auto released = only2.hold(0.1, 0.2, 2000ms, 100ms);
   ASSERT_TRUE(robots_[1]->first_after(
